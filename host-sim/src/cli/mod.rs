@@ -1,0 +1,189 @@
+//! The `fpt` command-line tool.
+//!
+//! Every command reports bad input as one line `error: ...` on stderr and exit
+//! status 2, never a panic; files are written whole or not at all
+//! ([`crate::output::write_atomic`]).
+
+use clap::{Args, Parser, Subcommand};
+use std::ffi::OsString;
+use std::path::PathBuf;
+
+mod build;
+mod inspect;
+
+/// A failure reported to the user as `error: MESSAGE`, exit status 2.
+#[derive(Debug)]
+pub struct CliError(pub String);
+
+impl<E: std::fmt::Display> From<E> for CliError {
+    fn from(e: E) -> Self {
+        CliError(e.to_string())
+    }
+}
+
+/// Result of a command.
+pub type CliResult = Result<(), CliError>;
+
+/// Shorthand for an error with a formatted message.
+#[macro_export]
+macro_rules! cli_err {
+    ($($t:tt)*) => { $crate::cli::CliError(format!($($t)*)) };
+}
+
+#[derive(Parser, Debug)]
+#[command(name = "fpt", version, about = "Feudal priority trees: build, inspect, order, render")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Build a feudal priority tree (or a BSP tree) from a mesh file.
+    Build(BuildArgs),
+    /// Print the tree's output polygons as JSON, in model coordinates.
+    Polygons(PolygonsArgs),
+    /// Print the classes of polygons for one view, back to front, as JSON.
+    Order(OrderArgs),
+    /// Validate a tree file and print its header and counts.
+    Info(InfoArgs),
+    /// Compare static, dynamic and BSP builds on mesh files (paper's Table 6/7).
+    BenchBuild(BenchBuildArgs),
+    /// Time the postprocessing walk over many view directions.
+    BenchOrder(BenchOrderArgs),
+}
+
+/// Arguments of `fpt build`.
+#[derive(Args, Debug)]
+pub struct BuildArgs {
+    /// Mesh file: OBJ, OFF, STL (binary or ASCII) or PLY.
+    pub mesh: PathBuf,
+    /// Output tree file.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+    /// Preprocessing method: static, dynamic or bsp.
+    #[arg(long, default_value = "static")]
+    pub method: String,
+    /// Seed of the random choices of dynamic preprocessing and BSP.
+    #[arg(long, default_value_t = crate::build::DEFAULT_SEED)]
+    pub seed: u64,
+    /// Treat the mesh as a closed volume (back faces culled).
+    #[arg(long, conflicts_with = "open")]
+    pub closed: bool,
+    /// Treat the mesh as an open volume (both sides drawn).
+    #[arg(long)]
+    pub open: bool,
+    /// Write the build statistics to this JSON file.
+    #[arg(long)]
+    pub stats: Option<PathBuf>,
+    /// Vertex encoding in the tree file: f32, q16 or q32.
+    #[arg(long = "vertex-format", default_value = "f32")]
+    pub vertex_format: String,
+}
+
+/// Arguments of `fpt polygons`.
+#[derive(Args, Debug)]
+pub struct PolygonsArgs {
+    /// Tree file.
+    pub tree: PathBuf,
+}
+
+/// Arguments of `fpt order`.
+#[derive(Args, Debug)]
+pub struct OrderArgs {
+    /// Tree file.
+    pub tree: PathBuf,
+    /// Parallel projection looking along X,Y,Z (from the viewer into the scene).
+    #[arg(long = "view-dir", allow_hyphen_values = true, conflicts_with = "eye")]
+    pub view_dir: Option<String>,
+    /// Perspective viewpoint X,Y,Z.
+    #[arg(long, allow_hyphen_values = true)]
+    pub eye: Option<String>,
+}
+
+/// Arguments of `fpt info`.
+#[derive(Args, Debug)]
+pub struct InfoArgs {
+    /// Tree file.
+    pub tree: PathBuf,
+}
+
+/// Arguments of `fpt bench-build`.
+#[derive(Args, Debug)]
+pub struct BenchBuildArgs {
+    /// Mesh files (default: the shared models in ../shared/models).
+    pub meshes: Vec<PathBuf>,
+    /// Builds per method and model; times are averaged.
+    #[arg(long, default_value_t = 1)]
+    pub runs: u32,
+}
+
+/// Arguments of `fpt bench-order`.
+#[derive(Args, Debug)]
+pub struct BenchOrderArgs {
+    /// Tree file.
+    pub tree: PathBuf,
+    /// Number of view directions spread over the sphere.
+    #[arg(long, default_value_t = 1000)]
+    pub views: u32,
+}
+
+/// Parses `X,Y,Z` into three finite numbers.
+pub fn parse_vec3(what: &str, s: &str) -> Result<[f64; 3], CliError> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(cli_err!("{what} needs three numbers X,Y,Z, got '{s}'"));
+    }
+    let mut out = [0.0; 3];
+    for (o, p) in out.iter_mut().zip(parts) {
+        let v: f64 = p
+            .trim()
+            .parse()
+            .map_err(|_| cli_err!("{what}: '{p}' is not a number"))?;
+        if !v.is_finite() {
+            return Err(cli_err!("{what}: '{p}' is not finite"));
+        }
+        *o = v;
+    }
+    Ok(out)
+}
+
+/// Runs `fpt` with `args` (the first is the program name); returns the exit status.
+pub fn main_with_args<I, T>(args: I) -> i32
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(c) => c,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                print!("{e}");
+                return 0;
+            }
+            // clap's message spans several lines; the contract is one line.
+            let text = e.to_string();
+            let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("error: bad arguments");
+            let first = first.trim_start_matches("error: ");
+            eprintln!("error: {first}");
+            return 2;
+        }
+    };
+    let result = match cli.command {
+        Command::Build(a) => build::run(&a),
+        Command::Polygons(a) => inspect::polygons(&a),
+        Command::Order(a) => inspect::order(&a),
+        Command::Info(a) => inspect::info(&a),
+        Command::BenchBuild(a) => build::bench(&a),
+        Command::BenchOrder(a) => inspect::bench_order(&a),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(CliError(msg)) => {
+            let one_line = msg.replace('\n', " ");
+            eprintln!("error: {one_line}");
+            2
+        }
+    }
+}

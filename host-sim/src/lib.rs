@@ -1,0 +1,10 @@
+//! Host side of feudal: mesh import, the feudal priority tree builders, the
+//! serializer of the flat format, and the `fpt` command-line tool.
+#![deny(unsafe_code, missing_docs)]
+
+pub mod build;
+pub mod cli;
+pub mod geom;
+pub mod output;
+pub mod split;
+pub mod tree;

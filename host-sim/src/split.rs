@@ -1,0 +1,1 @@
+//! Splitting a planar polygon, convex or concave, by a plane.
