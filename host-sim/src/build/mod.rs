@@ -1,20 +1,32 @@
 //! The offline builders: static and dynamic feudal preprocessing and the BSP
 //! baseline.
 //!
-//! All three work on polygons normalised into a unit box around the origin,
-//! so that the one [`Tolerance`] is the same fraction of any model's size and
-//! a scaled or moved model gives the same tree; the output polygons are moved
+//! All three work on polygons normalised into a box of size 1 around the
+//! origin, so that the one [`Tolerance`] is the same fraction of any model's
+//! size and a scaled or moved model gives the same tree. Polygons that were
+//! never split come out exactly as they came in; pieces and planes are moved
 //! back into model coordinates.
 
-use crate::geom::Polygon;
-use crate::tree::{FpTree, Method};
+mod bsp;
+mod feudal;
+mod rng;
+mod table;
+
+pub use rng::Rng;
+use table::Rel;
+
+use crate::geom::{bounds, Plane, Polygon, Relation, Tolerance};
+use crate::split::split;
+use crate::tree::{Connecting, FpTree, Method, Stats};
+use glam::DVec3;
 
 /// Seed used when none is given, so that builds are reproducible.
 pub const DEFAULT_SEED: u64 = 0x5EED_F00D;
 
 /// Receives progress while a tree is built: polygons placed so far, of total.
-pub trait Progress {
-    /// Called from time to time with `placed ≤ total`.
+pub trait Progress: Send {
+    /// Called from time to time with the polygons placed in the tree so far
+    /// and the number of polygons still to place plus those placed.
     fn update(&mut self, placed: usize, total: usize);
 }
 
@@ -25,6 +37,60 @@ impl Progress for NoProgress {
     fn update(&mut self, _placed: usize, _total: usize) {}
 }
 
+/// State shared by one build: the working polygons and the counters.
+pub(crate) struct Ctx<'a> {
+    /// Working polygons in normalised coordinates; pieces are appended.
+    pub polys: Vec<Polygon>,
+    pub tol: Tolerance,
+    pub relations: u64,
+    pub splittings: usize,
+    pub rng: Rng,
+    placed: usize,
+    total: usize,
+    progress: &'a mut dyn Progress,
+}
+
+impl Ctx<'_> {
+    /// One one-way priority relation: polygon `p` against the plane of `q`.
+    pub fn relation(&mut self, p: u32, q: u32) -> Rel {
+        self.relations += 1;
+        let (pp, qp) = (&self.polys[p as usize], &self.polys[q as usize]);
+        match qp.plane.relation(&pp.verts, self.tol) {
+            Relation::Front => Rel::Front,
+            Relation::Back => Rel::Back,
+            Relation::Cut => Rel::Cut,
+            Relation::Coplanar if pp.plane.normal.dot(qp.plane.normal) >= 0.0 => Rel::Same,
+            Relation::Coplanar => Rel::Opposite,
+        }
+    }
+
+    /// Splits polygon `id` by `plane`; returns the ids of the pieces in
+    /// front and behind.
+    pub fn split(&mut self, id: u32, plane: &Plane) -> (Vec<u32>, Vec<u32>) {
+        let pieces = split(&self.polys[id as usize], plane, self.tol);
+        self.splittings += 1;
+        // One polygon became several: the total to place grows.
+        self.total += pieces.front.len() + pieces.back.len() - 1;
+        let push = |v: Vec<Polygon>, polys: &mut Vec<Polygon>| -> Vec<u32> {
+            v.into_iter()
+                .map(|p| {
+                    polys.push(p);
+                    (polys.len() - 1) as u32
+                })
+                .collect()
+        };
+        let f = push(pieces.front, &mut self.polys);
+        let b = push(pieces.back, &mut self.polys);
+        (f, b)
+    }
+
+    /// Records that `n` more polygons have their place in the tree.
+    pub fn placed(&mut self, n: usize) {
+        self.placed += n;
+        self.progress.update(self.placed, self.total);
+    }
+}
+
 /// Builds a tree of `polygons` with `method`; `seed` drives its random choices.
 pub fn build(
     polygons: Vec<Polygon>,
@@ -33,6 +99,130 @@ pub fn build(
     seed: u64,
     progress: &mut dyn Progress,
 ) -> FpTree {
-    let _ = (seed, progress);
-    todo!("builder: {} polygons, closed {closed}, {:?}", polygons.len(), method)
+    let start = std::time::Instant::now();
+    let input_polygons = polygons.len();
+    let (lo, hi) = bounds(&polygons);
+    let (center, scale) = if input_polygons == 0 {
+        (DVec3::ZERO, 1.0)
+    } else {
+        let ext = (hi - lo).max_element();
+        ((lo + hi) * 0.5, if ext > 0.0 { ext } else { 1.0 })
+    };
+    let work: Vec<Polygon> = polygons
+        .iter()
+        .map(|p| Polygon {
+            verts: p.verts.iter().map(|&v| (v - center) / scale).collect(),
+            plane: Plane {
+                normal: p.plane.normal,
+                d: (p.plane.d + p.plane.normal.dot(center)) / scale,
+            },
+            source: p.source,
+            color: p.color,
+        })
+        .collect();
+    let diag = if input_polygons == 0 {
+        1.0
+    } else {
+        ((hi - lo) / scale).length()
+    };
+    let mut ctx = Ctx {
+        polys: work,
+        tol: Tolerance::for_diagonal(diag),
+        relations: 0,
+        splittings: 0,
+        rng: Rng::new(seed),
+        placed: 0,
+        total: input_polygons,
+        progress,
+    };
+    let ids: Vec<u32> = (0..input_polygons as u32).collect();
+    // The builders recurse once per switch node; a BSP tree of a hostile
+    // model can be thousands deep, more than a default thread stack holds.
+    let root = std::thread::scope(|s| {
+        std::thread::Builder::new()
+            .stack_size(512 << 20)
+            .spawn_scoped(s, || match method {
+                Method::Static => {
+                    feudal::build_group(table::Table::new(ids), feudal::Mode::Static, &mut ctx)
+                }
+                Method::Dynamic => {
+                    feudal::build_group(table::Table::new(ids), feudal::Mode::Dynamic, &mut ctx)
+                }
+                Method::Bsp => bsp::build_bsp(ids, &mut ctx),
+            })
+            .expect("spawning the builder thread")
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e))
+    });
+    let (relations, splittings) = (ctx.relations, ctx.splittings);
+    let work = ctx.polys;
+
+    // Number the output polygons in tree pre-order and bring them back to
+    // model coordinates.
+    let mut remap = vec![u32::MAX; work.len()];
+    let mut order = Vec::new();
+    root.for_each_polygon(&mut |id| {
+        remap[id as usize] = order.len() as u32;
+        order.push(id);
+    });
+    let mut originals: Vec<Option<Polygon>> = polygons.into_iter().map(Some).collect();
+    let out: Vec<Polygon> = order
+        .iter()
+        .map(|&id| {
+            let id = id as usize;
+            match originals.get_mut(id).and_then(Option::take) {
+                Some(p) => p,
+                None => {
+                    let p = &work[id];
+                    Polygon {
+                        verts: p.verts.iter().map(|&v| center + v * scale).collect(),
+                        plane: denormalize(&p.plane, center, scale),
+                        source: p.source,
+                        color: p.color,
+                    }
+                }
+            }
+        })
+        .collect();
+    let root = remap_tree(root, &remap, center, scale);
+    let mut tree = FpTree {
+        polygons: out,
+        closed,
+        root,
+        method,
+        stats: Stats {
+            input_polygons,
+            splittings,
+            relations,
+            ..Stats::default()
+        },
+    };
+    tree.count_structure();
+    tree.stats.build_ms = start.elapsed().as_secs_f64() * 1e3;
+    tree
 }
+
+fn denormalize(p: &Plane, center: DVec3, scale: f64) -> Plane {
+    Plane {
+        normal: p.normal,
+        d: p.d * scale - p.normal.dot(center),
+    }
+}
+
+fn remap_tree(mut c: Connecting, remap: &[u32], center: DVec3, scale: f64) -> Connecting {
+    let map = |v: &mut Vec<u32>| v.iter_mut().for_each(|id| *id = remap[*id as usize]);
+    for l in &mut c.levels {
+        map(&mut l.front);
+        map(&mut l.back);
+    }
+    if let Some(s) = c.switch.as_mut() {
+        map(&mut s.on);
+        s.plane = denormalize(&s.plane, center, scale);
+        s.front = remap_tree(std::mem::take(&mut s.front), remap, center, scale);
+        s.back = remap_tree(std::mem::take(&mut s.back), remap, center, scale);
+    }
+    c
+}
+
+#[cfg(test)]
+mod tests;

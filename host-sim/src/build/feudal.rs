@@ -1,0 +1,263 @@
+//! Static and dynamic feudal preprocessing (`feudal-priority.md`, "Static
+//! preprocessing" and "Dynamic preprocessing").
+//!
+//! One connecting node is built per group of polygons. Static computes the
+//! whole one-way priority table of the group first; dynamic computes rows in
+//! a random order and acts on each as soon as it shows an absolute priority
+//! polygon or a separating plane, then finishes what is left statically.
+
+use super::table::{Rel, Table};
+use super::Ctx;
+use crate::tree::{Connecting, Level, Switch};
+use std::cmp::Ordering;
+
+/// Which preprocessing drives a group.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// Whole table first.
+    Static,
+    /// Rows in random order, acted on as they come.
+    Dynamic,
+}
+
+/// Builds the connecting node of the group in `table`.
+pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
+    let mut levels = Vec::new();
+    if mode == Mode::Dynamic {
+        if let Some(s) = dynamic_phase(&mut table, &mut levels, ctx) {
+            let t = std::mem::replace(&mut table, Table::new(Vec::new()));
+            let switch = make_switch(t, s, mode, ctx);
+            return Connecting {
+                levels,
+                switch: Some(Box::new(switch)),
+            };
+        }
+    }
+    // Static from step 1 on (for dynamic: every remaining row is known, so
+    // this computes nothing new).
+    for q in 0..table.len() {
+        if table.is_alive(q) {
+            table.compute_row(q, ctx);
+        }
+    }
+    extract_levels(&mut table, &mut levels, ctx);
+    if table.alive_count() == 0 {
+        return Connecting {
+            levels,
+            switch: None,
+        };
+    }
+    let s = choose_separator(&table, ctx).unwrap_or_else(|| choose_splitter(&table, ctx));
+    let switch = make_switch(table, s, mode, ctx);
+    Connecting {
+        levels,
+        switch: Some(Box::new(switch)),
+    }
+}
+
+/// `Some(true)` for absolute front priority, `Some(false)` for absolute back.
+fn absolute(t: &Table, q: usize) -> Option<bool> {
+    if !t.is_alive(q) || !t.has_row(q) {
+        return None;
+    }
+    let [front, back, cut] = t.counts(q);
+    if cut != 0 {
+        None
+    } else if front == 0 {
+        Some(true)
+    } else if back == 0 {
+        Some(false)
+    } else {
+        None
+    }
+}
+
+/// Puts `q` into the front (`front`) or back bunch of `level`, with the
+/// polygons in its plane: same orientation to the same bunch, reversed to
+/// the opposite one.
+fn bunch(l: &mut Level, front: bool) -> &mut Vec<u32> {
+    if front {
+        &mut l.front
+    } else {
+        &mut l.back
+    }
+}
+
+fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut [bool]) {
+    bunch(level, front).push(t.ids[q]);
+    taken[q] = true;
+    for p in 0..t.len() {
+        if p == q || taken[p] || !t.is_alive(p) {
+            continue;
+        }
+        match t.rel(q, p) {
+            Rel::Same => bunch(level, front).push(t.ids[p]),
+            Rel::Opposite => bunch(level, !front).push(t.ids[p]),
+            _ => continue,
+        }
+        taken[p] = true;
+    }
+}
+
+/// Static step 2: peel off all absolute priority polygons, level by level.
+fn extract_levels(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) {
+    loop {
+        let mut level = Level::default();
+        let mut taken = vec![false; t.len()];
+        for q in 0..t.len() {
+            if taken[q] {
+                continue;
+            }
+            if let Some(front) = absolute(t, q) {
+                take(t, q, front, &mut level, &mut taken);
+            }
+        }
+        if level.front.is_empty() && level.back.is_empty() {
+            return;
+        }
+        let n = finish_level(t, &taken);
+        ctx.placed(n);
+        levels.push(level);
+    }
+}
+
+/// Removes the `taken` members from the group; returns how many.
+fn finish_level(t: &mut Table, taken: &[bool]) -> usize {
+    let mut n = 0;
+    for (q, &tk) in taken.iter().enumerate() {
+        if tk {
+            t.remove(q);
+            n += 1;
+        }
+    }
+    n
+}
+
+/// Dynamic steps 1 and 2. Returns the separating member if one was found
+/// (the caller makes the switch node); levels found go into `levels`.
+fn dynamic_phase(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) -> Option<usize> {
+    let mut order: Vec<usize> = (0..t.len())
+        .filter(|&q| t.is_alive(q) && !t.has_row(q))
+        .collect();
+    ctx.rng.shuffle(&mut order);
+    for q in order {
+        if !t.is_alive(q) {
+            continue;
+        }
+        t.compute_row(q, ctx);
+        // Examine the new row, then re-examine the earlier ones after every
+        // removal: a removal may make them absolute or separating.
+        'examine: loop {
+            for r in std::iter::once(q).chain(0..t.len()) {
+                if !t.is_alive(r) || !t.has_row(r) {
+                    continue;
+                }
+                if let Some(front) = absolute(t, r) {
+                    let mut level = Level::default();
+                    let mut taken = vec![false; t.len()];
+                    take(t, r, front, &mut level, &mut taken);
+                    let n = finish_level(t, &taken);
+                    ctx.placed(n);
+                    levels.push(level);
+                    continue 'examine;
+                }
+                if t.counts(r)[2] == 0 {
+                    return Some(r);
+                }
+            }
+            break;
+        }
+    }
+    None
+}
+
+/// Orders candidates deterministically and independently of input order:
+/// by the polygon's plane, then its centroid.
+fn geometric_key(ctx: &Ctx, id: u32) -> [f64; 7] {
+    let p = &ctx.polys[id as usize];
+    let c = crate::geom::centroid(&p.verts);
+    let n = p.plane.normal;
+    [n.x, n.y, n.z, p.plane.d, c.x, c.y, c.z]
+}
+
+fn key_cmp(a: &[f64; 7], b: &[f64; 7]) -> Ordering {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| x.total_cmp(y))
+        .find(|o| o.is_ne())
+        .unwrap_or(Ordering::Equal)
+}
+
+/// Picks the alive member minimising `score`, ties broken geometrically.
+fn best_by(t: &Table, ctx: &Ctx, score: impl Fn([u32; 3]) -> Option<(u32, u32)>) -> Option<usize> {
+    let mut best: Option<(usize, (u32, u32), [f64; 7])> = None;
+    for q in 0..t.len() {
+        if !t.is_alive(q) || !t.has_row(q) {
+            continue;
+        }
+        let Some(s) = score(t.counts(q)) else {
+            continue;
+        };
+        let key = geometric_key(ctx, t.ids[q]);
+        let better = match &best {
+            None => true,
+            Some((_, bs, bk)) => s < *bs || (s == *bs && key_cmp(&key, bk).is_lt()),
+        };
+        if better {
+            best = Some((q, s, key));
+        }
+    }
+    best.map(|b| b.0)
+}
+
+/// Step 4: a separating plane (empty cut column), the most balanced one.
+fn choose_separator(t: &Table, ctx: &Ctx) -> Option<usize> {
+    best_by(t, ctx, |[f, b, c]| (c == 0).then_some((0, f.abs_diff(b))))
+}
+
+/// Step 5: the fewest cuts, then the most balanced.
+fn choose_splitter(t: &Table, ctx: &Ctx) -> usize {
+    best_by(t, ctx, |[f, b, c]| Some((c, f.abs_diff(b))))
+        .or_else(|| (0..t.len()).find(|&q| t.is_alive(q)))
+        .unwrap_or(0)
+}
+
+/// Makes the switch node on the plane of member `s`: its coplanar bunch, and
+/// the groups in front and behind, splitting the polygons it cuts.
+fn make_switch(t: Table, s: usize, mode: Mode, ctx: &mut Ctx) -> Switch {
+    let sid = t.ids[s];
+    let plane = ctx.polys[sid as usize].plane;
+    let mut on = vec![sid];
+    let (mut front, mut back) = (Vec::new(), Vec::new());
+    let (mut front_pieces, mut back_pieces) = (Vec::new(), Vec::new());
+    for p in 0..t.len() {
+        if p == s || !t.is_alive(p) {
+            continue;
+        }
+        let pid = t.ids[p];
+        let rel = match t.rel(s, p) {
+            Rel::Unknown => ctx.relation(pid, sid),
+            r => r,
+        };
+        match rel {
+            Rel::Front => front.push(p),
+            Rel::Back => back.push(p),
+            Rel::Same | Rel::Opposite => on.push(pid),
+            Rel::Cut | Rel::Unknown => {
+                let (f, b) = ctx.split(pid, &plane);
+                front_pieces.extend(f.into_iter().map(|id| (id, p)));
+                back_pieces.extend(b.into_iter().map(|id| (id, p)));
+            }
+        }
+    }
+    ctx.placed(on.len());
+    let ft = t.subtable(&front, &front_pieces, ctx);
+    let bt = t.subtable(&back, &back_pieces, ctx);
+    drop(t);
+    Switch {
+        plane,
+        on,
+        front: build_group(ft, mode, ctx),
+        back: build_group(bt, mode, ctx),
+    }
+}
