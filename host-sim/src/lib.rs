@@ -5,6 +5,10 @@
 pub mod build;
 pub mod cli;
 pub mod geom;
+pub mod mesh;
 pub mod output;
+pub mod serialize;
+pub mod reference;
+pub mod scenes;
 pub mod split;
 pub mod tree;

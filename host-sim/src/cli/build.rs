@@ -1,13 +1,234 @@
 //! `fpt build` and `fpt bench-build`.
 
-use super::{BenchBuildArgs, BuildArgs, CliResult};
+use super::{BenchBuildArgs, BuildArgs, CliError, CliResult};
+use crate::build::{build, Progress};
+use crate::cli_err;
+use crate::output::write_atomic;
+use crate::tree::{FpTree, Method, Stats};
+use fpt_nostd::format::VertexFormat;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
-/// `fpt build`.
-pub fn run(_a: &BuildArgs) -> CliResult {
-    Err(crate::cli_err!("fpt build is not implemented yet"))
+/// Parses a method name.
+pub fn parse_method(s: &str) -> Result<Method, CliError> {
+    match s {
+        "static" => Ok(Method::Static),
+        "dynamic" => Ok(Method::Dynamic),
+        "bsp" => Ok(Method::Bsp),
+        _ => Err(cli_err!(
+            "unknown method '{s}' (expected static, dynamic or bsp)"
+        )),
+    }
 }
 
-/// `fpt bench-build`.
-pub fn bench(_a: &BenchBuildArgs) -> CliResult {
-    Err(crate::cli_err!("fpt bench-build is not implemented yet"))
+/// Parses a vertex encoding name: `f32`, `q16` or `q32`.
+pub fn parse_vertex_format(s: &str) -> Result<VertexFormat, CliError> {
+    VertexFormat::ALL
+        .into_iter()
+        .find(|f| f.name() == s)
+        .ok_or_else(|| cli_err!("unknown vertex format '{s}' (expected f32, q16 or q32)"))
+}
+
+/// A progress bar on stderr that appears only once a build has run for
+/// about a second, so quick builds print nothing.
+struct Bar {
+    bar: ProgressBar,
+    start: Instant,
+    shown: bool,
+}
+
+impl Bar {
+    fn new() -> Bar {
+        let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
+        if let Ok(style) = ProgressStyle::with_template(
+            "{spinner} building [{bar:40}] {pos}/{len} polygons placed",
+        ) {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        Bar {
+            bar,
+            start: Instant::now(),
+            shown: false,
+        }
+    }
+}
+
+impl Progress for Bar {
+    fn update(&mut self, placed: usize, total: usize) {
+        if !self.shown && self.start.elapsed() > Duration::from_secs(1) {
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+            self.shown = true;
+        }
+        self.bar.set_length(total as u64);
+        self.bar.set_position(placed as u64);
+    }
+}
+
+impl Drop for Bar {
+    fn drop(&mut self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+/// The statistics as the JSON object `fpt build --stats` writes.
+pub fn stats_json(tree: &FpTree, seed: u64) -> serde_json::Value {
+    let Stats {
+        input_polygons,
+        output_polygons,
+        splittings,
+        connecting_nodes,
+        switch_nodes,
+        bunches,
+        levels,
+        relations,
+        max_depth,
+        build_ms,
+    } = tree.stats.clone();
+    serde_json::json!({
+        "method": tree.method.name(),
+        "seed": seed,
+        "closed": tree.closed,
+        "input_polygons": input_polygons,
+        "output_polygons": output_polygons,
+        "splittings": splittings,
+        "connecting_nodes": connecting_nodes,
+        "switch_nodes": switch_nodes,
+        "bunches": bunches,
+        "levels": levels,
+        "relations": relations,
+        "max_depth": max_depth,
+        "build_ms": build_ms,
+    })
+}
+
+/// `fpt build`.
+pub fn run(a: &BuildArgs) -> CliResult {
+    let method = parse_method(&a.method)?;
+    let vertex_format = parse_vertex_format(&a.vertex_format)?;
+    let model = crate::mesh::load(&a.mesh).map_err(|e| cli_err!("{}: {e}", a.mesh.display()))?;
+    if let Some(w) = model.report.warning_line() {
+        eprintln!("{w}");
+    }
+    let closed = if a.closed {
+        true
+    } else if a.open {
+        false
+    } else {
+        model.closed
+    };
+    let tree = {
+        let mut bar = Bar::new();
+        build(model.polygons, closed, method, a.seed, &mut bar)
+    };
+    let opts = crate::serialize::SerializeOptions {
+        vertex_format,
+        ..Default::default()
+    };
+    let bytes = crate::serialize::serialize(&tree, &opts)?;
+    // Stats first: if it cannot be written, no tree file appears either.
+    if let Some(path) = &a.stats {
+        let text = serde_json::to_string_pretty(&stats_json(&tree, a.seed))?;
+        write_atomic(path, text.as_bytes()).map_err(|e| cli_err!("{}: {e}", path.display()))?;
+    }
+    write_atomic(&a.output, &bytes).map_err(|e| cli_err!("{}: {e}", a.output.display()))?;
+    let s = &tree.stats;
+    println!(
+        "{}: {} {} tree, {} -> {} polygons, {} splittings, {} switch nodes, depth {}, {:.1} ms, {} bytes",
+        a.output.display(),
+        if closed { "closed" } else { "open" },
+        method.name(),
+        s.input_polygons,
+        s.output_polygons,
+        s.splittings,
+        s.switch_nodes,
+        s.max_depth,
+        s.build_ms,
+        bytes.len()
+    );
+    Ok(())
+}
+
+/// The shared models folder: `../shared/models` from the working directory
+/// or from the workspace.
+pub fn shared_models_dir() -> Option<PathBuf> {
+    [
+        PathBuf::from("../shared/models"),
+        PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/models")),
+    ]
+    .into_iter()
+    .find(|p| p.is_dir())
+}
+
+/// The mesh files of a folder, sorted by name.
+fn meshes_in(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.extension()
+                .and_then(|e| e.to_str())
+                .and_then(crate::mesh::MeshFormat::from_extension)
+                .is_some()
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+/// `fpt bench-build`: static, dynamic and BSP side by side per model.
+pub fn bench(a: &BenchBuildArgs) -> CliResult {
+    let meshes = if a.meshes.is_empty() {
+        let dir = shared_models_dir()
+            .ok_or_else(|| cli_err!("no meshes given and ../shared/models not found"))?;
+        meshes_in(&dir)
+    } else {
+        a.meshes.clone()
+    };
+    let runs = a.runs.max(1);
+    println!("| model | closed | method | input | output | splittings | relations | switch | connecting | levels | depth | build ms |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for path in meshes {
+        let model = crate::mesh::load(&path).map_err(|e| cli_err!("{}: {e}", path.display()))?;
+        let name = path
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        for method in [Method::Static, Method::Dynamic, Method::Bsp] {
+            // Averages over `runs` seeds (random methods vary by seed).
+            let mut sum = Stats::default();
+            for r in 0..runs {
+                let seed = crate::build::DEFAULT_SEED.wrapping_add(u64::from(r));
+                let mut bar = Bar::new();
+                let t = build(model.polygons.clone(), model.closed, method, seed, &mut bar);
+                let s = t.stats;
+                sum.input_polygons = s.input_polygons;
+                sum.output_polygons += s.output_polygons;
+                sum.splittings += s.splittings;
+                sum.relations += s.relations;
+                sum.switch_nodes += s.switch_nodes;
+                sum.connecting_nodes += s.connecting_nodes;
+                sum.levels += s.levels;
+                sum.max_depth += s.max_depth;
+                sum.build_ms += s.build_ms;
+            }
+            let n = runs as usize;
+            println!(
+                "| {name} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1} |",
+                model.closed,
+                method.name(),
+                sum.input_polygons,
+                sum.output_polygons / n,
+                sum.splittings / n,
+                sum.relations / u64::from(runs),
+                sum.switch_nodes / n,
+                sum.connecting_nodes / n,
+                sum.levels / n,
+                sum.max_depth / n,
+                sum.build_ms / f64::from(runs),
+            );
+        }
+    }
+    Ok(())
 }

@@ -1,24 +1,228 @@
 //! `fpt polygons`, `fpt order`, `fpt info` and `fpt bench-order`: all of them
-//! read the serialized tree through `fpt-nostd`.
+//! read the serialized tree through `fpt-nostd` ([`Tree::from_bytes`]) and
+//! walk it with its [`Order`]: the host has no traversal of its own.
 
-use super::{BenchOrderArgs, CliResult, InfoArgs, OrderArgs, PolygonsArgs};
+use std::path::Path;
+use std::time::Instant;
+
+use fpt_nostd::order::{Class, Order, View};
+use fpt_nostd::reader::Tree;
+use serde_json::json;
+
+use super::{parse_vec3, BenchOrderArgs, CliError, CliResult, InfoArgs, OrderArgs, PolygonsArgs};
+use crate::cli_err;
+
+/// Reads a tree file whole.
+fn read(path: &Path) -> Result<Vec<u8>, CliError> {
+    std::fs::read(path).map_err(|e| cli_err!("cannot read {}: {e}", path.display()))
+}
+
+/// Validates the bytes of `path`.
+fn parse<'a>(path: &Path, bytes: &'a [u8]) -> Result<Tree<'a>, CliError> {
+    Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e}", path.display()))
+}
+
+/// Walks `tree` for `view` with a stack of `N` frames, handing over each class.
+fn walk_with<const N: usize>(
+    tree: &Tree<'_>,
+    view: View,
+    f: &mut dyn FnMut(Class<'_>),
+) -> Result<(), CliError> {
+    for class in Order::<N>::new(tree, view)? {
+        f(class);
+    }
+    Ok(())
+}
+
+/// Walks `tree` for `view` with the smallest stack that holds its depth
+/// (a small stack is cheaper to set up for every view).
+fn walk(tree: &Tree<'_>, view: View, f: &mut dyn FnMut(Class<'_>)) -> Result<(), CliError> {
+    match tree.max_depth() {
+        0..=32 => walk_with::<32>(tree, view, f),
+        33..=256 => walk_with::<256>(tree, view, f),
+        257..=2048 => walk_with::<2048>(tree, view, f),
+        _ => walk_with::<16384>(tree, view, f),
+    }
+}
+
+/// The view of `fpt order`: exactly one of `--view-dir` and `--eye`.
+fn view_of(a: &OrderArgs, tree: &Tree<'_>) -> Result<View, CliError> {
+    match (&a.view_dir, &a.eye) {
+        (Some(d), None) => {
+            let d = parse_vec3("--view-dir", d)?;
+            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            if !(len > 0.0 && len.is_finite()) {
+                return Err(cli_err!("--view-dir must be a non-zero vector"));
+            }
+            // Normalised in f64 so that tiny or huge vectors survive f32.
+            Ok(View::parallel(d.map(|x| (x / len) as f32)))
+        }
+        (None, Some(e)) => Ok(View::perspective_f64(tree, parse_vec3("--eye", e)?)),
+        (None, None) => Err(cli_err!("give a view: --view-dir X,Y,Z or --eye X,Y,Z")),
+        (Some(_), Some(_)) => Err(cli_err!("give only one of --view-dir and --eye")),
+    }
+}
 
 /// `fpt polygons`.
-pub fn polygons(_a: &PolygonsArgs) -> CliResult {
-    Err(crate::cli_err!("not implemented yet"))
+pub fn polygons(a: &PolygonsArgs) -> CliResult {
+    let bytes = read(&a.tree)?;
+    let tree = parse(&a.tree, &bytes)?;
+    let polys: Vec<_> = (0..tree.polygon_count())
+        .filter_map(|id| tree.polygon(id))
+        .map(|p| {
+            let verts: Vec<[f64; 3]> = (0..p.vertex_count()).map(|i| p.vertex_model(i)).collect();
+            json!({"id": p.id(), "source": p.source(), "vertices": verts})
+        })
+        .collect();
+    let out = json!({"closed": tree.is_closed(), "polygons": polys});
+    println!("{}", serde_json::to_string(&out)?);
+    Ok(())
 }
 
 /// `fpt order`.
-pub fn order(_a: &OrderArgs) -> CliResult {
-    Err(crate::cli_err!("not implemented yet"))
+pub fn order(a: &OrderArgs) -> CliResult {
+    let bytes = read(&a.tree)?;
+    let tree = parse(&a.tree, &bytes)?;
+    let view = view_of(a, &tree)?;
+    let mut classes: Vec<Vec<u32>> = Vec::new();
+    walk(&tree, view, &mut |c| classes.push(c.collect()))?;
+    println!("{}", serde_json::to_string(&json!({ "classes": classes }))?);
+    Ok(())
 }
 
 /// `fpt info`.
-pub fn info(_a: &InfoArgs) -> CliResult {
-    Err(crate::cli_err!("not implemented yet"))
+pub fn info(a: &InfoArgs) -> CliResult {
+    let bytes = read(&a.tree)?;
+    let t = parse(&a.tree, &bytes)?;
+    let o = t.origin();
+    let e = t.half_extent();
+    let format = t.vertex_format();
+    let per_polygon = if t.polygon_count() > 0 {
+        format!("{:.1}", bytes.len() as f64 / f64::from(t.polygon_count()))
+    } else {
+        "-".to_string()
+    };
+    let shift = if format == fpt_nostd::format::VertexFormat::Q32 {
+        format!(", shift {}", t.q32_shift())
+    } else {
+        String::new()
+    };
+    println!("file:              {}", a.tree.display());
+    println!(
+        "format:            version {}, {} bytes, crc32 {:08x}",
+        fpt_nostd::format::VERSION,
+        bytes.len(),
+        t.crc()
+    );
+    println!(
+        "volume:            {}",
+        if t.is_closed() { "closed" } else { "open" }
+    );
+    println!("effects:           0x{:08x}", t.effects());
+    println!(
+        "vertex format:     {} ({} bytes a vertex{shift})",
+        format.name(),
+        format.vertex_len()
+    );
+    println!("index size:        {} bytes", t.index_size());
+    println!("origin:            {} {} {}", o[0], o[1], o[2]);
+    println!("half extent:       {} {} {}", e[0], e[1], e[2]);
+    println!("bounding radius:   {}", t.bounding_radius());
+    println!("polygons:          {}", t.polygon_count());
+    println!("vertices:          {}", t.vertex_count());
+    println!("vertex indices:    {}", t.index_count());
+    println!("bunches:           {}", t.bunch_count());
+    println!("levels:            {}", t.level_count());
+    println!("connecting nodes:  {}", t.node_count());
+    println!("switch nodes:      {}", t.switch_count());
+    println!("max depth:         {}", t.max_depth());
+    println!("bytes per polygon: {per_polygon}");
+    Ok(())
+}
+
+/// `n` directions spread evenly over the unit sphere (Fibonacci sphere).
+pub fn fibonacci_sphere(n: u32) -> Vec<[f32; 3]> {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..n)
+        .map(|i| {
+            let y = 1.0 - 2.0 * (f64::from(i) + 0.5) / f64::from(n);
+            let r = (1.0 - y * y).max(0.0).sqrt();
+            let phi = golden * f64::from(i);
+            [(phi.cos() * r) as f32, y as f32, (phi.sin() * r) as f32]
+        })
+        .collect()
 }
 
 /// `fpt bench-order`.
-pub fn bench_order(_a: &BenchOrderArgs) -> CliResult {
-    Err(crate::cli_err!("not implemented yet"))
+pub fn bench_order(a: &BenchOrderArgs) -> CliResult {
+    if a.views == 0 {
+        return Err(cli_err!("--views must be at least 1"));
+    }
+    if !(a.min_seconds.is_finite() && a.min_seconds >= 0.0) {
+        return Err(cli_err!("--min-seconds must be a non-negative number"));
+    }
+    let bytes = read(&a.tree)?;
+    let tree = parse(&a.tree, &bytes)?;
+    let views: Vec<View> = fibonacci_sphere(a.views)
+        .into_iter()
+        .map(View::parallel)
+        .collect();
+
+    // One untimed pass for the counts (and to warm the caches).
+    let (mut emitted, mut classes) = (0u64, 0u64);
+    for &v in &views {
+        walk(&tree, v, &mut |c| {
+            classes += 1;
+            emitted += c.count() as u64;
+        })?;
+    }
+
+    let start = Instant::now();
+    let mut passes = 0u64;
+    let mut sink = 0u64;
+    while passes == 0 || start.elapsed().as_secs_f64() < a.min_seconds {
+        for &v in &views {
+            walk(&tree, std::hint::black_box(v), &mut |c| {
+                sink = c.fold(sink, |s, id| s.wrapping_add(u64::from(id)));
+            })?;
+        }
+        passes += 1;
+    }
+    let elapsed = start.elapsed().as_secs_f64();
+    std::hint::black_box(sink);
+    let walks = (passes * u64::from(a.views)) as f64;
+    let n = f64::from(a.views);
+    let out = json!({
+        "views": a.views,
+        "passes": passes,
+        "polygons": tree.polygon_count(),
+        "closed": tree.is_closed(),
+        "max_depth": tree.max_depth(),
+        "ns_per_view": elapsed * 1e9 / walks,
+        "emitted_per_view": emitted as f64 / n,
+        "classes_per_view": classes as f64 / n,
+    });
+    println!("{}", serde_json::to_string(&out)?);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fibonacci_sphere;
+
+    #[test]
+    fn fibonacci_directions_are_unit_and_spread() {
+        let d = fibonacci_sphere(200);
+        assert_eq!(d.len(), 200);
+        for v in &d {
+            let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            assert!((l - 1.0).abs() < 1e-5);
+        }
+        // Spread: the mean direction is near zero and both hemispheres are hit.
+        let mean: [f32; 3] = [0, 1, 2].map(|a| d.iter().map(|v| v[a]).sum::<f32>() / 200.0);
+        assert!(mean.iter().all(|m| m.abs() < 0.05), "{mean:?}");
+        for a in 0..3 {
+            assert!(d.iter().any(|v| v[a] > 0.9) && d.iter().any(|v| v[a] < -0.9));
+        }
+    }
 }

@@ -77,7 +77,7 @@ pub struct BuildArgs {
     #[arg(long)]
     pub stats: Option<PathBuf>,
     /// Vertex encoding in the tree file: f32, q16 or q32.
-    #[arg(long = "vertex-format", default_value = "f32")]
+    #[arg(long = "vertex-format", default_value = "f32", value_parser = ["f32", "q16", "q32"])]
     pub vertex_format: String,
 }
 
@@ -126,6 +126,9 @@ pub struct BenchOrderArgs {
     /// Number of view directions spread over the sphere.
     #[arg(long, default_value_t = 1000)]
     pub views: u32,
+    /// Repeat the walks over all views until this many seconds have passed.
+    #[arg(long = "min-seconds", default_value_t = 0.5)]
+    pub min_seconds: f64,
 }
 
 /// Parses `X,Y,Z` into three finite numbers.

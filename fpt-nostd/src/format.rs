@@ -1,0 +1,532 @@
+//! The flat-array tree file: layout, constants and low-level field access.
+//!
+//! A tree file is one byte string, written by the host serializer
+//! (`host_sim::serialize`) and read in place by [`crate::reader::Tree`] from
+//! any `&[u8]`, typically `include_bytes!` in flash. Every multi-byte field
+//! is **little-endian** and read with `from_le_bytes` on a subslice, so the
+//! bytes may sit at any alignment and nothing is copied.
+//!
+//! # Layout
+//!
+//! `header · vertices · polygons · indices · bunches · nodes · switches · crc`
+//!
+//! Each section starts right after the previous one, padded with zero bytes
+//! to a multiple of 4 (so a copy to aligned RAM could use them directly); its
+//! length is fixed by the counts in the header (see [`Sections::new`]), and
+//! the file length must equal the sum exactly.
+//!
+//! ## Header (96 bytes)
+//!
+//! | offset | type | field | meaning |
+//! |---:|---|---|---|
+//! | 0 | `[u8; 4]` | magic | [`MAGIC`], `b"FPTR"` |
+//! | 4 | `u16` | version | [`VERSION`] (1) |
+//! | 6 | `u16` | header_len | [`HEADER_LEN`] (96) |
+//! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); other bits must be 0 |
+//! | 16 | `u32` | effects | a scene's effect flags, not interpreted by the reader |
+//! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
+//! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
+//! | 22 | `u8` | index_size | bytes per vertex index: 2 (`u16`) or 4 (`u32`) |
+//! | 23 | `u8` | reserved | 0 |
+//! | 24 | `u32` | max_depth | connecting nodes on the longest root-to-leaf path (root alone: 1) |
+//! | 28 | `u32` | vertex_count | entries in the vertex section |
+//! | 32 | `u32` | polygon_count | entries in the polygon section |
+//! | 36 | `u32` | index_count | entries in the vertex index list |
+//! | 40 | `u32` | bunch_count | bunches (the bunch section holds `bunch_count + 1` offsets) |
+//! | 44 | `u32` | node_count | connecting nodes, always `2 · switch_count + 1` |
+//! | 48 | `u32` | switch_count | switch nodes |
+//! | 52 | `u32` | reserved | 0 |
+//! | 56 | `f64 × 3` | origin | centre of the bounding box, model coordinates; all geometry below is relative to it |
+//! | 80 | `f32 × 3` | half_extent | half the bounding box size per axis (the `q16` scale) |
+//! | 92 | `f32` | radius | bounding sphere: centre `origin`, this radius, covers every vertex |
+//!
+//! ## Vertices (`vertex_count` entries)
+//!
+//! A vertex is stored as its offset `x − origin` from the origin, in the
+//! header's encoding ([`VertexFormat`]):
+//!
+//! | format | entry | decoding of one coordinate `q` on `axis` |
+//! |---|---|---|
+//! | `f32` | `f32 × 3`, 12 bytes | `x = origin + q` |
+//! | `q16` | `i16 × 3`, 6 bytes | `x = origin + half_extent[axis] · q / 32767` |
+//! | `q32` | `i32 × 3`, 12 bytes | `x = origin + q · 2^-shift` |
+//!
+//! Vertices shared by several polygons are stored once.
+//!
+//! ## Polygons (`polygon_count` entries of [`POLYGON_LEN`] = 28 bytes)
+//!
+//! | offset | type | field |
+//! |---:|---|---|
+//! | 0 | `f32 × 3` | plane normal `n` (unit, outward) |
+//! | 12 | `f32` | plane offset `d'`, relative to the origin: `n · (x − origin) + d' = 0` |
+//! | 16 | `u32` | first_index: where the polygon's vertex indices start in the index list |
+//! | 20 | `u32` | source: the face of the input mesh it came from |
+//! | 24 | `u8 × 3` | colour, RGB |
+//! | 27 | `u8` | padding, 0 |
+//!
+//! The polygons tile the index list in order: polygon 0 starts at index 0 and
+//! polygon `p` ends where polygon `p + 1` starts (the last one at
+//! `index_count`); each has at least 3 vertices, counter-clockwise seen from
+//! the front. A polygon's id is its position in this section.
+//!
+//! ## Vertex index list (`index_count` entries of `index_size` bytes)
+//!
+//! `u16` or `u32` indices into the vertex section.
+//!
+//! ## Bunches (`bunch_count + 1` entries of `u32`)
+//!
+//! Polygons are numbered so that every bunch is a contiguous range of ids:
+//! bunch `b` holds the polygons `offset[b] .. offset[b + 1]`. The offsets start
+//! at 0, never decrease and end at `polygon_count`, so every polygon is in
+//! exactly one bunch. Bunches may be empty.
+//!
+//! ## Connecting nodes (`node_count` entries of [`NODE_LEN`] = 12 bytes)
+//!
+//! | offset | type | field |
+//! |---:|---|---|
+//! | 0 | `u32` | first_bunch |
+//! | 4 | `u32` | level_count `n` |
+//! | 8 | `u32` | switch: index of its switch node, or [`NO_SWITCH`] |
+//!
+//! A node's bunches are `first_bunch ..`: `F_1, B_1, F_2, B_2, …, F_n, B_n`,
+//! then `O_k` of its switch if it has one. The nodes tile the bunch section in
+//! order (node 0 starts at bunch 0, each next node where the previous ends).
+//!
+//! **Tree layout rule.** Node 0 is the root. The nodes are stored in
+//! breadth-first order: the `k`-th node (counting from 0, in storage order)
+//! that has a switch owns switch `k`, and switch `k`'s children are the
+//! connecting nodes `2k + 1` (the group in front of its plane, `G_f`) and
+//! `2k + 2` (behind it, `G_b`). This makes the node graph a tree by
+//! construction, checkable in one pass without allocation (see
+//! [`crate::reader`]); a BSP tree is stored the same way, with no levels.
+//!
+//! ## Switch nodes (`switch_count` entries of [`SWITCH_LEN`] = 16 bytes)
+//!
+//! | offset | type | field |
+//! |---:|---|---|
+//! | 0 | `f32 × 3` | plane normal |
+//! | 12 | `f32` | plane offset `d'`, relative to the origin as for polygons |
+//!
+//! ## Checksum (4 bytes)
+//!
+//! The last 4 bytes are the CRC-32 (IEEE 802.3 / zlib, [`crc32`]) of all
+//! bytes before them.
+
+use core::fmt;
+
+/// The first four bytes of every tree file.
+pub const MAGIC: [u8; 4] = *b"FPTR";
+/// The format version this crate reads and writes.
+pub const VERSION: u16 = 1;
+/// Length of the header in bytes.
+pub const HEADER_LEN: usize = 96;
+/// Length of one polygon record.
+pub const POLYGON_LEN: usize = 28;
+/// Length of one connecting node record.
+pub const NODE_LEN: usize = 12;
+/// Length of one switch node record.
+pub const SWITCH_LEN: usize = 16;
+/// Length of the trailing checksum.
+pub const CRC_LEN: usize = 4;
+/// Header flag: the model is a closed volume.
+pub const FLAG_CLOSED: u32 = 1;
+/// The `switch` field of a connecting node without a switch.
+pub const NO_SWITCH: u32 = u32::MAX;
+/// Largest `q32` shift (keeps `2^-shift` a normal `f32`).
+pub const MAX_SHIFT: u8 = 126;
+/// Largest magnitude of a `q16` coordinate.
+pub const Q16_MAX: i16 = 32767;
+
+/// Byte offsets of the header fields (see the table in the module docs).
+pub mod header {
+    /// `[u8; 4]` magic.
+    pub const MAGIC: usize = 0;
+    /// `u16` version.
+    pub const VERSION: usize = 4;
+    /// `u16` header length.
+    pub const HEADER_LEN: usize = 6;
+    /// `u32` file length.
+    pub const FILE_LEN: usize = 8;
+    /// `u32` flags.
+    pub const FLAGS: usize = 12;
+    /// `u32` effect flags.
+    pub const EFFECTS: usize = 16;
+    /// `u8` vertex format code.
+    pub const VERTEX_FORMAT: usize = 20;
+    /// `u8` q32 shift.
+    pub const SHIFT: usize = 21;
+    /// `u8` bytes per vertex index.
+    pub const INDEX_SIZE: usize = 22;
+    /// `u8` reserved, 0.
+    pub const RESERVED8: usize = 23;
+    /// `u32` maximum depth.
+    pub const MAX_DEPTH: usize = 24;
+    /// `u32` vertex count.
+    pub const VERTEX_COUNT: usize = 28;
+    /// `u32` polygon count.
+    pub const POLYGON_COUNT: usize = 32;
+    /// `u32` index count.
+    pub const INDEX_COUNT: usize = 36;
+    /// `u32` bunch count.
+    pub const BUNCH_COUNT: usize = 40;
+    /// `u32` connecting node count.
+    pub const NODE_COUNT: usize = 44;
+    /// `u32` switch node count.
+    pub const SWITCH_COUNT: usize = 48;
+    /// `u32` reserved, 0.
+    pub const RESERVED32: usize = 52;
+    /// `f64 × 3` origin.
+    pub const ORIGIN: usize = 56;
+    /// `f32 × 3` half extent.
+    pub const HALF_EXTENT: usize = 80;
+    /// `f32` bounding sphere radius.
+    pub const RADIUS: usize = 92;
+}
+
+/// Byte offsets inside a polygon record.
+pub mod polygon {
+    /// `f32 × 3` normal.
+    pub const NORMAL: usize = 0;
+    /// `f32` plane offset relative to the origin.
+    pub const D: usize = 12;
+    /// `u32` first index.
+    pub const FIRST_INDEX: usize = 16;
+    /// `u32` source face.
+    pub const SOURCE: usize = 20;
+    /// `u8 × 3` colour, then one zero byte.
+    pub const COLOR: usize = 24;
+}
+
+/// Byte offsets inside a connecting node record.
+pub mod node {
+    /// `u32` first bunch.
+    pub const FIRST_BUNCH: usize = 0;
+    /// `u32` number of levels.
+    pub const LEVEL_COUNT: usize = 4;
+    /// `u32` switch index or [`super::NO_SWITCH`].
+    pub const SWITCH: usize = 8;
+}
+
+/// How vertex coordinates are encoded (chosen when the file is built).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum VertexFormat {
+    /// `f32` offsets from the origin: 12 bytes a vertex.
+    F32,
+    /// `i16` quantized in the bounding box: 6 bytes a vertex.
+    Q16,
+    /// `i32` fixed point with a global shift: 12 bytes a vertex.
+    Q32,
+}
+
+impl VertexFormat {
+    /// All formats, in code order.
+    pub const ALL: [VertexFormat; 3] = [VertexFormat::F32, VertexFormat::Q16, VertexFormat::Q32];
+
+    /// The code stored in the header.
+    pub const fn code(self) -> u8 {
+        match self {
+            VertexFormat::F32 => 0,
+            VertexFormat::Q16 => 1,
+            VertexFormat::Q32 => 2,
+        }
+    }
+
+    /// The format with header code `c`.
+    pub const fn from_code(c: u8) -> Option<VertexFormat> {
+        match c {
+            0 => Some(VertexFormat::F32),
+            1 => Some(VertexFormat::Q16),
+            2 => Some(VertexFormat::Q32),
+            _ => None,
+        }
+    }
+
+    /// Bytes per vertex.
+    pub const fn vertex_len(self) -> usize {
+        match self {
+            VertexFormat::F32 | VertexFormat::Q32 => 12,
+            VertexFormat::Q16 => 6,
+        }
+    }
+
+    /// The command-line name: `f32`, `q16` or `q32`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            VertexFormat::F32 => "f32",
+            VertexFormat::Q16 => "q16",
+            VertexFormat::Q32 => "q32",
+        }
+    }
+
+    /// The format called `name` (as [`VertexFormat::name`] spells it).
+    pub fn from_name(name: &str) -> Option<VertexFormat> {
+        Self::ALL.into_iter().find(|f| f.name() == name)
+    }
+}
+
+/// Why a byte string is not a valid tree file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FormatError {
+    /// Shorter than a header and a checksum.
+    TooShort,
+    /// The first four bytes are not [`MAGIC`].
+    BadMagic,
+    /// A version this reader does not know.
+    UnsupportedVersion(u16),
+    /// The header's file length differs from the length of the bytes.
+    LengthMismatch,
+    /// The stored CRC-32 differs from the one computed over the bytes.
+    Checksum,
+    /// A header field has a value outside its range; names the field.
+    BadHeader(&'static str),
+    /// The counts in the header do not add up to the file length.
+    SectionSizes,
+    /// A float that must be finite is not; names the section.
+    NonFinite(&'static str),
+    /// A vertex index is not below the vertex count.
+    IndexOutOfRange,
+    /// This polygon's index range is empty, too short or out of order.
+    BadPolygon(u32),
+    /// The bunch offsets do not tile the polygons.
+    BadBunches,
+    /// This connecting node breaks the bunch tiling or the switch numbering.
+    BadNode(u32),
+    /// Some connecting nodes cannot be reached from the root.
+    NotATree,
+    /// The header's maximum depth differs from the tree's depth.
+    DepthMismatch,
+}
+
+impl fmt::Display for FormatError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FormatError::TooShort => f.write_str("file too short for a tree header"),
+            FormatError::BadMagic => f.write_str("not a tree file (bad magic)"),
+            FormatError::UnsupportedVersion(v) => write!(f, "unsupported format version {v}"),
+            FormatError::LengthMismatch => f.write_str("file length differs from the header's"),
+            FormatError::Checksum => f.write_str("CRC-32 mismatch (file corrupted)"),
+            FormatError::BadHeader(field) => write!(f, "invalid header field {field}"),
+            FormatError::SectionSizes => {
+                f.write_str("section sizes do not add up to the file length")
+            }
+            FormatError::NonFinite(what) => write!(f, "non-finite number in {what}"),
+            FormatError::IndexOutOfRange => f.write_str("vertex index out of range"),
+            FormatError::BadPolygon(p) => write!(f, "invalid vertex range of polygon {p}"),
+            FormatError::BadBunches => f.write_str("bunch offsets do not tile the polygons"),
+            FormatError::BadNode(n) => write!(f, "invalid connecting node {n}"),
+            FormatError::NotATree => f.write_str("node graph is not a tree"),
+            FormatError::DepthMismatch => f.write_str("tree depth differs from the header's"),
+        }
+    }
+}
+
+/// The CRC-32 of `bytes` (IEEE 802.3, the one of zlib and PNG).
+pub fn crc32(bytes: &[u8]) -> u32 {
+    const CRC: crc::Crc<u32> = crc::Crc::<u32>::new(&crc::CRC_32_ISO_HDLC);
+    CRC.checksum(bytes)
+}
+
+/// Entry counts of the sections, as stored in the header.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Counts {
+    /// Vertices.
+    pub vertices: u32,
+    /// Polygons.
+    pub polygons: u32,
+    /// Vertex indices.
+    pub indices: u32,
+    /// Bunches.
+    pub bunches: u32,
+    /// Connecting nodes.
+    pub nodes: u32,
+    /// Switch nodes.
+    pub switches: u32,
+}
+
+/// Byte offsets of the sections of a file, computed from its counts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sections {
+    /// Start of the vertex section.
+    pub vertices: usize,
+    /// Start of the polygon section.
+    pub polygons: usize,
+    /// Start of the index list.
+    pub indices: usize,
+    /// Start of the bunch offsets.
+    pub bunches: usize,
+    /// Start of the connecting nodes.
+    pub nodes: usize,
+    /// Start of the switch nodes.
+    pub switches: usize,
+    /// Start of the checksum.
+    pub crc: usize,
+    /// Length of the whole file.
+    pub file_len: usize,
+}
+
+impl Sections {
+    /// The layout of a file with `counts`, `format` vertices and indices of
+    /// `index_size` bytes; `None` if its length overflows `u32`.
+    pub fn new(counts: &Counts, format: VertexFormat, index_size: usize) -> Option<Sections> {
+        // u64 arithmetic: every product of a u32 count and a record length
+        // fits, so only the final length needs checking.
+        fn next(start: u64, count: u32, len: usize) -> u64 {
+            let end = start + u64::from(count) * len as u64;
+            (end + 3) & !3
+        }
+        let v = HEADER_LEN as u64;
+        let p = next(v, counts.vertices, format.vertex_len());
+        let i = next(p, counts.polygons, POLYGON_LEN);
+        let b = next(i, counts.indices, index_size);
+        let n = next(b, counts.bunches.checked_add(1)?, 4);
+        let s = next(n, counts.nodes, NODE_LEN);
+        let c = next(s, counts.switches, SWITCH_LEN);
+        let end = c + CRC_LEN as u64;
+        if end > u64::from(u32::MAX) {
+            return None;
+        }
+        // Every value is ≤ end ≤ u32::MAX, so the conversions are exact on
+        // targets with a usize of 32 bits or more.
+        let cv = |x: u64| usize::try_from(x).ok();
+        Some(Sections {
+            vertices: cv(v)?,
+            polygons: cv(p)?,
+            indices: cv(i)?,
+            bunches: cv(b)?,
+            nodes: cv(n)?,
+            switches: cv(s)?,
+            crc: cv(c)?,
+            file_len: cv(end)?,
+        })
+    }
+}
+
+// Field readers. They never panic: a read past the end yields 0. The reader
+// only reads at offsets that validation has proven in range, so the fallback
+// is never taken on a validated file; it exists so that no panic path is
+// compiled in at all.
+
+/// Reads `N` bytes at `off`, or zeros if out of range.
+#[inline]
+pub(crate) fn rd<const N: usize>(b: &[u8], off: usize) -> [u8; N] {
+    off.checked_add(N)
+        .and_then(|end| b.get(off..end))
+        .and_then(|s| s.try_into().ok())
+        .unwrap_or([0; N])
+}
+
+/// `u8` at `off`.
+#[inline]
+pub(crate) fn rd_u8(b: &[u8], off: usize) -> u8 {
+    b.get(off).copied().unwrap_or(0)
+}
+
+/// Little-endian `u16` at `off`.
+#[inline]
+pub(crate) fn rd_u16(b: &[u8], off: usize) -> u16 {
+    u16::from_le_bytes(rd(b, off))
+}
+
+/// Little-endian `u32` at `off`.
+#[inline]
+pub(crate) fn rd_u32(b: &[u8], off: usize) -> u32 {
+    u32::from_le_bytes(rd(b, off))
+}
+
+/// Little-endian `i16` at `off`.
+#[inline]
+pub(crate) fn rd_i16(b: &[u8], off: usize) -> i16 {
+    i16::from_le_bytes(rd(b, off))
+}
+
+/// Little-endian `i32` at `off`.
+#[inline]
+pub(crate) fn rd_i32(b: &[u8], off: usize) -> i32 {
+    i32::from_le_bytes(rd(b, off))
+}
+
+/// Little-endian `f32` at `off`.
+#[inline]
+pub(crate) fn rd_f32(b: &[u8], off: usize) -> f32 {
+    f32::from_le_bytes(rd(b, off))
+}
+
+/// Little-endian `f64` at `off`.
+#[inline]
+pub(crate) fn rd_f64(b: &[u8], off: usize) -> f64 {
+    f64::from_le_bytes(rd(b, off))
+}
+
+/// Three little-endian `f32` at `off`.
+#[inline]
+pub(crate) fn rd_f32x3(b: &[u8], off: usize) -> [f32; 3] {
+    [
+        rd_f32(b, off),
+        rd_f32(b, off.wrapping_add(4)),
+        rd_f32(b, off.wrapping_add(8)),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crc32_is_the_zlib_one() {
+        // The standard check value of CRC-32/ISO-HDLC.
+        assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
+        assert_eq!(crc32(b""), 0);
+    }
+
+    #[test]
+    fn vertex_format_names_round_trip() {
+        for f in VertexFormat::ALL {
+            assert_eq!(VertexFormat::from_name(f.name()), Some(f));
+            assert_eq!(VertexFormat::from_code(f.code()), Some(f));
+        }
+        assert_eq!(VertexFormat::from_name("f64"), None);
+        assert_eq!(VertexFormat::from_code(3), None);
+    }
+
+    #[test]
+    fn sections_are_padded_and_ordered() {
+        let c = Counts {
+            vertices: 3,
+            polygons: 1,
+            indices: 3,
+            bunches: 1,
+            nodes: 1,
+            switches: 0,
+        };
+        let s = Sections::new(&c, VertexFormat::Q16, 2).unwrap();
+        assert_eq!(s.vertices, HEADER_LEN);
+        assert_eq!(s.polygons, HEADER_LEN + 20); // 18 bytes padded to 20
+        assert_eq!(s.indices, s.polygons + POLYGON_LEN);
+        assert_eq!(s.bunches, s.indices + 8); // 6 bytes padded to 8
+        assert_eq!(s.nodes, s.bunches + 8);
+        assert_eq!(s.switches, s.nodes + NODE_LEN);
+        assert_eq!(s.crc, s.switches);
+        assert_eq!(s.file_len, s.crc + CRC_LEN);
+        let huge = Counts {
+            vertices: u32::MAX,
+            ..c
+        };
+        assert_eq!(Sections::new(&huge, VertexFormat::F32, 4), None);
+        let max_bunches = Counts {
+            bunches: u32::MAX,
+            ..c
+        };
+        assert_eq!(Sections::new(&max_bunches, VertexFormat::F32, 4), None);
+    }
+
+    #[test]
+    fn readers_do_not_panic_out_of_range() {
+        let b = [1u8, 2, 3, 4, 5];
+        assert_eq!(rd_u32(&b, 0), 0x0403_0201);
+        assert_eq!(rd_u32(&b, 2), 0);
+        assert_eq!(rd_u32(&b, usize::MAX), 0);
+        assert_eq!(rd_u8(&b, 9), 0);
+        assert_eq!(rd_i16(&b, 3), 0x0504);
+    }
+}

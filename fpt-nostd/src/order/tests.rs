@@ -1,0 +1,176 @@
+extern crate std;
+
+use std::vec::Vec;
+
+use super::*;
+use crate::format::FLAG_CLOSED;
+use crate::test_util::{add_square, two_floors, Raw};
+
+fn classes<const N: usize>(t: &Tree<'_>, v: View) -> Vec<Vec<u32>> {
+    Order::<N>::new(t, v)
+        .unwrap()
+        .map(|c| c.collect())
+        .collect()
+}
+
+const DOWN_Z: View = View::Parallel {
+    dir: [0.0, 0.0, -1.0],
+};
+const UP_Z: View = View::Parallel {
+    dir: [0.0, 0.0, 1.0],
+};
+
+#[test]
+fn switch_puts_the_far_side_first() {
+    let bytes = two_floors().bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    // Looking down: the switch plane faces the viewer, so the back group
+    // (id 1, z = 0) is far.
+    assert_eq!(classes::<2>(&t, DOWN_Z), [[1], [0]]);
+    assert_eq!(classes::<2>(&t, UP_Z), [[0], [1]]);
+    assert_eq!(
+        classes::<2>(&t, View::perspective([0.5, 0.5, 10.0])),
+        [[1], [0]]
+    );
+    assert_eq!(
+        classes::<2>(&t, View::perspective([0.5, 0.5, -10.0])),
+        [[0], [1]]
+    );
+    // Eye between the floors: the switch is backward (front group near).
+    assert_eq!(
+        classes::<2>(&t, View::perspective([0.5, 0.5, 0.75])),
+        [[1], [0]]
+    );
+    // Eye exactly on the switch plane: a tie is forward, so G_f is far.
+    assert_eq!(
+        classes::<2>(&t, View::perspective([0.5, 0.5, 0.5])),
+        [[0], [1]]
+    );
+    // Edge-on parallel view: also forward.
+    assert_eq!(
+        classes::<2>(&t, View::parallel([1.0, 0.0, 0.0])),
+        [[0], [1]]
+    );
+}
+
+#[test]
+fn closed_volumes_cull_forward_faces() {
+    let mut r = two_floors();
+    r.flags = FLAG_CLOSED;
+    let bytes = r.bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    // Both squares face up: seen from below, both are culled.
+    assert_eq!(classes::<2>(&t, DOWN_Z), [[1], [0]]);
+    assert!(classes::<2>(&t, UP_Z).is_empty());
+    // The eye between them sees only the lower one's front.
+    assert_eq!(classes::<2>(&t, View::perspective([0.5, 0.5, 0.75])), [[1]]);
+}
+
+/// One connecting node, level 1: F_1 = {0: up at z=1, 1: down at z=0},
+/// B_1 = {2: up at z=2}; no switch.
+fn one_level(closed: bool) -> Raw {
+    let mut r = Raw::empty();
+    add_square(&mut r, 1.0, true, 0);
+    add_square(&mut r, 0.0, false, 1);
+    add_square(&mut r, 2.0, true, 2);
+    r.bunches = std::vec![0, 2, 3];
+    r.nodes = std::vec![[0, 1, NO_SWITCH]];
+    r.flags = if closed { FLAG_CLOSED } else { 0 };
+    r
+}
+
+#[test]
+fn levels_follow_the_pseudo_code() {
+    let bytes = one_level(false).bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    // Down: {backward of B_1} ∪ {forward of F_1}; up: {backward of F_1} ∪ {forward of B_1}.
+    // Looking down: backward = 0 and 2 (they face +z), forward = 1.
+    assert_eq!(classes::<1>(&t, DOWN_Z), [std::vec![2, 1], std::vec![0]]);
+    assert_eq!(classes::<1>(&t, UP_Z), [std::vec![0], std::vec![1, 2]]);
+    let bytes = one_level(true).bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    assert_eq!(classes::<1>(&t, DOWN_Z), [[2], [0]]);
+    assert_eq!(classes::<1>(&t, UP_Z), [[1]]);
+}
+
+#[test]
+fn on_plane_bunch_is_culled_per_face() {
+    // Root: no levels, switch at z = 0 with O = {0 up, 1 down}.
+    let mut r = Raw::empty();
+    add_square(&mut r, 0.0, true, 0);
+    add_square(&mut r, 0.0, false, 1);
+    r.bunches = std::vec![0, 2];
+    r.nodes = std::vec![[0, 0, 0], [1, 0, NO_SWITCH], [1, 0, NO_SWITCH]];
+    r.switches = std::vec![[0.0, 0.0, 1.0, 0.0]];
+    r.max_depth = 2;
+    let open = r.bytes();
+    r.flags = FLAG_CLOSED;
+    let closed = r.bytes();
+    let t = Tree::from_bytes(&open).unwrap();
+    assert_eq!(classes::<2>(&t, DOWN_Z), [[0, 1]]);
+    let t = Tree::from_bytes(&closed).unwrap();
+    assert_eq!(classes::<2>(&t, DOWN_Z), [[0]]);
+    assert_eq!(classes::<2>(&t, UP_Z), [[1]]);
+}
+
+#[test]
+fn perspective_views_relative_and_absolute_agree() {
+    let mut r = two_floors();
+    r.origin = [1e5, -1e5, 1e5];
+    let bytes = r.bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    // Eye 0.25 above the switch plane (z = origin + 0.5): f32 model
+    // coordinates near 1e5 cannot express this, the f64 and relative ones can.
+    let rel = View::perspective_relative([0.5, 0.5, 0.75]);
+    let abs = View::perspective_f64(&t, [1e5 + 0.5, -1e5 + 0.5, 1e5 + 0.75]);
+    assert_eq!(rel, abs);
+    assert_eq!(classes::<2>(&t, rel), [[1], [0]]);
+    let below = View::perspective_f64(&t, [1e5 + 0.5, -1e5 + 0.5, 1e5 + 0.25]);
+    assert_eq!(classes::<2>(&t, below), [[0], [1]]);
+    // The f32 model-coordinate eye goes through the same one subtraction.
+    let coarse = View::perspective([1e5, -1e5, 1e5 + 8.0]);
+    assert_eq!(coarse.local(&t), LocalView::Eye([0.0, 0.0, 8.0]));
+}
+
+#[test]
+fn stack_must_hold_the_depth() {
+    let bytes = two_floors().bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    assert_eq!(
+        Order::<1>::new(&t, DOWN_Z).unwrap_err(),
+        OrderError::StackTooSmall {
+            depth: 2,
+            capacity: 1
+        }
+    );
+    assert!(Order::<2>::new(&t, DOWN_Z).is_ok());
+}
+
+#[test]
+fn for_each_visits_polygons_in_order() {
+    let bytes = one_level(false).bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    let mut seen = Vec::new();
+    for_each_polygon_back_to_front::<4>(&t, DOWN_Z, |p| seen.push((p.id(), p.source()))).unwrap();
+    assert_eq!(seen, [(2, 2), (1, 1), (0, 0)]);
+    let r = for_each_polygon_back_to_front::<0>(&t, DOWN_Z, |_| {});
+    assert!(r.is_err());
+}
+
+#[test]
+fn empty_tree_yields_nothing() {
+    let bytes = Raw::empty().bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    assert!(classes::<1>(&t, DOWN_Z).is_empty());
+}
+
+#[test]
+fn class_size_hint_bounds_the_count() {
+    let bytes = one_level(false).bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    for c in Order::<1>::new(&t, DOWN_Z).unwrap() {
+        let (lo, hi) = c.size_hint();
+        let n = c.count();
+        assert!(lo <= n && n <= hi.unwrap());
+    }
+}

@@ -1,0 +1,273 @@
+//! Cameras: a 4×4 matrix, or orbit parameters that produce one.
+//!
+//! Conventions (shared with the host simulator):
+//! * Matrices are row-major; `clip = M · [x, y, z, 1]`.
+//! * `ndc = clip.xyz / clip.w`; pixel `x = (ndc.x + 1)/2 · W`,
+//!   `y = (1 − ndc.y)/2 · H`; pixel `(i, j)` is sampled at `(i + ½, j + ½)`.
+//! * Smaller `ndc.z` is nearer (−1 at the near plane, +1 at the far plane).
+//!   The rasterizer itself ignores z: visibility comes from the priority
+//!   tree; only `w` matters, for the near clip (`w ≥ near_w`).
+//! * Orbit cameras use a y-up world. The eye sits at
+//!   `target + distance · (cos pitch · sin yaw, sin pitch, cos pitch · cos yaw)`
+//!   and looks at `target`; yaw 0, pitch 0 looks down −z.
+//!   `fov` is the vertical field of view in radians; `fov <= 0` (or not
+//!   finite) gives a parallel projection whose visible half-height at any
+//!   depth is `distance / 2` (what a perspective camera with a 53° field of
+//!   view sees at the target), so switching projection keeps the model about
+//!   the same size on screen.
+//!
+//! With a parallel camera `w` is always 1, so nothing is near-clipped:
+//! geometry behind the eye is drawn like the rest (the orbit eye is normally
+//! outside the model).
+
+use super::precision::MathFns;
+
+/// A row-major 4×4 matrix of `f32`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mat4(pub [[f32; 4]; 4]);
+
+impl Mat4 {
+    /// The identity.
+    pub const IDENTITY: Mat4 = Mat4([
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ]);
+
+    /// The matrix product `self · rhs` (apply `rhs` first).
+    pub fn mul(&self, rhs: &Mat4) -> Mat4 {
+        let mut out = [[0.0f32; 4]; 4];
+        for (r, row) in out.iter_mut().enumerate() {
+            for (c, cell) in row.iter_mut().enumerate() {
+                *cell = (0..4).map(|k| self.0[r][k] * rhs.0[k][c]).sum();
+            }
+        }
+        Mat4(out)
+    }
+
+    /// A translation by `t`.
+    pub fn translation(t: [f32; 3]) -> Mat4 {
+        let mut m = Mat4::IDENTITY;
+        m.0[0][3] = t[0];
+        m.0[1][3] = t[1];
+        m.0[2][3] = t[2];
+        m
+    }
+
+    /// `M · [p, 1]` (the homogeneous clip-space point).
+    pub fn transform_point(&self, p: [f32; 3]) -> [f32; 4] {
+        let mut out = [0.0f32; 4];
+        for (o, row) in out.iter_mut().zip(self.0.iter()) {
+            *o = row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3];
+        }
+        out
+    }
+
+    /// True when every entry is finite.
+    pub fn is_finite(&self) -> bool {
+        self.0.iter().flatten().all(|v| v.is_finite())
+    }
+}
+
+/// Orbit camera parameters (see module docs for the conventions).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Orbit {
+    /// The point looked at (model coordinates).
+    pub target: [f32; 3],
+    /// Rotation about the world y axis, radians.
+    pub yaw: f32,
+    /// Elevation above the xz plane, radians (±π/2 looks straight down/up).
+    pub pitch: f32,
+    /// Distance from the eye to the target (> 0).
+    pub distance: f32,
+    /// Vertical field of view in radians; `<= 0` means parallel projection.
+    pub fov: f32,
+    /// Near plane distance for perspective (> 0); also the near clip `w`.
+    pub near: f32,
+    /// Far plane distance (only shapes ndc.z; nothing is far-clipped).
+    pub far: f32,
+}
+
+impl Orbit {
+    /// A perspective orbit with near/far derived from the distance
+    /// (`distance/1000` and `distance·1000`).
+    pub fn new(target: [f32; 3], yaw: f32, pitch: f32, distance: f32, fov: f32) -> Orbit {
+        Orbit {
+            target,
+            yaw,
+            pitch,
+            distance,
+            fov,
+            near: distance * 1e-3,
+            far: distance * 1e3,
+        }
+    }
+
+    /// True when this orbit describes a parallel projection.
+    pub fn is_parallel(&self) -> bool {
+        !(self.fov.is_finite() && self.fov > 0.0)
+    }
+
+    /// Unit vector from the target toward the eye (a natural "headlight"
+    /// direction for [`super::shade::Light`]).
+    pub fn eye_direction<M: MathFns>(&self) -> [f32; 3] {
+        let (sy, cy) = (M::sin(self.yaw), M::cos(self.yaw));
+        let (sp, cp) = (M::sin(self.pitch), M::cos(self.pitch));
+        [cp * sy, sp, cp * cy]
+    }
+
+    /// The camera (matrix and near clip) for a viewport of aspect ratio
+    /// `aspect = width / height`.
+    pub fn camera<M: MathFns>(&self, aspect: f32) -> Camera {
+        let (sy, cy) = (M::sin(self.yaw), M::cos(self.yaw));
+        let (sp, cp) = (M::sin(self.pitch), M::cos(self.pitch));
+        // Basis derived from the angles directly rather than by
+        // cross-products with "up", so that pitch = ±90° is not degenerate.
+        let right = [cy, 0.0, -sy];
+        let up = [-sy * sp, cp, -cy * sp];
+        let fwd = [-cp * sy, -sp, -cp * cy]; // eye → target
+        let eye = [
+            self.target[0] - self.distance * fwd[0],
+            self.target[1] - self.distance * fwd[1],
+            self.target[2] - self.distance * fwd[2],
+        ];
+        let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        // Rows of the view transform: (axis, -axis·eye).
+        let row = |a: [f32; 3]| [a[0], a[1], a[2], -dot(a, eye)];
+        let (xr, yr, dr) = (row(right), row(up), row(fwd)); // dr gives depth d
+        let aspect = if aspect.is_finite() && aspect > 0.0 {
+            aspect
+        } else {
+            1.0
+        };
+        let (near, far) = (self.near, self.far);
+        let zscale = |k: f32, r: [f32; 4], c: f32| [k * r[0], k * r[1], k * r[2], k * r[3] + c];
+        let m = if self.is_parallel() {
+            let h = 0.5 * self.distance;
+            let span = far - near;
+            // ndc.z = 2(d - near)/(far - near) - 1
+            let z = zscale(2.0 / span, dr, -2.0 * near / span - 1.0);
+            Mat4([
+                zscale(1.0 / (h * aspect), xr, 0.0),
+                zscale(1.0 / h, yr, 0.0),
+                z,
+                [0.0, 0.0, 0.0, 1.0],
+            ])
+        } else {
+            let focal = M::recip(M::tan(0.5 * self.fov));
+            let a = (far + near) / (far - near);
+            let b = -2.0 * far * near / (far - near);
+            Mat4([
+                zscale(focal / aspect, xr, 0.0),
+                zscale(focal, yr, 0.0),
+                zscale(a, dr, b),
+                dr,
+            ])
+        };
+        let near_w = if self.is_parallel() { 0.5 } else { self.near };
+        Camera { matrix: m, near_w }
+    }
+}
+
+/// A camera as the renderer uses it: the full model→clip matrix and the
+/// near clip threshold on `w`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Model → clip matrix.
+    pub matrix: Mat4,
+    /// Clip-space points need `w >= near_w` (> 0) to be kept. Must be
+    /// positive: it is what keeps the perspective divide away from zero.
+    pub near_w: f32,
+}
+
+impl Camera {
+    /// A camera from an explicit matrix and near threshold.
+    pub fn from_matrix(matrix: Mat4, near_w: f32) -> Camera {
+        Camera { matrix, near_w }
+    }
+
+    /// This camera with a model transform applied first
+    /// (`clip = camera · model · p`).
+    pub fn with_model(&self, model: &Mat4) -> Camera {
+        Camera {
+            matrix: self.matrix.mul(model),
+            near_w: self.near_w,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::precision::Libm;
+    use super::*;
+
+    fn ndc(m: &Mat4, p: [f32; 3]) -> [f32; 4] {
+        let c = m.transform_point(p);
+        [c[0] / c[3], c[1] / c[3], c[2] / c[3], c[3]]
+    }
+
+    #[test]
+    fn orbit_looks_at_target_and_puts_w_at_depth() {
+        let o = Orbit::new([1.0, 2.0, 3.0], 0.7, 0.3, 10.0, 1.0);
+        let cam = o.camera::<Libm>(1.5);
+        let t = ndc(&cam.matrix, o.target);
+        assert!(t[0].abs() < 1e-5 && t[1].abs() < 1e-5, "{t:?}");
+        assert!((t[3] - 10.0).abs() < 1e-4);
+        // A point toward the eye is nearer: smaller w and smaller ndc.z.
+        let e = o.eye_direction::<Libm>();
+        let p = [1.0 + 4.0 * e[0], 2.0 + 4.0 * e[1], 3.0 + 4.0 * e[2]];
+        let q = ndc(&cam.matrix, p);
+        assert!((q[3] - 6.0).abs() < 1e-4);
+        assert!(q[2] < t[2]);
+        assert_eq!(cam.near_w, o.near);
+    }
+
+    #[test]
+    fn orbit_orientation_y_up_x_right() {
+        // yaw 0 pitch 0: eye on +z looking down -z; +x is right, +y is up.
+        let o = Orbit::new([0.0; 3], 0.0, 0.0, 5.0, 1.2);
+        let m = o.camera::<Libm>(1.0).matrix;
+        let r = ndc(&m, [1.0, 0.0, 0.0]);
+        let u = ndc(&m, [0.0, 1.0, 0.0]);
+        assert!(r[0] > 0.1 && r[1].abs() < 1e-6);
+        assert!(u[1] > 0.1 && u[0].abs() < 1e-6);
+        // Half the vertical fov maps to the top of the screen.
+        let top = [0.0, 5.0 * libm::tanf(0.6), 0.0];
+        assert!((ndc(&m, top)[1] - 1.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn parallel_orbit_has_unit_w_and_half_distance_extent() {
+        let o = Orbit::new([0.0; 3], 1.0, -0.4, 8.0, 0.0);
+        assert!(o.is_parallel());
+        let cam = o.camera::<Libm>(2.0);
+        let e = o.eye_direction::<Libm>();
+        for p in [[0.0, 0.0, 0.0], [3.0, -1.0, 2.0], [-e[0] * 50.0, 0.0, 0.0]] {
+            assert!((cam.matrix.transform_point(p)[3] - 1.0).abs() < 1e-6);
+        }
+        // straight up in view space (pitch < 0 so tilt the probe): use the
+        // camera's own up vector: yaw=1, pitch=-0.4.
+        let (sy, cy) = (libm::sinf(1.0), libm::cosf(1.0));
+        let (sp, cp) = (libm::sinf(-0.4), libm::cosf(-0.4));
+        let up = [-sy * sp * 4.0, cp * 4.0, -cy * sp * 4.0];
+        assert!((ndc(&cam.matrix, up)[1] - 1.0).abs() < 1e-5);
+        assert!(cam.near_w > 0.0 && cam.near_w < 1.0);
+    }
+
+    #[test]
+    fn pitch_straight_down_is_not_degenerate() {
+        let o = Orbit::new([0.0; 3], 0.0, core::f32::consts::FRAC_PI_2, 5.0, 1.0);
+        let m = o.camera::<Libm>(1.0).matrix;
+        assert!(m.is_finite());
+        let p = ndc(&m, [1.0, 0.0, 0.0]);
+        assert!(p[0] > 0.1 && (p[3] - 5.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn with_model_applies_model_first() {
+        let cam = Camera::from_matrix(Mat4::IDENTITY, 0.1);
+        let moved = cam.with_model(&Mat4::translation([1.0, 2.0, 3.0]));
+        assert_eq!(moved.matrix.transform_point([0.0; 3]), [1.0, 2.0, 3.0, 1.0]);
+    }
+}

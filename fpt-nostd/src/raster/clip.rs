@@ -1,0 +1,422 @@
+//! Homogeneous clipping in clip space, before anything becomes a screen
+//! integer.
+//!
+//! Sutherland–Hodgman against five planes, in this order:
+//! 1. near: `w − near_w ≥ 0` (drops everything at or behind the eye; the
+//!    caller guarantees `near_w > 0`, so every kept point has `w > 0`);
+//! 2. the guard band: `G·w ∓ x ≥ 0`, `G·w ∓ y ≥ 0` with [`GUARD`] = 4, i.e.
+//!    `|ndc.x|, |ndc.y| ≤ 4` — a band of about four screens around the
+//!    viewport. Polygons crossing the screen edge but not the band (the
+//!    usual case) are not clipped at all, and the band bounds every
+//!    projected coordinate, which is what keeps the fixed-point screen
+//!    coordinates and the scan converter's i64 edge arithmetic from
+//!    overflowing whatever the camera.
+//!
+//! Contract:
+//! * Works for convex and concave polygons; a concave polygon may come out
+//!   with zero-width "bridges" along a clip plane, which both fill rules
+//!   render as nothing.
+//! * Capacity: output is written to caller buffers of fixed length. Each
+//!   plane can grow a concave polygon by up to half its vertex count; if the
+//!   result would not fit, [`ClipError::Capacity`] is returned and the
+//!   caller skips the polygon (never a partial polygon, never a panic).
+//! * Determinism across polygons: an edge crossing a plane is always
+//!   interpolated from its inside endpoint toward its outside endpoint, and
+//!   the new vertex is snapped exactly onto the plane. Two polygons that
+//!   share an edge (in either direction) therefore produce bit-identical
+//!   intersection vertices, so clipping opens no crack between them.
+//! * Arithmetic is generic over [`ClipNum`]: `f32` for the float path,
+//!   [`FxWide`] (i64 with i128 products in the interpolation) for the fixed
+//!   path. Neither overflows on values the transform stage admits.
+
+use core::fmt::Debug;
+
+use crate::fixed::FxWide;
+
+/// Guard-band half-width in NDC units: kept points satisfy `|x|, |y| ≤ G·w`.
+pub const GUARD: i32 = 4;
+
+/// A clip-space vertex. `z` is not kept: nothing is depth-tested or
+/// far-clipped (visibility comes from the priority tree).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ClipVert<S> {
+    /// Clip x.
+    pub x: S,
+    /// Clip y.
+    pub y: S,
+    /// Clip w (eye depth for perspective, 1 for parallel cameras).
+    pub w: S,
+}
+
+/// The scalar operations clipping needs.
+pub trait ClipNum: Copy + PartialOrd + Debug + Default {
+    /// Zero.
+    const ZERO: Self;
+    /// `a − b` (saturating where that applies).
+    fn sub(a: Self, b: Self) -> Self;
+    /// `g·w − c` when `neg` is false, `g·w + c` when true.
+    fn guard(w: Self, c: Self, g: i32, neg: bool) -> Self;
+    /// The point on segment `a → b` where a linear function that is `da`
+    /// at `a` and `db` at `b` vanishes; callers guarantee `da ≥ 0 > db`.
+    /// The result lies between `a` and `b` (inclusive).
+    fn lerp(a: Self, b: Self, da: Self, db: Self) -> Self;
+    /// `g·w` (used to snap a guard-band intersection onto the plane).
+    fn scale(w: Self, g: i32) -> Self;
+    /// Negation.
+    fn neg(a: Self) -> Self;
+}
+
+impl ClipNum for f32 {
+    const ZERO: f32 = 0.0;
+    fn sub(a: f32, b: f32) -> f32 {
+        a - b
+    }
+    fn guard(w: f32, c: f32, g: i32, neg: bool) -> f32 {
+        if neg {
+            g as f32 * w + c
+        } else {
+            g as f32 * w - c
+        }
+    }
+    fn lerp(a: f32, b: f32, da: f32, db: f32) -> f32 {
+        // t in [0, 1] by the caller's sign guarantee; the clamp also
+        // absorbs the inf/inf that a pathological (but finite) input could
+        // produce, so the result stays between a and b.
+        let t = da / (da - db);
+        let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+        a + (b - a) * t
+    }
+    fn scale(w: f32, g: i32) -> f32 {
+        g as f32 * w
+    }
+    fn neg(a: f32) -> f32 {
+        -a
+    }
+}
+
+impl<const F: u32> ClipNum for FxWide<F> {
+    const ZERO: Self = FxWide::ZERO;
+    fn sub(a: Self, b: Self) -> Self {
+        a.saturating_sub(b)
+    }
+    fn guard(w: Self, c: Self, g: i32, neg: bool) -> Self {
+        let gw = w.raw().saturating_mul(g as i64);
+        FxWide::from_raw(if neg {
+            gw.saturating_add(c.raw())
+        } else {
+            gw.saturating_sub(c.raw())
+        })
+    }
+    fn lerp(a: Self, b: Self, da: Self, db: Self) -> Self {
+        // i128: |b − a| < 2^64 and da < 2^63, so the product fits; the
+        // quotient is at most |b − a| and is truncated toward zero, which
+        // keeps the result between a and b.
+        let (a, b) = (a.raw() as i128, b.raw() as i128);
+        let (da, db) = (da.raw() as i128, db.raw() as i128);
+        let den = da - db;
+        if den <= 0 {
+            return FxWide::from_raw(a as i64);
+        }
+        let v = a + (b - a) * da / den;
+        FxWide::from_raw(v.clamp(i64::MIN as i128, i64::MAX as i128) as i64)
+    }
+    fn scale(w: Self, g: i32) -> Self {
+        FxWide::from_raw(w.raw().saturating_mul(g as i64))
+    }
+    fn neg(a: Self) -> Self {
+        FxWide::from_raw(a.raw().saturating_neg())
+    }
+}
+
+/// The five clip planes, in clipping order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Plane {
+    Near,
+    Right,
+    Left,
+    Top,
+    Bottom,
+}
+
+const PLANES: [Plane; 5] = [
+    Plane::Near,
+    Plane::Right,
+    Plane::Left,
+    Plane::Top,
+    Plane::Bottom,
+];
+
+impl Plane {
+    /// Signed distance-like value, `≥ 0` inside.
+    fn dist<S: ClipNum>(self, v: &ClipVert<S>, near: S) -> S {
+        match self {
+            Plane::Near => S::sub(v.w, near),
+            Plane::Right => S::guard(v.w, v.x, GUARD, false),
+            Plane::Left => S::guard(v.w, v.x, GUARD, true),
+            Plane::Top => S::guard(v.w, v.y, GUARD, false),
+            Plane::Bottom => S::guard(v.w, v.y, GUARD, true),
+        }
+    }
+
+    /// Puts an interpolated vertex exactly on the plane, so that rounding
+    /// can never leave it (slightly) outside — for the near plane that
+    /// would mean a `w` below `near_w`, possibly zero.
+    fn snap<S: ClipNum>(self, v: &mut ClipVert<S>, near: S) {
+        match self {
+            Plane::Near => v.w = near,
+            Plane::Right => v.x = S::scale(v.w, GUARD),
+            Plane::Left => v.x = S::neg(S::scale(v.w, GUARD)),
+            Plane::Top => v.y = S::scale(v.w, GUARD),
+            Plane::Bottom => v.y = S::neg(S::scale(v.w, GUARD)),
+        }
+    }
+}
+
+/// Clipping failed because the result needs more vertices than the buffers
+/// hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ClipError {
+    /// The clipped polygon would exceed the buffer capacity.
+    Capacity,
+}
+
+/// The result of [`clip_polygon`].
+#[derive(Debug)]
+pub struct Clipped<'a, S> {
+    /// The clipped polygon (fewer than 3 vertices: nothing visible).
+    pub verts: &'a [ClipVert<S>],
+    /// False when the polygon was inside every plane and passed unchanged.
+    pub clipped: bool,
+}
+
+/// Clips the polygon `a[..n]` (clip space) against the near plane
+/// `w ≥ near` and the guard band. `a` and `b` are scratch of equal length
+/// (the capacity); the result is a slice of one of them. An empty slice (or
+/// fewer than 3 vertices) means nothing is visible.
+///
+/// `near` must be positive (see module docs).
+pub fn clip_polygon<'a, S: ClipNum>(
+    a: &'a mut [ClipVert<S>],
+    n: usize,
+    b: &'a mut [ClipVert<S>],
+    near: S,
+) -> Result<Clipped<'a, S>, ClipError> {
+    let (verts, clipped) = clip_inner(a, n, b, near)?;
+    Ok(Clipped { verts, clipped })
+}
+
+fn clip_inner<'a, S: ClipNum>(
+    a: &'a mut [ClipVert<S>],
+    n: usize,
+    b: &'a mut [ClipVert<S>],
+    near: S,
+) -> Result<(&'a [ClipVert<S>], bool), ClipError> {
+    let n = n.min(a.len());
+    // Outcodes: trivially accept (the common case: no plane touched) or
+    // reject (all vertices outside one plane) without any interpolation.
+    let mut any_out = 0u8;
+    for v in &a[..n] {
+        for (k, p) in PLANES.iter().enumerate() {
+            if p.dist(v, near) < S::ZERO {
+                any_out |= 1 << k;
+            }
+        }
+    }
+    if any_out == 0 {
+        return Ok((&a[..n], false));
+    }
+    let mut src: &'a mut [ClipVert<S>] = a;
+    let mut dst: &'a mut [ClipVert<S>] = b;
+    let mut len = n;
+    for (k, p) in PLANES.iter().enumerate() {
+        // Points inside a half-space stay inside after interpolation with
+        // other inside points (convexity; snapping covers rounding), so a
+        // plane no input vertex crossed needs no pass.
+        if any_out & (1 << k) == 0 {
+            continue;
+        }
+        len = clip_one(&src[..len], dst, *p, near)?;
+        core::mem::swap(&mut src, &mut dst);
+        if len < 3 {
+            return Ok((&src[..0], true));
+        }
+    }
+    Ok((&src[..len], true))
+}
+
+/// One Sutherland–Hodgman pass; returns the output length.
+fn clip_one<S: ClipNum>(
+    input: &[ClipVert<S>],
+    out: &mut [ClipVert<S>],
+    plane: Plane,
+    near: S,
+) -> Result<usize, ClipError> {
+    let mut len = 0usize;
+    let mut push = |v: ClipVert<S>| -> Result<(), ClipError> {
+        let slot = out.get_mut(len).ok_or(ClipError::Capacity)?;
+        *slot = v;
+        len += 1;
+        Ok(())
+    };
+    let Some(&last) = input.last() else {
+        return Ok(0);
+    };
+    let mut prev = last;
+    let mut dprev = plane.dist(&prev, near);
+    for &cur in input {
+        let dcur = plane.dist(&cur, near);
+        let prev_in = dprev >= S::ZERO;
+        let cur_in = dcur >= S::ZERO;
+        if prev_in != cur_in {
+            // Always from the inside endpoint: see "Determinism" above.
+            let (i, o, di, d_o) = if prev_in {
+                (&prev, &cur, dprev, dcur)
+            } else {
+                (&cur, &prev, dcur, dprev)
+            };
+            let mut v = ClipVert {
+                x: S::lerp(i.x, o.x, di, d_o),
+                y: S::lerp(i.y, o.y, di, d_o),
+                w: S::lerp(i.w, o.w, di, d_o),
+            };
+            plane.snap(&mut v, near);
+            push(v)?;
+        }
+        if cur_in {
+            push(cur)?;
+        }
+        prev = cur;
+        dprev = dcur;
+    }
+    Ok(len)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cv(x: f32, y: f32, w: f32) -> ClipVert<f32> {
+        ClipVert { x, y, w }
+    }
+
+    fn run(poly: &[ClipVert<f32>], near: f32) -> std::vec::Vec<ClipVert<f32>> {
+        let mut a = [ClipVert::default(); 16];
+        let mut b = [ClipVert::default(); 16];
+        a[..poly.len()].copy_from_slice(poly);
+        clip_polygon(&mut a, poly.len(), &mut b, near)
+            .map(|s| s.verts.to_vec())
+            .unwrap_or_default()
+    }
+
+    extern crate std;
+
+    #[test]
+    fn inside_polygon_is_untouched() {
+        let p = [cv(-1.0, -1.0, 2.0), cv(1.0, -1.0, 2.0), cv(0.0, 1.0, 2.0)];
+        assert_eq!(run(&p, 0.1), p.to_vec());
+    }
+
+    #[test]
+    fn polygon_behind_eye_gives_nothing() {
+        let p = [cv(-1.0, -1.0, -2.0), cv(1.0, -1.0, -2.0), cv(0.0, 1.0, -0.5)];
+        assert!(run(&p, 0.1).is_empty());
+        // Touching the near plane from behind with one vertex leaves only a
+        // degenerate polygon on the plane (zero area: no pixel).
+        let p = [cv(-1.0, -1.0, -2.0), cv(1.0, -1.0, -2.0), cv(0.0, 0.0, 0.1)];
+        assert!(run(&p, 0.1).iter().all(|v| *v == cv(0.0, 0.0, 0.1)));
+    }
+
+    #[test]
+    fn near_crossing_keeps_the_front_part_on_the_plane() {
+        // Square in the x/w plane from w = -1 to w = 3; near at 1.
+        let p = [
+            cv(-1.0, 0.0, -1.0),
+            cv(1.0, 0.0, -1.0),
+            cv(1.0, 0.5, 3.0),
+            cv(-1.0, 0.5, 3.0),
+        ];
+        let out = run(&p, 1.0);
+        assert_eq!(out.len(), 4);
+        assert!(out.iter().all(|v| v.w >= 1.0));
+        let on_plane: std::vec::Vec<_> = out.iter().filter(|v| v.w == 1.0).collect();
+        assert_eq!(on_plane.len(), 2);
+        // y is linear in w along the sides: y = (w + 1)/8 → 0.25 at w = 1.
+        assert!(on_plane.iter().all(|v| (v.y - 0.25).abs() < 1e-6));
+    }
+
+    #[test]
+    fn guard_band_bounds_huge_coordinates() {
+        let p = [cv(-1e30, -1e30, 1.0), cv(1e30, -1e30, 1.0), cv(0.0, 1e30, 1.0)];
+        let out = run(&p, 0.1);
+        assert!(out.len() >= 3);
+        for v in &out {
+            assert!(v.x.abs() <= 4.0 * v.w && v.y.abs() <= 4.0 * v.w, "{v:?}");
+        }
+    }
+
+    #[test]
+    fn shared_edge_intersections_are_bit_identical() {
+        // Two triangles sharing edge p-q, traversed in opposite directions:
+        // once with p-q crossing the near plane, once the right guard plane.
+        let r1 = cv(-1.0, 3.0, 2.0);
+        let r2 = cv(2.0, -3.0, 1.3);
+        for (p, q) in [
+            (cv(0.3, 0.7, -0.77), cv(1.1, -0.2, 2.9)),
+            (cv(0.3, 0.7, 0.5), cv(13.1, -0.2, 2.9)),
+        ] {
+            let t1 = run(&[p, q, r1], 0.37);
+            let t2 = run(&[q, p, r2], 0.37);
+            let new: std::vec::Vec<_> = t1.iter().filter(|v| ![p, q, r1].contains(v)).collect();
+            assert!(!new.is_empty());
+            // Every new vertex on the shared edge appears bit-identical in
+            // the other triangle.
+            let on_shared = new.iter().filter(|v| t2.contains(v)).count();
+            assert_eq!(on_shared, 1, "{t1:?} {t2:?}");
+        }
+    }
+
+    #[test]
+    fn fixed_point_clip_matches_float() {
+        type W = FxWide<16>;
+        let f = |v: f32| W::try_from_f32(v).unwrap_or_default();
+        let pf = [cv(-3.0, 0.0, -1.0), cv(9.0, 1.0, 2.0), cv(0.0, -2.0, 4.0)];
+        let mut a = [ClipVert::<W>::default(); 16];
+        let mut b = a;
+        for (d, s) in a.iter_mut().zip(pf.iter()) {
+            *d = ClipVert { x: f(s.x), y: f(s.y), w: f(s.w) };
+        }
+        let fixed = clip_polygon(&mut a, 3, &mut b, f(0.5)).map(|s| s.verts.to_vec());
+        let float = run(&pf, 0.5);
+        let fixed = fixed.unwrap_or_default();
+        assert_eq!(fixed.len(), float.len());
+        for (x, y) in fixed.iter().zip(float.iter()) {
+            assert!((x.x.to_f32() - y.x).abs() < 1e-3, "{x:?} {y:?}");
+            assert!((x.w.to_f32() - y.w).abs() < 1e-3);
+            assert!(x.w >= f(0.5));
+        }
+    }
+
+    #[test]
+    fn capacity_overflow_is_an_error_not_a_panic() {
+        // A comb: many teeth crossing the near plane needs more room.
+        let mut poly = std::vec::Vec::new();
+        for i in 0..8 {
+            let x = i as f32;
+            poly.push(cv(x, 0.0, 2.0));
+            poly.push(cv(x + 0.5, 0.0, -1.0));
+        }
+        poly.push(cv(8.0, 0.0, 5.0));
+        poly.push(cv(0.0, 0.0, 5.0));
+        let mut a = [ClipVert::default(); 18];
+        let mut b = [ClipVert::default(); 18];
+        a[..poly.len()].copy_from_slice(&poly);
+        assert_eq!(
+            clip_polygon(&mut a, poly.len(), &mut b, 1.0).map(|s| s.verts.len()),
+            Err(ClipError::Capacity)
+        );
+        let mut a = [ClipVert::default(); 40];
+        let mut b = [ClipVert::default(); 40];
+        a[..poly.len()].copy_from_slice(&poly);
+        assert!(clip_polygon(&mut a, poly.len(), &mut b, 1.0).is_ok_and(|s| s.verts.len() > 18));
+    }
+}

@@ -1,0 +1,398 @@
+//! Framebuffers over caller-supplied storage, for `Rgb565`, `Rgb888`,
+//! `Gray8` and packed `BinaryColor`.
+//!
+//! A [`Framebuffer<F>`] is a `width × height` image in a borrowed slice of
+//! [`PixelFormat::Word`]s, rows stored top to bottom with
+//! [`PixelFormat::words_per_row`] words each:
+//! * [`Rgb565Format`]: one `u16` per pixel, the `Rgb565` storage value
+//!   (native endianness; byte-swap when sending to a big-endian panel).
+//! * [`Rgb888Format`]: three `u8` per pixel, in `r, g, b` order.
+//! * [`Gray8Format`]: one `u8` per pixel (luma).
+//! * [`BinaryFormat`]: one bit per pixel, 8 pixels per byte, the leftmost
+//!   pixel in the most significant bit, each row padded to whole bytes;
+//!   1 = `BinaryColor::On`.
+//!
+//! Each implements `DrawTarget` + `OriginDimensions` (with `fill_solid` and
+//! `clear` overridden to fill whole row slices) and [`SpanSink`] (spans go
+//! straight to the row fill: the rasterizer's fast path). Colours arrive as
+//! `Rgb888` from shading and are converted once per polygon with
+//! embedded-graphics' own `From` conversions (luma for grey, luma ≥ 128 for
+//! binary), so the fast path and a generic `DrawTarget` agree exactly.
+
+use core::convert::Infallible;
+use core::marker::PhantomData;
+
+use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::geometry::{OriginDimensions, Point, Size};
+use embedded_graphics::pixelcolor::raw::RawU16;
+use embedded_graphics::pixelcolor::{BinaryColor, Gray8, GrayColor, IntoStorage, PixelColor, Rgb565, Rgb888, RgbColor};
+use embedded_graphics::primitives::Rectangle;
+use embedded_graphics::Pixel;
+
+use super::scan::{Paint, SpanBounds, SpanSink};
+use super::transform::MAX_DIM;
+
+/// How pixels of one colour type are laid out in words.
+pub trait PixelFormat {
+    /// The embedded-graphics colour type.
+    type Color: PixelColor + From<Rgb888>;
+    /// The storage word.
+    type Word: Copy;
+    /// Words per row for `width` pixels.
+    fn words_per_row(width: u32) -> usize;
+    /// Sets pixels `x0..x1` of `row` (callers guarantee `x0 ≤ x1 ≤ width`).
+    fn fill_row(row: &mut [Self::Word], x0: usize, x1: usize, c: Self::Color);
+    /// Reads pixel `x` of `row`.
+    fn get(row: &[Self::Word], x: usize) -> Self::Color;
+}
+
+/// `Rgb565`, one `u16` per pixel.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Rgb565Format;
+/// `Rgb888`, three bytes per pixel.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Rgb888Format;
+/// `Gray8`, one byte per pixel.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Gray8Format;
+/// `BinaryColor`, one bit per pixel, MSB first, rows padded to bytes.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BinaryFormat;
+
+impl PixelFormat for Rgb565Format {
+    type Color = Rgb565;
+    type Word = u16;
+    fn words_per_row(width: u32) -> usize {
+        width as usize
+    }
+    fn fill_row(row: &mut [u16], x0: usize, x1: usize, c: Rgb565) {
+        if let Some(s) = row.get_mut(x0..x1) {
+            s.fill(c.into_storage());
+        }
+    }
+    fn get(row: &[u16], x: usize) -> Rgb565 {
+        Rgb565::from(RawU16::new(row.get(x).copied().unwrap_or(0)))
+    }
+}
+
+impl PixelFormat for Rgb888Format {
+    type Color = Rgb888;
+    type Word = u8;
+    fn words_per_row(width: u32) -> usize {
+        3 * width as usize
+    }
+    fn fill_row(row: &mut [u8], x0: usize, x1: usize, c: Rgb888) {
+        if let Some(s) = row.get_mut(3 * x0..3 * x1) {
+            for px in s.chunks_exact_mut(3) {
+                px.copy_from_slice(&[c.r(), c.g(), c.b()]);
+            }
+        }
+    }
+    fn get(row: &[u8], x: usize) -> Rgb888 {
+        match row.get(3 * x..3 * x + 3) {
+            Some(p) => Rgb888::new(p[0], p[1], p[2]),
+            None => Rgb888::BLACK,
+        }
+    }
+}
+
+impl PixelFormat for Gray8Format {
+    type Color = Gray8;
+    type Word = u8;
+    fn words_per_row(width: u32) -> usize {
+        width as usize
+    }
+    fn fill_row(row: &mut [u8], x0: usize, x1: usize, c: Gray8) {
+        if let Some(s) = row.get_mut(x0..x1) {
+            s.fill(c.luma());
+        }
+    }
+    fn get(row: &[u8], x: usize) -> Gray8 {
+        Gray8::new(row.get(x).copied().unwrap_or(0))
+    }
+}
+
+impl PixelFormat for BinaryFormat {
+    type Color = BinaryColor;
+    type Word = u8;
+    fn words_per_row(width: u32) -> usize {
+        (width as usize).div_ceil(8)
+    }
+    fn fill_row(row: &mut [u8], x0: usize, x1: usize, c: BinaryColor) {
+        if x0 >= x1 || x1.div_ceil(8) > row.len() {
+            return;
+        }
+        let on = c.is_on();
+        let apply = |b: &mut u8, mask: u8| {
+            if on {
+                *b |= mask
+            } else {
+                *b &= !mask
+            }
+        };
+        let (b0, b1) = (x0 / 8, (x1 - 1) / 8);
+        // Bits of byte b0 from x0 on, of byte b1 up to x1 (MSB = leftmost).
+        let head = 0xFFu8 >> (x0 % 8);
+        let tail = 0xFFu8 << (7 - (x1 - 1) % 8);
+        if b0 == b1 {
+            apply(&mut row[b0], head & tail);
+        } else {
+            apply(&mut row[b0], head);
+            row[b0 + 1..b1].fill(if on { 0xFF } else { 0 });
+            apply(&mut row[b1], tail);
+        }
+    }
+    fn get(row: &[u8], x: usize) -> BinaryColor {
+        let bit = row.get(x / 8).map_or(0, |b| (b >> (7 - x % 8)) & 1);
+        BinaryColor::from(bit != 0)
+    }
+}
+
+/// Why a framebuffer could not be created.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FramebufferError {
+    /// A side is zero or larger than [`MAX_DIM`].
+    BadSize,
+    /// The storage slice is shorter than `height × words_per_row(width)`.
+    BufferTooSmall,
+}
+
+/// An image of `F`-format pixels in borrowed storage (see module docs).
+#[derive(Debug)]
+pub struct Framebuffer<'a, F: PixelFormat> {
+    buf: &'a mut [F::Word],
+    width: u32,
+    height: u32,
+    stride: usize,
+    _f: PhantomData<F>,
+}
+
+/// `Rgb565` framebuffer over `&mut [u16]`.
+pub type Rgb565Framebuffer<'a> = Framebuffer<'a, Rgb565Format>;
+/// `Rgb888` framebuffer over `&mut [u8]`.
+pub type Rgb888Framebuffer<'a> = Framebuffer<'a, Rgb888Format>;
+/// `Gray8` framebuffer over `&mut [u8]`.
+pub type Gray8Framebuffer<'a> = Framebuffer<'a, Gray8Format>;
+/// Packed `BinaryColor` framebuffer over `&mut [u8]`.
+pub type BinaryFramebuffer<'a> = Framebuffer<'a, BinaryFormat>;
+
+impl<'a, F: PixelFormat> Framebuffer<'a, F> {
+    /// Words of storage needed for `width × height`.
+    pub fn required_len(width: u32, height: u32) -> usize {
+        F::words_per_row(width) * height as usize
+    }
+
+    /// Wraps `buf` as a `width × height` image (extra storage is unused).
+    pub fn new(buf: &'a mut [F::Word], width: u32, height: u32) -> Result<Self, FramebufferError> {
+        if !(1..=MAX_DIM).contains(&width) || !(1..=MAX_DIM).contains(&height) {
+            return Err(FramebufferError::BadSize);
+        }
+        let stride = F::words_per_row(width);
+        if buf.len() < stride * height as usize {
+            return Err(FramebufferError::BufferTooSmall);
+        }
+        Ok(Framebuffer { buf, width, height, stride, _f: PhantomData })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The storage of row `y` (`None` outside the image).
+    pub fn row(&self, y: u32) -> Option<&[F::Word]> {
+        let s = y as usize * self.stride;
+        (y < self.height).then(|| &self.buf[s..s + self.stride])
+    }
+
+    /// The whole storage in use (`height` rows).
+    pub fn data(&self) -> &[F::Word] {
+        &self.buf[..self.stride * self.height as usize]
+    }
+
+    /// The colour at `(x, y)`, `None` outside the image.
+    pub fn pixel(&self, x: u32, y: u32) -> Option<F::Color> {
+        if x >= self.width {
+            return None;
+        }
+        self.row(y).map(|r| F::get(r, x as usize))
+    }
+
+    /// Fills `x0..x1` of row `y`, clipped to the image.
+    pub fn fill_span(&mut self, y: i32, x0: i32, x1: i32, c: F::Color) {
+        if y < 0 || y >= self.height as i32 {
+            return;
+        }
+        let x0 = x0.max(0) as usize;
+        let x1 = x1.min(self.width as i32);
+        if x1 <= x0 as i32 {
+            return;
+        }
+        let s = y as usize * self.stride;
+        F::fill_row(&mut self.buf[s..s + self.stride], x0, x1 as usize, c);
+    }
+
+    /// Fills the whole image.
+    pub fn fill_all(&mut self, c: F::Color) {
+        for y in 0..self.height as i32 {
+            self.fill_span(y, 0, self.width as i32, c);
+        }
+    }
+}
+
+impl<F: PixelFormat> OriginDimensions for Framebuffer<'_, F> {
+    fn size(&self) -> Size {
+        Size::new(self.width, self.height)
+    }
+}
+
+impl<F: PixelFormat> DrawTarget for Framebuffer<'_, F> {
+    type Color = F::Color;
+    type Error = Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Pixel<F::Color>>,
+    {
+        for Pixel(Point { x, y }, c) in pixels {
+            self.fill_span(y, x, x.saturating_add(1), c);
+        }
+        Ok(())
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: F::Color) -> Result<(), Infallible> {
+        let a = area.intersection(&Rectangle::new(Point::zero(), self.size()));
+        if a.is_zero_sized() {
+            return Ok(());
+        }
+        let (x0, x1) = (a.top_left.x, a.top_left.x + a.size.width as i32);
+        for y in a.rows() {
+            self.fill_span(y, x0, x1, color);
+        }
+        Ok(())
+    }
+
+    fn clear(&mut self, color: F::Color) -> Result<(), Infallible> {
+        self.fill_all(color);
+        Ok(())
+    }
+}
+
+impl<F: PixelFormat> SpanSink for Framebuffer<'_, F> {
+    type Color = F::Color;
+    fn color(&self, paint: &Paint) -> F::Color {
+        F::Color::from(paint.rgb)
+    }
+    fn bounds(&self) -> SpanBounds {
+        SpanBounds::of_size(self.width, self.height)
+    }
+    fn span(&mut self, y: i32, x0: i32, x1: i32, c: F::Color) {
+        self.fill_span(y, x0, x1, c);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use embedded_graphics::primitives::{Primitive, PrimitiveStyle, Triangle};
+    use embedded_graphics::Drawable;
+    use std::vec;
+
+    /// Row fill against a per-pixel reference for every x0/x1 pair.
+    fn check_format<F: PixelFormat>(width: u32, colors: [F::Color; 2], init: F::Word)
+    where
+        F::Color: PartialEq + core::fmt::Debug,
+    {
+        let n = F::words_per_row(width);
+        for x0 in 0..=width as usize {
+            for x1 in x0..=width as usize {
+                let mut row = vec![init; n];
+                F::fill_row(&mut row, 0, width as usize, colors[0]);
+                F::fill_row(&mut row, x0, x1, colors[1]);
+                for x in 0..width as usize {
+                    let want = if (x0..x1).contains(&x) { colors[1] } else { colors[0] };
+                    assert_eq!(F::get(&row, x), want, "x0={x0} x1={x1} x={x}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn row_fills_match_per_pixel_reference() {
+        check_format::<Rgb565Format>(13, [Rgb565::new(1, 2, 3), Rgb565::new(31, 0, 17)], 0);
+        check_format::<Rgb888Format>(7, [Rgb888::new(1, 2, 3), Rgb888::new(200, 0, 9)], 0);
+        check_format::<Gray8Format>(9, [Gray8::new(5), Gray8::new(250)], 0);
+        for w in [1, 7, 8, 9, 17, 24] {
+            check_format::<BinaryFormat>(w, [BinaryColor::Off, BinaryColor::On], 0);
+            check_format::<BinaryFormat>(w, [BinaryColor::On, BinaryColor::Off], 0xFF);
+        }
+    }
+
+    #[test]
+    fn binary_layout_is_msb_first_with_padded_rows() {
+        let mut buf = [0u8; 4];
+        let mut fb = BinaryFramebuffer::new(&mut buf, 10, 2).unwrap_or_else(|e| panic!("{e:?}"));
+        fb.fill_span(0, 0, 1, BinaryColor::On);
+        fb.fill_span(1, 8, 10, BinaryColor::On);
+        assert_eq!(fb.data(), &[0x80, 0x00, 0x00, 0xC0]);
+    }
+
+    #[test]
+    fn constructor_checks() {
+        let mut small = [0u16; 10];
+        assert_eq!(Rgb565Framebuffer::new(&mut small, 4, 3).err(), Some(FramebufferError::BufferTooSmall));
+        assert_eq!(Rgb565Framebuffer::new(&mut small, 0, 3).err(), Some(FramebufferError::BadSize));
+        assert_eq!(Rgb888Framebuffer::required_len(4, 3), 36);
+        assert_eq!(BinaryFramebuffer::required_len(9, 3), 6);
+    }
+
+    /// A generic DrawTarget with only `draw_iter` (every default method).
+    struct Plain(std::vec::Vec<Option<Gray8>>, u32, u32);
+    impl OriginDimensions for Plain {
+        fn size(&self) -> Size {
+            Size::new(self.1, self.2)
+        }
+    }
+    impl DrawTarget for Plain {
+        type Color = Gray8;
+        type Error = Infallible;
+        fn draw_iter<I: IntoIterator<Item = Pixel<Gray8>>>(&mut self, it: I) -> Result<(), Infallible> {
+            for Pixel(p, c) in it {
+                if p.x >= 0 && p.y >= 0 && (p.x as u32) < self.1 && (p.y as u32) < self.2 {
+                    self.0[(p.y as u32 * self.1 + p.x as u32) as usize] = Some(c);
+                }
+            }
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn overridden_fill_solid_equals_default_draw_iter() {
+        let (w, h) = (23u32, 17u32);
+        let mut buf = vec![0u8; (w * h) as usize];
+        let mut fb = Gray8Framebuffer::new(&mut buf, w, h).unwrap_or_else(|e| panic!("{e:?}"));
+        let mut plain = Plain(vec![Some(Gray8::new(0)); (w * h) as usize], w, h);
+        let rects = [((-5, -3), (10, 8)), ((4, 5), (30, 2)), ((20, 15), (9, 9)), ((3, 3), (0, 5))];
+        for (k, ((x, y), (rw, rh))) in rects.into_iter().enumerate() {
+            let r = Rectangle::new(Point::new(x, y), Size::new(rw, rh));
+            let c = Gray8::new(40 * k as u8 + 30);
+            let _ = fb.fill_solid(&r, c);
+            let _ = plain.fill_solid(&r, c);
+        }
+        let tri = Triangle::new(Point::new(-3, 2), Point::new(20, 8), Point::new(6, 30))
+            .into_styled(PrimitiveStyle::with_fill(Gray8::new(255)));
+        let _ = tri.draw(&mut fb);
+        let _ = tri.draw(&mut plain);
+        for y in 0..h {
+            for x in 0..w {
+                assert_eq!(fb.pixel(x, y), plain.0[(y * w + x) as usize], "({x},{y})");
+            }
+        }
+    }
+}

@@ -1,0 +1,317 @@
+//! The per-frame renderer: transform → clip → project → shade → fill, one
+//! polygon at a time, so that integrating a tree walk is a loop.
+//!
+//! [`Renderer<P>`] holds the frame state (matrix in `P`'s format, near
+//! threshold, viewport, light, shading mode, fill rule) and counters;
+//! [`Scratch<P, N>`] holds the per-polygon buffers, sized for at most `N`
+//! vertices at every stage (input, after clipping, edges).
+//!
+//! Polygon outcomes ([`Outcome`]) — nothing ever panics:
+//! * more than `N` input vertices, or a clip result that would exceed `N`
+//!   → skipped ([`SkipReason::TooManyVertices`], [`SkipReason::ClipCapacity`]);
+//!   choose `N` with headroom: clipping can add up to 5 vertices to a convex
+//!   polygon (one per plane) and more to a concave one;
+//! * a non-finite vertex (input, after transform, or after clipping)
+//!   → skipped ([`SkipReason::NonFinite`]);
+//! * fewer than 3 vertices, or nothing left after clipping → invisible;
+//! * otherwise drawn (possibly zero spans, e.g. edge-on or off-screen).
+//!
+//! The renderer does not cull back faces or sort: the priority tree decides
+//! which faces to emit and in which order.
+
+use super::camera::{Camera, Orbit};
+use super::clip::{clip_polygon, ClipVert};
+use super::edge::Edge;
+use super::precision::Precision;
+use super::scan::{fill_polygon, FillRule, Paint, SpanBounds, SpanSink};
+use super::shade::{shade, Light, ShadeMode};
+use super::transform::{ScreenPt, VertexPath, Viewport};
+
+type Scalar<P> = <<P as Precision>::Path as VertexPath>::Scalar;
+type PathMatrix<P> = <<P as Precision>::Path as VertexPath>::Matrix;
+
+/// Per-polygon scratch buffers for at most `N` vertices (`N ≤ 65 535`).
+/// About `N × (2·clip vertex + 8 + 48 + 2)` bytes: with the fixed path
+/// (24-byte clip vertices) 106 bytes per vertex, 6.8 KiB for `N = 64`.
+#[derive(Debug)]
+pub struct Scratch<P: Precision, const N: usize> {
+    clip_a: [ClipVert<Scalar<P>>; N],
+    clip_b: [ClipVert<Scalar<P>>; N],
+    screen: [ScreenPt; N],
+    edges: [Edge; N],
+    active: [u16; N],
+}
+
+impl<P: Precision, const N: usize> Scratch<P, N> {
+    /// Zeroed buffers.
+    pub fn new() -> Self {
+        Scratch {
+            clip_a: [ClipVert::default(); N],
+            clip_b: [ClipVert::default(); N],
+            screen: [ScreenPt::default(); N],
+            edges: [Edge::default(); N],
+            active: [0; N],
+        }
+    }
+}
+
+impl<P: Precision, const N: usize> Default for Scratch<P, N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// What a polygon looks like to the shader and the id buffer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Face {
+    /// Plane normal (any length; model space, pointing to the visible side).
+    pub normal: [f32; 3],
+    /// Base colour.
+    pub color: [u8; 3],
+    /// Polygon id (id buffers store `id + 1`).
+    pub id: u32,
+}
+
+/// Why a polygon was not drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SkipReason {
+    /// More input vertices than the scratch capacity.
+    TooManyVertices,
+    /// Clipping produced more vertices than the scratch capacity.
+    ClipCapacity,
+    /// A vertex was not finite (or out of range for the float path).
+    NonFinite,
+}
+
+/// The result of drawing one polygon.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// Scan-converted; `spans` spans were sent to the sink.
+    Drawn {
+        /// Spans emitted.
+        spans: usize,
+    },
+    /// Degenerate or entirely clipped away (behind the eye, off-band).
+    Invisible,
+    /// Not drawn, for the given reason.
+    Skipped(SkipReason),
+}
+
+/// Counters since the last [`Renderer::reset_stats`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    /// Polygons scan-converted.
+    pub drawn: u32,
+    /// Polygons degenerate or clipped away.
+    pub invisible: u32,
+    /// Polygons skipped (any [`SkipReason`]).
+    pub skipped: u32,
+    /// Polygons that needed clipping (crossed the near plane or the guard
+    /// band).
+    pub clipped: u32,
+    /// Spans emitted.
+    pub spans: u64,
+}
+
+/// Frame state and the polygon pipeline (see module docs).
+#[derive(Debug)]
+pub struct Renderer<P: Precision> {
+    matrix: PathMatrix<P>,
+    near: Scalar<P>,
+    viewport: Viewport,
+    light: Light,
+    mode: ShadeMode,
+    rule: FillRule,
+    stats: RenderStats,
+}
+
+impl<P: Precision> Renderer<P> {
+    /// A renderer for a `width × height` frame; `None` if a side is 0 or
+    /// above [`super::transform::MAX_DIM`].
+    pub fn new(width: u32, height: u32, camera: &Camera) -> Option<Self> {
+        let viewport = Viewport::new(width, height, P::SUB_BITS)?;
+        Some(Renderer {
+            matrix: P::Path::prepare(&camera.matrix),
+            near: P::Path::near(camera.near_w),
+            viewport,
+            light: Light::default(),
+            mode: ShadeMode::default(),
+            rule: FillRule::default(),
+            stats: RenderStats::default(),
+        })
+    }
+
+    /// The viewport.
+    pub fn viewport(&self) -> Viewport {
+        self.viewport
+    }
+
+    /// Sets the camera (model → clip matrix and near threshold).
+    pub fn set_camera(&mut self, camera: &Camera) {
+        self.matrix = P::Path::prepare(&camera.matrix);
+        self.near = P::Path::near(camera.near_w);
+    }
+
+    /// Sets an orbit camera, using `P`'s math library and the viewport's
+    /// aspect ratio.
+    pub fn set_orbit(&mut self, orbit: &Orbit) {
+        let cam = orbit.camera::<P::Math>(self.viewport.aspect());
+        self.set_camera(&cam);
+    }
+
+    /// Sets the light.
+    pub fn set_light(&mut self, light: Light) {
+        self.light = light;
+    }
+
+    /// Sets the shading mode.
+    pub fn set_shade_mode(&mut self, mode: ShadeMode) {
+        self.mode = mode;
+    }
+
+    /// Sets the fill rule (only matters for self-intersecting polygons).
+    pub fn set_fill_rule(&mut self, rule: FillRule) {
+        self.rule = rule;
+    }
+
+    /// Counters so far.
+    pub fn stats(&self) -> RenderStats {
+        self.stats
+    }
+
+    /// Zeroes the counters.
+    pub fn reset_stats(&mut self) {
+        self.stats = RenderStats::default();
+    }
+
+    /// Draws a polygon given by model-space `f32` vertices.
+    pub fn draw_polygon<K, I, const N: usize>(
+        &mut self,
+        scratch: &mut Scratch<P, N>,
+        verts: I,
+        face: &Face,
+        sink: &mut K,
+    ) -> Outcome
+    where
+        K: SpanSink,
+        I: IntoIterator<Item = [f32; 3]>,
+    {
+        let m = self.matrix;
+        let out = self.load(scratch, verts, |v| P::Path::transform(&m, v));
+        self.finish(scratch, out, face, sink)
+    }
+
+    /// Draws a polygon given by integer vertices with `frac` fraction bits
+    /// (q16.16 → 16, q32.32 low words → 32; see
+    /// [`VertexPath::transform_q`]).
+    pub fn draw_polygon_q<K, I, const N: usize>(
+        &mut self,
+        scratch: &mut Scratch<P, N>,
+        verts: I,
+        frac: u32,
+        face: &Face,
+        sink: &mut K,
+    ) -> Outcome
+    where
+        K: SpanSink,
+        I: IntoIterator<Item = [i32; 3]>,
+    {
+        let m = self.matrix;
+        let out = self.load(scratch, verts, |v| P::Path::transform_q(&m, v, frac));
+        self.finish(scratch, out, face, sink)
+    }
+
+    /// Transforms the input into `scratch.clip_a`.
+    fn load<V, I, const N: usize>(
+        &self,
+        scratch: &mut Scratch<P, N>,
+        verts: I,
+        f: impl Fn(V) -> Option<ClipVert<Scalar<P>>>,
+    ) -> Result<usize, SkipReason>
+    where
+        I: IntoIterator<Item = V>,
+    {
+        let mut n = 0usize;
+        for v in verts {
+            let slot = scratch.clip_a.get_mut(n).ok_or(SkipReason::TooManyVertices)?;
+            *slot = f(v).ok_or(SkipReason::NonFinite)?;
+            n += 1;
+        }
+        Ok(n)
+    }
+
+    fn finish<K: SpanSink, const N: usize>(
+        &mut self,
+        scratch: &mut Scratch<P, N>,
+        loaded: Result<usize, SkipReason>,
+        face: &Face,
+        sink: &mut K,
+    ) -> Outcome {
+        let outcome = self.pipeline(scratch, loaded, face, sink);
+        match outcome {
+            Outcome::Drawn { spans } => {
+                self.stats.drawn += 1;
+                self.stats.spans += spans as u64;
+            }
+            Outcome::Invisible => self.stats.invisible += 1,
+            Outcome::Skipped(_) => self.stats.skipped += 1,
+        }
+        outcome
+    }
+
+    fn pipeline<K: SpanSink, const N: usize>(
+        &mut self,
+        scratch: &mut Scratch<P, N>,
+        loaded: Result<usize, SkipReason>,
+        face: &Face,
+        sink: &mut K,
+    ) -> Outcome {
+        let n = match loaded {
+            Ok(n) => n,
+            Err(r) => return Outcome::Skipped(r),
+        };
+        if n < 3 {
+            return Outcome::Invisible;
+        }
+        let Ok(clipped) = clip_polygon(&mut scratch.clip_a, n, &mut scratch.clip_b, self.near) else {
+            return Outcome::Skipped(SkipReason::ClipCapacity);
+        };
+        if clipped.clipped {
+            self.stats.clipped += 1;
+        }
+        let clipped = clipped.verts;
+        if clipped.len() < 3 {
+            return Outcome::Invisible;
+        }
+        for (dst, v) in scratch.screen.iter_mut().zip(clipped.iter()) {
+            match P::Path::project(v, &self.viewport) {
+                Some(p) => *dst = p,
+                None => return Outcome::Skipped(SkipReason::NonFinite),
+            }
+        }
+        let pts = &scratch.screen[..clipped.len()];
+        let vp = SpanBounds::of_size(self.viewport.width(), self.viewport.height());
+        // Shade only polygons that reach the sink at all (cheap test first).
+        if vp.intersect(&sink.bounds()).is_empty() {
+            return Outcome::Drawn { spans: 0 };
+        }
+        let paint = Paint {
+            rgb: shade(self.mode, &self.light, face.normal, face.color),
+            id: face.id,
+        };
+        let color = sink.color(&paint);
+        match fill_polygon(
+            pts,
+            self.viewport.sub_bits(),
+            self.rule,
+            &vp,
+            &mut scratch.edges,
+            &mut scratch.active,
+            color,
+            sink,
+        ) {
+            Ok(spans) => Outcome::Drawn { spans },
+            Err(_) => Outcome::Skipped(SkipReason::ClipCapacity),
+        }
+    }
+}

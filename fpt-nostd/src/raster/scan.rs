@@ -1,0 +1,246 @@
+//! Scanline fill: active-edge list, exact crossings, spans to a sink.
+//!
+//! Contract of [`fill_polygon`]:
+//! * Input: a closed polygon in screen space (`2^-sub` pixel units), convex
+//!   or concave, simple or not; at most 65 535 vertices and no more than
+//!   the scratch (`edges`, `active`) holds.
+//! * Coverage: pixel `(i, j)` is covered when its centre `(i+½, j+½)` has a
+//!   winding number that is "inside" under the [`FillRule`], with edge
+//!   ownership per the rules in [`super::edge`] (on-edge centres belong to
+//!   the polygon on the edge's right; on a horizontal boundary to the
+//!   polygon below). For simple polygons both rules agree.
+//! * Output: disjoint spans `[x0, x1)` per row, left to right, rows top to
+//!   bottom, each non-empty and inside [`SpanSink::bounds`]; a pixel is
+//!   reported at most once per polygon. Rows outside the bounds cost
+//!   nothing (edges start directly at the first row in bounds), so a band
+//!   renderer pays per band only for the polygons that reach it.
+
+use super::edge::{build_edges, Edge};
+use super::transform::ScreenPt;
+use embedded_graphics::pixelcolor::Rgb888;
+
+/// Which winding numbers are inside.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FillRule {
+    /// Inside when the winding number is non-zero.
+    #[default]
+    NonZero,
+    /// Inside when the winding number is odd.
+    EvenOdd,
+}
+
+impl FillRule {
+    #[inline]
+    fn inside(self, winding: i32) -> bool {
+        match self {
+            FillRule::NonZero => winding != 0,
+            FillRule::EvenOdd => winding & 1 != 0,
+        }
+    }
+}
+
+/// A half-open pixel rectangle `[x0, x1) × [y0, y1)` in frame coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SpanBounds {
+    /// First column.
+    pub x0: i32,
+    /// First row.
+    pub y0: i32,
+    /// Column after the last.
+    pub x1: i32,
+    /// Row after the last.
+    pub y1: i32,
+}
+
+impl SpanBounds {
+    /// The rectangle `[0, width) × [0, height)`.
+    pub fn of_size(width: u32, height: u32) -> SpanBounds {
+        let c = |v: u32| v.min(i32::MAX as u32) as i32;
+        SpanBounds { x0: 0, y0: 0, x1: c(width), y1: c(height) }
+    }
+
+    /// The intersection with `o` (possibly empty).
+    pub fn intersect(&self, o: &SpanBounds) -> SpanBounds {
+        SpanBounds {
+            x0: self.x0.max(o.x0),
+            y0: self.y0.max(o.y0),
+            x1: self.x1.min(o.x1),
+            y1: self.y1.min(o.y1),
+        }
+    }
+
+    /// True when no pixel is inside.
+    pub fn is_empty(&self) -> bool {
+        self.x0 >= self.x1 || self.y0 >= self.y1
+    }
+}
+
+/// What a polygon paints: its shaded colour and its identity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Paint {
+    /// The shaded colour.
+    pub rgb: Rgb888,
+    /// The polygon id (id buffers store `id + 1`, keeping 0 for "empty").
+    pub id: u32,
+}
+
+/// Receives the spans of filled polygons.
+///
+/// The fill calls [`SpanSink::color`] once per polygon and then
+/// [`SpanSink::span`] for each span, with `bounds().y0 ≤ y < bounds().y1`
+/// and `bounds().x0 ≤ x0 < x1 ≤ bounds().x1`. Implementations should still
+/// clip defensively (cheap, and keeps a buggy caller from panicking them).
+pub trait SpanSink {
+    /// The sink's native colour, converted once per polygon.
+    type Color: Copy;
+    /// Converts a polygon's paint to the native colour.
+    fn color(&self, paint: &Paint) -> Self::Color;
+    /// The pixels this sink can receive, in frame coordinates.
+    fn bounds(&self) -> SpanBounds;
+    /// Paints pixels `x0..x1` of row `y`.
+    fn span(&mut self, y: i32, x0: i32, x1: i32, color: Self::Color);
+}
+
+impl<K: SpanSink + ?Sized> SpanSink for &mut K {
+    type Color = K::Color;
+    fn color(&self, paint: &Paint) -> K::Color {
+        (**self).color(paint)
+    }
+    fn bounds(&self) -> SpanBounds {
+        (**self).bounds()
+    }
+    fn span(&mut self, y: i32, x0: i32, x1: i32, color: K::Color) {
+        (**self).span(y, x0, x1, color)
+    }
+}
+
+/// Why [`fill_polygon`] could not run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FillError {
+    /// More vertices than the scratch buffers (or 65 535) allow.
+    Capacity,
+}
+
+/// Fills polygon `pts` (screen space, `sub` sub-pixel bits) into `sink`,
+/// restricted to `clip ∩ sink.bounds()`. `edges` and `active` are scratch
+/// with at least `pts.len()` entries. Returns the number of spans emitted.
+#[allow(clippy::too_many_arguments)]
+pub fn fill_polygon<K: SpanSink>(
+    pts: &[ScreenPt],
+    sub: u32,
+    rule: FillRule,
+    clip: &SpanBounds,
+    edges: &mut [Edge],
+    active: &mut [u16],
+    color: K::Color,
+    sink: &mut K,
+) -> Result<usize, FillError> {
+    if pts.len() > u16::MAX as usize || active.len() < pts.len() {
+        return Err(FillError::Capacity);
+    }
+    let b = clip.intersect(&sink.bounds());
+    if b.is_empty() || pts.len() < 3 {
+        return Ok(0);
+    }
+    // Cheap reject on the horizontal extent (rows are handled by the edge
+    // setup): crossing columns are ceil(x − ½), monotone in x.
+    let (mut lo, mut hi) = (i32::MAX, i32::MIN);
+    for p in pts {
+        lo = lo.min(p.x);
+        hi = hi.max(p.x);
+    }
+    // col(x) = floor((x − ½ pixel) in pixels); every crossing lies in
+    // [col(lo), col(hi) + 1].
+    let col = |x: i32| (2 * x as i64 - (1i64 << sub)).div_euclid(2i64 << sub);
+    if col(hi) + 1 <= b.x0 as i64 || col(lo) >= b.x1 as i64 {
+        return Ok(0);
+    }
+    let n = build_edges(pts, sub, b.y0, b.y1, edges).ok_or(FillError::Capacity)?;
+    Ok(scan(&mut edges[..n], active, rule, &b, color, sink))
+}
+
+/// The active-edge loop over edges sorted by first row.
+fn scan<K: SpanSink>(
+    edges: &mut [Edge],
+    active: &mut [u16],
+    rule: FillRule,
+    b: &SpanBounds,
+    color: K::Color,
+    sink: &mut K,
+) -> usize {
+    let mut spans = 0usize;
+    let mut next = 0usize;
+    let mut nact = 0usize;
+    let Some(first) = edges.first() else {
+        return 0;
+    };
+    let mut y = first.y0;
+    while y < b.y1 {
+        while next < edges.len() && edges[next].y0 <= y {
+            active[nact] = next as u16;
+            nact += 1;
+            next += 1;
+        }
+        // Drop edges that ended (half-open: active on y0..y1).
+        let mut k = 0;
+        while k < nact {
+            if edges[active[k] as usize].y1 <= y {
+                nact -= 1;
+                active[k] = active[nact];
+            } else {
+                k += 1;
+            }
+        }
+        if nact == 0 {
+            match edges.get(next) {
+                Some(e) => {
+                    y = e.y0;
+                    continue;
+                }
+                None => break,
+            }
+        }
+        // Crossings, then insertion sort by crossing: the order changes
+        // little from row to row, so this is close to linear.
+        for &i in &active[..nact] {
+            let e = &mut edges[i as usize];
+            e.x = e.crossing();
+        }
+        for k in 1..nact {
+            let cur = active[k];
+            let cx = edges[cur as usize].x;
+            let mut m = k;
+            while m > 0 && edges[active[m - 1] as usize].x > cx {
+                active[m] = active[m - 1];
+                m -= 1;
+            }
+            active[m] = cur;
+        }
+        // Walk left to right; a span runs from where the winding becomes
+        // inside to where it stops being inside. The order among equal
+        // crossings does not matter: coverage of pixel i depends only on
+        // the multiset of crossings ≤ i.
+        let mut winding = 0i32;
+        let mut start = 0i32;
+        for &i in &active[..nact] {
+            let e = &edges[i as usize];
+            let was = rule.inside(winding);
+            winding += e.dir as i32;
+            let now = rule.inside(winding);
+            if !was && now {
+                start = e.x;
+            } else if was && !now {
+                let (x0, x1) = (start.max(b.x0), e.x.min(b.x1));
+                if x0 < x1 {
+                    sink.span(y, x0, x1, color);
+                    spans += 1;
+                }
+            }
+        }
+        for &i in &active[..nact] {
+            edges[i as usize].step();
+        }
+        y += 1;
+    }
+    spans
+}

@@ -1,0 +1,214 @@
+//! Flat shading: one colour per face, from a directional light plus ambient,
+//! in fixed point.
+//!
+//! `intensity = clamp(ambient + diffuse · max(0, n̂ · l̂), 0, 1)` with `n̂` the
+//! face's unit normal and `l̂` the unit direction *toward* the light, both in
+//! the same (model) space. Unit vectors are [`Fx14`] triples normalised
+//! with an integer square root, so the result is bit-identical on every
+//! target and for every [`super::precision::Precision`]; the only float
+//! operation is one division that brings an `f32` normal to a common scale
+//! (normals are unnormalised Newell normals of any magnitude).
+//!
+//! Lighting is one-sided: a face whose normal points away from the light
+//! gets the ambient term only. For open (two-sided) models the caller
+//! passes the normal of the side being drawn (the tree walk knows it).
+//!
+//! Modes: [`ShadeMode::Flat`] (the face colour as is), [`ShadeMode::Lambert`]
+//! (face colour × intensity: the paper's Figure 16), [`ShadeMode::Grey`]
+//! (a grey level × intensity, face colours ignored: Figure 15).
+
+use embedded_graphics::pixelcolor::Rgb888;
+
+use crate::fixed::{isqrt_u64, Fx14};
+
+/// How faces are coloured.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ShadeMode {
+    /// The face colour, unlit.
+    Flat,
+    /// The face colour scaled by the light intensity.
+    #[default]
+    Lambert,
+    /// The given grey level scaled by the light intensity (face colours
+    /// ignored).
+    Grey(u8),
+}
+
+/// A directional light with an ambient term.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Light {
+    /// Unit vector toward the light; `None` means "no direction" (only the
+    /// ambient term applies).
+    dir: Option<[Fx14; 3]>,
+    ambient: Fx14,
+    diffuse: Fx14,
+}
+
+impl Default for Light {
+    /// Light from +z (toward a default orbit eye), 25 % ambient, 75 % diffuse.
+    fn default() -> Light {
+        Light::new([0.0, 0.0, 1.0], 0.25, 0.75)
+    }
+}
+
+/// Normalises an integer vector to an [`Fx14`] unit vector; `None` for zero.
+fn unit_from_ints(v: [i64; 3]) -> Option<[Fx14; 3]> {
+    let big = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
+    if big == 0 {
+        return None;
+    }
+    // Bring the largest component to 15..=16 bits so the squared length
+    // fits easily in u64 and the quotient keeps 14 fraction bits.
+    let lz = big.leading_zeros() as i32; // big has 64 - lz bits
+    let shift = (64 - lz) - 16;
+    let s = v.map(|c| if shift >= 0 { c >> shift } else { c << -shift });
+    let len2: u64 = s.iter().map(|c| (c * c) as u64).sum();
+    let len = isqrt_u64(len2) as i64;
+    if len == 0 {
+        return None;
+    }
+    Some(s.map(|c| {
+        let n = c << 14;
+        // Round to nearest (halves away from zero) for symmetry.
+        let q = (n.abs() + len / 2) / len;
+        Fx14::from_raw((if n < 0 { -q } else { q }) as i32)
+    }))
+}
+
+/// Normalises an `f32` vector; `None` for zero or non-finite input.
+fn unit_from_f32(v: [f32; 3]) -> Option<[Fx14; 3]> {
+    if !v.iter().all(|c| c.is_finite()) {
+        return None;
+    }
+    let big = v.iter().fold(0.0f32, |m, c| m.max(c.abs()));
+    if big == 0.0 {
+        return None;
+    }
+    // One division brings every magnitude to [-1, 1]; from here on it is
+    // integer arithmetic (2^30 keeps plenty of bits for tiny components).
+    let scale = (1u32 << 30) as f32 / big;
+    unit_from_ints(v.map(|c| (c * scale) as i64))
+}
+
+impl Light {
+    /// A light shining from direction `toward_light` (need not be unit;
+    /// zero or non-finite means ambient only), with `ambient` and `diffuse`
+    /// weights in `[0, 1]` (clamped).
+    pub fn new(toward_light: [f32; 3], ambient: f32, diffuse: f32) -> Light {
+        let w = |v: f32| Fx14::from_f32_saturating(v.clamp(0.0, 1.0));
+        Light { dir: unit_from_f32(toward_light), ambient: w(ambient), diffuse: w(diffuse) }
+    }
+
+    /// The normalised direction toward the light.
+    pub fn direction(&self) -> Option<[Fx14; 3]> {
+        self.dir
+    }
+
+    fn intensity_unit(&self, n: Option<[Fx14; 3]>) -> Fx14 {
+        let cos = match (n, self.dir) {
+            (Some(n), Some(l)) => {
+                let dot: i64 = (0..3).map(|i| n[i].raw() as i64 * l[i].raw() as i64).sum();
+                Fx14::from_raw((dot >> 14) as i32)
+            }
+            _ => Fx14::ZERO,
+        };
+        let lit = self.ambient + self.diffuse * cos.max(Fx14::ZERO);
+        lit.clamp(Fx14::ZERO, Fx14::ONE)
+    }
+
+    /// Light intensity in `[0, 1]` for a face with (unnormalised) normal
+    /// `normal`; a zero or non-finite normal gets the ambient term.
+    pub fn intensity(&self, normal: [f32; 3]) -> Fx14 {
+        self.intensity_unit(unit_from_f32(normal))
+    }
+
+    /// Like [`Light::intensity`] for an integer normal (any scale).
+    pub fn intensity_q(&self, normal: [i32; 3]) -> Fx14 {
+        self.intensity_unit(unit_from_ints(normal.map(|c| c as i64)))
+    }
+}
+
+/// Scales an 8-bit channel by an intensity in `[0, 1]`, rounding.
+fn scale(c: u8, i: Fx14) -> u8 {
+    let v = (c as i32 * i.raw() + (1 << 13)) >> 14;
+    v.clamp(0, 255) as u8
+}
+
+/// The colour of a face under `mode` given its light intensity.
+pub fn shade_color(mode: ShadeMode, color: [u8; 3], intensity: Fx14) -> Rgb888 {
+    match mode {
+        ShadeMode::Flat => Rgb888::new(color[0], color[1], color[2]),
+        ShadeMode::Lambert => Rgb888::new(
+            scale(color[0], intensity),
+            scale(color[1], intensity),
+            scale(color[2], intensity),
+        ),
+        ShadeMode::Grey(g) => {
+            let v = scale(g, intensity);
+            Rgb888::new(v, v, v)
+        }
+    }
+}
+
+/// Shades a face: [`Light::intensity`] then [`shade_color`]. `Flat` skips
+/// the lighting computation.
+pub fn shade(mode: ShadeMode, light: &Light, normal: [f32; 3], color: [u8; 3]) -> Rgb888 {
+    let i = match mode {
+        ShadeMode::Flat => Fx14::ONE,
+        _ => light.intensity(normal),
+    };
+    shade_color(mode, color, i)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics::pixelcolor::RgbColor;
+
+    #[test]
+    fn unit_vectors_have_unit_length() {
+        for v in [[3.0, 4.0, 0.0], [1e-20, -2e-20, 5e-21], [1e30, 1.0, -1e30], [0.0, 0.0, -7.0]] {
+            let Some(u) = unit_from_f32(v) else { panic!("{v:?}") };
+            let len2: i64 = u.iter().map(|c| c.raw() as i64 * c.raw() as i64).sum();
+            let one = 1i64 << 28;
+            assert!((len2 - one).abs() < one / 2000, "{v:?} {u:?}");
+        }
+        assert_eq!(unit_from_f32([0.0; 3]), None);
+        assert_eq!(unit_from_f32([f32::NAN, 1.0, 0.0]), None);
+        let u = unit_from_ints([3, 4, 0]).unwrap_or_default();
+        assert_eq!(u.map(|c| c.raw()), [9830, 13107, 0]); // 0.6, 0.8 in Q14
+    }
+
+    #[test]
+    fn lambert_terms() {
+        let light = Light::new([0.0, 0.0, 2.0], 0.2, 0.8);
+        let near = |a: Fx14, b: f32| (a.to_f32() - b).abs() < 1e-3;
+        assert!(near(light.intensity([0.0, 0.0, 5.0]), 1.0));
+        assert!(near(light.intensity([1.0, 0.0, 0.0]), 0.2));
+        assert!(near(light.intensity([0.0, 0.0, -1.0]), 0.2)); // one-sided
+        let cos60 = [libm::sqrtf(3.0), 0.0, 1.0]; // 60° from the light
+        assert!(near(light.intensity(cos60), 0.2 + 0.8 * 0.5));
+        assert!(near(light.intensity([0.0; 3]), 0.2));
+        assert_eq!(light.intensity_q([0, 0, 1 << 16]), light.intensity([0.0, 0.0, 1.0]));
+        // Ambient + diffuse over 1 saturates at 1.
+        let hot = Light::new([0.0, 1.0, 0.0], 0.9, 0.9);
+        assert_eq!(hot.intensity([0.0, 1.0, 0.0]), Fx14::ONE);
+        // No light direction: ambient only.
+        let amb = Light::new([0.0; 3], 0.3, 1.0);
+        assert!(near(amb.intensity([0.0, 1.0, 0.0]), 0.3));
+    }
+
+    #[test]
+    fn modes() {
+        let light = Light::new([0.0, 0.0, 1.0], 0.0, 1.0);
+        let c = [200, 100, 50];
+        assert_eq!(shade(ShadeMode::Flat, &light, [1.0, 0.0, 0.0], c), Rgb888::new(200, 100, 50));
+        let half = [libm::sqrtf(3.0), 0.0, 1.0];
+        let l = shade(ShadeMode::Lambert, &light, half, c);
+        assert_eq!((l.r(), l.g(), l.b()), (100, 50, 25));
+        let g = shade(ShadeMode::Grey(255), &light, half, c);
+        assert!(g.r() == g.g() && g.g() == g.b() && (127..=128).contains(&g.r()));
+        let dark = shade(ShadeMode::Lambert, &light, [0.0, 0.0, -1.0], c);
+        assert_eq!(dark, Rgb888::new(0, 0, 0));
+    }
+}

@@ -1,0 +1,361 @@
+//! Vertex transform (model → clip space) and the perspective divide (clip →
+//! screen fixed point), in two interchangeable arithmetics.
+//!
+//! * [`FixedPath<F>`]: matrix and vertices as [`Fx<F>`] (default 16.16),
+//!   clip coordinates as [`FxWide<F>`] (i64). Model coordinates outside the
+//!   `Fx<F>` range (±32768 for F = 16) saturate: such a vertex is moved onto
+//!   the range boundary, never wrapped. Matrix entries saturate likewise.
+//! * [`FloatPath<M>`]: `f32` throughout, with `M`'s reciprocal and floor in
+//!   the divide. Clip coordinates beyond ±[`FLOAT_CLIP_LIMIT`] are treated
+//!   as non-finite (the polygon is skipped) so that the clipper's sums can
+//!   never overflow to infinity.
+//!
+//! Screen coordinates ([`ScreenPt`]) are integers in units of
+//! `2^-SUB` pixel, produced only from clipped vertices (so `w ≥ near_w > 0`
+//! and `|x|, |y| ≤ GUARD·w`). The divide rounds to nearest (halves up), and
+//! the result is additionally clamped to ±[`SCREEN_LIMIT`], so no later
+//! stage can overflow even if a caller feeds unclipped vertices.
+//! The same clip vertex always gives the same screen point: projection is a
+//! pure function, which is what lets shared vertices meet exactly.
+
+use core::fmt::Debug;
+use core::marker::PhantomData;
+
+use super::camera::Mat4;
+use super::clip::{ClipNum, ClipVert, GUARD};
+use super::precision::MathFns;
+use crate::fixed::{Fx, FxWide};
+
+/// Largest supported viewport side, in pixels.
+pub const MAX_DIM: u32 = 16384;
+
+/// Bound on screen coordinates in sub-pixel units. With `MAX_DIM = 2^14`,
+/// the guard band (|ndc| ≤ 4 → at most 2.5 viewports from the origin) and
+/// 8 sub-pixel bits, real coordinates stay below 2^23.4; the clamp is a
+/// safety net with margin.
+pub const SCREEN_LIMIT: i32 = 1 << 24;
+
+/// Float clip coordinates larger than this are rejected (see module docs).
+pub const FLOAT_CLIP_LIMIT: f32 = 1e36;
+
+/// A vertex in screen space, in `2^-SUB` pixel units (`SUB` = the
+/// precision's sub-pixel bits); y grows downward.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ScreenPt {
+    /// x in sub-pixel units.
+    pub x: i32,
+    /// y in sub-pixel units.
+    pub y: i32,
+}
+
+/// Viewport size and sub-pixel resolution: the clip → screen mapping.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Viewport {
+    width: u32,
+    height: u32,
+    sub: u32,
+}
+
+impl Viewport {
+    /// A viewport of `width × height` pixels with `sub` sub-pixel bits.
+    /// `None` when a side is 0 or above [`MAX_DIM`], or `sub > 8`.
+    pub fn new(width: u32, height: u32, sub: u32) -> Option<Viewport> {
+        let ok = (1..=MAX_DIM).contains(&width) && (1..=MAX_DIM).contains(&height) && sub <= 8;
+        ok.then_some(Viewport { width, height, sub })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Sub-pixel bits.
+    pub fn sub_bits(&self) -> u32 {
+        self.sub
+    }
+
+    /// `width / height`.
+    pub fn aspect(&self) -> f32 {
+        self.width as f32 / self.height as f32
+    }
+}
+
+/// Vertex arithmetic: how a model point becomes a clip vertex and a clip
+/// vertex becomes a screen point.
+pub trait VertexPath {
+    /// Clip-space scalar.
+    type Scalar: ClipNum;
+    /// The per-frame matrix in this path's format.
+    type Matrix: Copy + Debug;
+    /// Converts a matrix (once per frame).
+    fn prepare(m: &Mat4) -> Self::Matrix;
+    /// `M · [v, 1]`; `None` if `v` or the result is not finite.
+    fn transform(m: &Self::Matrix, v: [f32; 3]) -> Option<ClipVert<Self::Scalar>>;
+    /// Like [`VertexPath::transform`] for integer vertices with `frac`
+    /// fraction bits (q16 → 16, q32 → 32; at most 62).
+    fn transform_q(m: &Self::Matrix, v: [i32; 3], frac: u32) -> Option<ClipVert<Self::Scalar>>;
+    /// The near threshold in this path's format (at least one unit in the
+    /// last place, so that it is positive).
+    fn near(near_w: f32) -> Self::Scalar;
+    /// Perspective divide and viewport mapping; `None` if `w ≤ 0` or the
+    /// vertex is not finite.
+    fn project(v: &ClipVert<Self::Scalar>, vp: &Viewport) -> Option<ScreenPt>;
+}
+
+/// Fixed-point vertex path with `F` fraction bits (see module docs).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FixedPath<const F: u32>;
+
+/// `f32` vertex path using math library `M` for the divide.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FloatPath<M>(PhantomData<M>);
+
+impl<const F: u32> FixedPath<F> {
+    fn row(m: &[Fx<F>; 4], v: &[Fx<F>; 3]) -> FxWide<F> {
+        // Each product is < 2^62 before and < 2^(62-F) after the rescale,
+        // so the four-term sum cannot overflow i64.
+        m[0].mul_wide(v[0]) + m[1].mul_wide(v[1]) + m[2].mul_wide(v[2]) + FxWide::from_fx(m[3])
+    }
+
+    fn apply(m: &[[Fx<F>; 4]; 4], v: [Fx<F>; 3]) -> ClipVert<FxWide<F>> {
+        ClipVert {
+            x: Self::row(&m[0], &v),
+            y: Self::row(&m[1], &v),
+            w: Self::row(&m[3], &v),
+        }
+    }
+}
+
+impl<const F: u32> VertexPath for FixedPath<F> {
+    type Scalar = FxWide<F>;
+    type Matrix = [[Fx<F>; 4]; 4];
+
+    fn prepare(m: &Mat4) -> Self::Matrix {
+        m.0.map(|row| row.map(Fx::from_f32_saturating))
+    }
+
+    fn transform(m: &Self::Matrix, v: [f32; 3]) -> Option<ClipVert<Self::Scalar>> {
+        if !v.iter().all(|c| c.is_finite()) {
+            return None;
+        }
+        Some(Self::apply(m, v.map(Fx::from_f32_saturating)))
+    }
+
+    fn transform_q(m: &Self::Matrix, v: [i32; 3], frac: u32) -> Option<ClipVert<Self::Scalar>> {
+        if frac > 62 {
+            return None;
+        }
+        let conv = |c: i32| -> Fx<F> {
+            let c = c as i64;
+            let raw = if frac >= F {
+                c >> (frac - F)
+            } else {
+                c.checked_shl(F - frac)
+                    .filter(|s| s >> (F - frac) == c)
+                    .unwrap_or(if c < 0 { i64::MIN } else { i64::MAX })
+            };
+            Fx::from_raw(raw.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
+        };
+        Some(Self::apply(m, v.map(conv)))
+    }
+
+    fn near(near_w: f32) -> Self::Scalar {
+        let raw = FxWide::<F>::try_from_f32(near_w).map_or(1, FxWide::raw);
+        FxWide::from_raw(raw.max(1))
+    }
+
+    fn project(v: &ClipVert<Self::Scalar>, vp: &Viewport) -> Option<ScreenPt> {
+        let (mut x, mut y, mut w) = (v.x.raw(), v.y.raw(), v.w.raw());
+        if w <= 0 {
+            return None;
+        }
+        // Scale x, y, w down together (the ratio is all that matters) until
+        // they fit in 33 bits, so that (x + w)·W·2^SUB < 2^34·2^22 fits.
+        let big = x.unsigned_abs().max(y.unsigned_abs()).max(w.unsigned_abs());
+        let shift = (64 - big.leading_zeros()).saturating_sub(33);
+        x >>= shift;
+        y >>= shift;
+        w >>= shift;
+        if w <= 0 {
+            return None;
+        }
+        let sx = ((vp.width as i64) << vp.sub) * (x + w);
+        let sy = ((vp.height as i64) << vp.sub) * (w - y);
+        let d = 2 * w;
+        let round = |n: i64| (2 * n + d).div_euclid(2 * d);
+        let lim = SCREEN_LIMIT as i64;
+        Some(ScreenPt {
+            x: round(sx).clamp(-lim, lim) as i32,
+            y: round(sy).clamp(-lim, lim) as i32,
+        })
+    }
+}
+
+impl<M: MathFns> VertexPath for FloatPath<M> {
+    type Scalar = f32;
+    type Matrix = Mat4;
+
+    fn prepare(m: &Mat4) -> Mat4 {
+        *m
+    }
+
+    fn transform(m: &Mat4, v: [f32; 3]) -> Option<ClipVert<f32>> {
+        if !v.iter().all(|c| c.is_finite()) {
+            return None;
+        }
+        let c = m.transform_point(v);
+        let ok = |s: f32| s.is_finite() && s.abs() <= FLOAT_CLIP_LIMIT;
+        (ok(c[0]) && ok(c[1]) && ok(c[3])).then_some(ClipVert {
+            x: c[0],
+            y: c[1],
+            w: c[3],
+        })
+    }
+
+    fn transform_q(m: &Mat4, v: [i32; 3], frac: u32) -> Option<ClipVert<f32>> {
+        if frac > 62 {
+            return None;
+        }
+        let scale = 1.0 / (1u64 << frac) as f64;
+        Self::transform(m, v.map(|c| (c as f64 * scale) as f32))
+    }
+
+    fn near(near_w: f32) -> f32 {
+        if near_w.is_finite() && near_w > 1e-30 {
+            near_w
+        } else {
+            1e-30
+        }
+    }
+
+    fn project(v: &ClipVert<f32>, vp: &Viewport) -> Option<ScreenPt> {
+        if !(v.w > 0.0 && v.x.is_finite() && v.y.is_finite() && v.w.is_finite()) {
+            return None;
+        }
+        let r = M::recip(v.w);
+        // Clipped vertices are within ±GUARD already; the clamp only
+        // protects against rounding and against unclipped callers, and
+        // keeps the float → int conversion in range.
+        let lim = GUARD as f32 + 0.5;
+        let nx = (v.x * r).clamp(-lim, lim);
+        let ny = (v.y * r).clamp(-lim, lim);
+        let sw = 0.5 * (vp.width << vp.sub) as f32;
+        let sh = 0.5 * (vp.height << vp.sub) as f32;
+        let x = M::floor((nx + 1.0) * sw + 0.5);
+        let y = M::floor((1.0 - ny) * sh + 0.5);
+        if !(x.is_finite() && y.is_finite()) {
+            return None;
+        }
+        let lim = SCREEN_LIMIT as f32;
+        Some(ScreenPt {
+            x: x.clamp(-lim, lim) as i32,
+            y: y.clamp(-lim, lim) as i32,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::precision::{Libm, Micromath};
+    use super::*;
+
+    type Fix = FixedPath<16>;
+    type Flt = FloatPath<Libm>;
+
+    fn sample_matrix() -> Mat4 {
+        Mat4([
+            [1.2, 0.1, -0.3, 0.5],
+            [0.0, 0.9, 0.4, -0.25],
+            [0.3, 0.2, 1.0, 2.0],
+            [-0.1, 0.05, 0.8, 4.0],
+        ])
+    }
+
+    #[test]
+    fn fixed_transform_tracks_float() {
+        let m = sample_matrix();
+        let (mf, mx) = (Flt::prepare(&m), Fix::prepare(&m));
+        for v in [[0.0, 0.0, 0.0], [1.5, -2.25, 3.0], [-100.0, 40.0, 7.5]] {
+            let a = Flt::transform(&mf, v).unwrap_or_default();
+            let b = Fix::transform(&mx, v).unwrap_or_default();
+            for (p, q) in [(a.x, b.x), (a.y, b.y), (a.w, b.w)] {
+                assert!((p - q.to_f32()).abs() < 1e-2 * (1.0 + p.abs()), "{p} {q:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn q_vertices_match_float_vertices() {
+        let m = sample_matrix();
+        let mx = Fix::prepare(&m);
+        let a = Fix::transform(&mx, [1.5, -2.0, 0.25]);
+        assert_eq!(Fix::transform_q(&mx, [3 << 15, -2 << 16, 1 << 14], 16), a);
+        assert_eq!(Fix::transform_q(&mx, [3, -4, 0], 1), Fix::transform(&mx, [1.5, -2.0, 0.0]));
+        let q32 = Fix::transform_q(&mx, [1 << 30, 0, 0], 32);
+        assert_eq!(q32, Fix::transform(&mx, [0.25, 0.0, 0.0]));
+        assert_eq!(Fix::transform_q(&mx, [1, 1, 1], 63), None);
+        let b = Flt::transform_q(&m, [3 << 15, -2 << 16, 1 << 14], 16);
+        assert_eq!(b, Flt::transform(&m, [1.5, -2.0, 0.25]));
+    }
+
+    #[test]
+    fn non_finite_and_huge_are_rejected_or_saturated() {
+        let m = sample_matrix();
+        assert_eq!(Flt::transform(&m, [f32::NAN, 0.0, 0.0]), None);
+        assert_eq!(Flt::transform(&m, [f32::INFINITY, 0.0, 0.0]), None);
+        assert_eq!(Flt::transform(&m, [3e37, 3e37, 0.0]), None);
+        assert!(Flt::transform(&m, [1e30, 0.0, 0.0]).is_some());
+        let mx = Fix::prepare(&m);
+        assert_eq!(Fix::transform(&mx, [0.0, f32::NAN, 0.0]), None);
+        // Saturates to the 16.16 range instead of wrapping.
+        let a = Fix::transform(&mx, [1e9, -1e9, 0.0]);
+        assert_eq!(a, Fix::transform_q(&mx, [i32::MAX, i32::MIN, 0], 16));
+        assert!(a.is_some());
+    }
+
+    #[test]
+    fn projection_follows_pixel_convention() {
+        let vp = Viewport::new(200, 100, 4).unwrap_or(Viewport { width: 1, height: 1, sub: 0 });
+        // ndc (-1, 1) is the top-left corner, (1, -1) the bottom-right.
+        let corners = [((-1.0, 1.0), (0, 0)), ((1.0, -1.0), (3200, 1600)), ((0.0, 0.0), (1600, 800))];
+        for ((nx, ny), (ex, ey)) in corners {
+            for w in [0.5f32, 2.0, 7.0] {
+                let f = ClipVert { x: nx * w, y: ny * w, w };
+                let s = Flt::project(&f, &vp);
+                assert_eq!(s, Some(ScreenPt { x: ex, y: ey }));
+                let g = |v: f32| FxWide::<16>::try_from_f32(v).unwrap_or_default();
+                let s = Fix::project(&ClipVert { x: g(f.x), y: g(f.y), w: g(f.w) }, &vp);
+                assert_eq!(s, Some(ScreenPt { x: ex, y: ey }));
+                assert_eq!(FloatPath::<Micromath>::project(&f, &vp), Some(ScreenPt { x: ex, y: ey }));
+            }
+        }
+        assert_eq!(Flt::project(&ClipVert { x: 0.0, y: 0.0, w: 0.0 }, &vp), None);
+        let z = FxWide::<16>::ZERO;
+        assert_eq!(Fix::project(&ClipVert { x: z, y: z, w: z }, &vp), None);
+    }
+
+    #[test]
+    fn projection_of_extreme_fixed_values_does_not_overflow() {
+        let vp = Viewport::new(MAX_DIM, MAX_DIM, 8).unwrap_or(Viewport { width: 1, height: 1, sub: 0 });
+        let big = FxWide::<16>::from_raw(i64::MAX);
+        let one = FxWide::<16>::from_raw(1);
+        for (x, w) in [(big, one), (big, big), (FxWide::from_raw(i64::MIN), one)] {
+            let p = Fix::project(&ClipVert { x, y: x, w }, &vp);
+            // Unclipped garbage may be rejected, but never overflows.
+            assert!(p.is_none_or(|p| p.x.abs() <= SCREEN_LIMIT && p.y.abs() <= SCREEN_LIMIT));
+        }
+    }
+
+    #[test]
+    fn viewport_limits() {
+        assert!(Viewport::new(0, 10, 0).is_none());
+        assert!(Viewport::new(10, MAX_DIM + 1, 0).is_none());
+        assert!(Viewport::new(10, 10, 9).is_none());
+        assert!(Viewport::new(MAX_DIM, MAX_DIM, 8).is_some());
+    }
+}

@@ -1,0 +1,187 @@
+//! Test-only writer of raw tree files, field by field, so that the unit
+//! tests can build files the host serializer would never write (bad
+//! numbering, cycles, ...) with a correct checksum.
+
+extern crate std;
+
+use std::vec::Vec;
+
+use crate::format::{crc32, Counts, Sections, VertexFormat, HEADER_LEN, MAGIC, VERSION};
+
+/// Every field of a file, unchecked.
+#[derive(Clone, Debug)]
+pub struct Raw {
+    pub flags: u32,
+    pub effects: u32,
+    pub format: VertexFormat,
+    pub shift: u8,
+    pub index_size: u8,
+    pub max_depth: u32,
+    pub origin: [f64; 3],
+    pub half_extent: [f32; 3],
+    pub radius: f32,
+    /// Encoded vertices, `format.vertex_len()` bytes each.
+    pub vertex_bytes: Vec<u8>,
+    /// Plane `[nx, ny, nz, d]`, first index, source, colour.
+    pub polys: Vec<([f32; 4], u32, u32, [u8; 3])>,
+    pub indices: Vec<u32>,
+    pub bunches: Vec<u32>,
+    pub nodes: Vec<[u32; 3]>,
+    pub switches: Vec<[f32; 4]>,
+}
+
+impl Raw {
+    /// An empty open tree: a root with no levels.
+    pub fn empty() -> Raw {
+        Raw {
+            flags: 0,
+            effects: 0,
+            format: VertexFormat::F32,
+            shift: 0,
+            index_size: 2,
+            max_depth: 1,
+            origin: [0.0; 3],
+            half_extent: [1.0; 3],
+            radius: 2.0,
+            vertex_bytes: Vec::new(),
+            polys: Vec::new(),
+            indices: Vec::new(),
+            bunches: std::vec![0],
+            nodes: std::vec![[0, 0, u32::MAX]],
+            switches: Vec::new(),
+        }
+    }
+
+    /// Appends `f32` vertices.
+    pub fn add_f32_vertices(&mut self, vs: &[[f32; 3]]) {
+        for v in vs {
+            for x in v {
+                self.vertex_bytes.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+    }
+
+    /// Appends a polygon over `idx` (appended to the index list).
+    pub fn add_polygon(&mut self, plane: [f32; 4], idx: &[u32], source: u32) {
+        self.polys
+            .push((plane, self.indices.len() as u32, source, [1, 2, 3]));
+        self.indices.extend_from_slice(idx);
+    }
+
+    /// The file, with its checksum.
+    pub fn bytes(&self) -> Vec<u8> {
+        let vlen = self.format.vertex_len();
+        let counts = Counts {
+            vertices: (self.vertex_bytes.len() / vlen) as u32,
+            polygons: self.polys.len() as u32,
+            indices: self.indices.len() as u32,
+            bunches: self.bunches.len().saturating_sub(1) as u32,
+            nodes: self.nodes.len() as u32,
+            switches: self.switches.len() as u32,
+        };
+        let isz = usize::from(self.index_size).max(2);
+        let s = Sections::new(&counts, self.format, isz).unwrap();
+        let mut o = Vec::new();
+        o.extend_from_slice(&MAGIC);
+        o.extend_from_slice(&VERSION.to_le_bytes());
+        o.extend_from_slice(&(HEADER_LEN as u16).to_le_bytes());
+        let u32s = |o: &mut Vec<u8>, xs: &[u32]| {
+            xs.iter()
+                .for_each(|x| o.extend_from_slice(&x.to_le_bytes()))
+        };
+        u32s(&mut o, &[s.file_len as u32, self.flags, self.effects]);
+        o.extend_from_slice(&[self.format.code(), self.shift, self.index_size, 0]);
+        u32s(
+            &mut o,
+            &[
+                self.max_depth,
+                counts.vertices,
+                counts.polygons,
+                counts.indices,
+                counts.bunches,
+                counts.nodes,
+                counts.switches,
+                0,
+            ],
+        );
+        self.origin
+            .iter()
+            .for_each(|x| o.extend_from_slice(&x.to_le_bytes()));
+        self.half_extent
+            .iter()
+            .for_each(|x| o.extend_from_slice(&x.to_le_bytes()));
+        o.extend_from_slice(&self.radius.to_le_bytes());
+        o.extend_from_slice(&self.vertex_bytes);
+        o.resize(s.polygons, 0);
+        for (plane, first, source, c) in &self.polys {
+            plane
+                .iter()
+                .for_each(|x| o.extend_from_slice(&x.to_le_bytes()));
+            u32s(&mut o, &[*first, *source]);
+            o.extend_from_slice(&[c[0], c[1], c[2], 0]);
+        }
+        o.resize(s.indices, 0);
+        for &i in &self.indices {
+            if isz == 2 {
+                o.extend_from_slice(&(i as u16).to_le_bytes());
+            } else {
+                o.extend_from_slice(&i.to_le_bytes());
+            }
+        }
+        o.resize(s.bunches, 0);
+        u32s(&mut o, &self.bunches);
+        o.resize(s.nodes, 0);
+        self.nodes.iter().for_each(|n| u32s(&mut o, n));
+        o.resize(s.switches, 0);
+        for p in &self.switches {
+            p.iter().for_each(|x| o.extend_from_slice(&x.to_le_bytes()));
+        }
+        o.resize(s.crc, 0);
+        let crc = crc32(&o);
+        o.extend_from_slice(&crc.to_le_bytes());
+        o
+    }
+}
+
+/// Rewrites the trailing checksum after an edit.
+pub fn fix_crc(b: &mut [u8]) {
+    let n = b.len() - 4;
+    let crc = crc32(&b[..n]);
+    b[n..].copy_from_slice(&crc.to_le_bytes());
+}
+
+/// A square in the plane `z = z` facing `+z` (`up`) or `-z`, over 4 new
+/// vertices.
+pub fn add_square(r: &mut Raw, z: f32, up: bool, source: u32) {
+    let base = (r.vertex_bytes.len() / 12) as u32;
+    r.add_f32_vertices(&[[0.0, 0.0, z], [1.0, 0.0, z], [1.0, 1.0, z], [0.0, 1.0, z]]);
+    if up {
+        r.add_polygon(
+            [0.0, 0.0, 1.0, -z],
+            &[base, base + 1, base + 2, base + 3],
+            source,
+        );
+    } else {
+        r.add_polygon(
+            [0.0, 0.0, -1.0, z],
+            &[base + 3, base + 2, base + 1, base],
+            source,
+        );
+    }
+}
+
+/// Two squares facing up, id 0 at z = 1 and id 1 at z = 0, split by a
+/// switch at z = 0.5 facing up: id 0 is in its front group (node 1), id 1 in
+/// its back group (node 2), each as `F_1`. Open volume, depth 2.
+pub fn two_floors() -> Raw {
+    let mut r = Raw::empty();
+    add_square(&mut r, 1.0, true, 10); // id 0 → in G_f, node 1
+    add_square(&mut r, 0.0, true, 20); // id 1 → in G_b, node 2
+                                       // Bunches: node 0 has only O (empty); node 1: F_1 = {0}, B_1 = {};
+                                       // node 2: F_1 = {1}, B_1 = {}.
+    r.bunches = std::vec![0, 0, 1, 1, 2, 2];
+    r.nodes = std::vec![[0, 0, 0], [1, 1, u32::MAX], [3, 1, u32::MAX]];
+    r.switches = std::vec![[0.0, 0.0, 1.0, -0.5]];
+    r.max_depth = 2;
+    r
+}

@@ -1,0 +1,23 @@
+//! Fuzzes mesh import: the first byte picks the format, the rest is the file.
+//! Run with `cargo +nightly fuzz run mesh_import` from the repository root.
+//! Any panic, hang or huge allocation is a bug; so is an accepted model that
+//! breaks the output contract checked below.
+#![no_main]
+
+use host_sim::mesh::{load_bytes, MeshFormat};
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let Some((&selector, file)) = data.split_first() else {
+        return;
+    };
+    let format = MeshFormat::ALL[usize::from(selector) % MeshFormat::ALL.len()];
+    if let Ok(model) = load_bytes(format, file) {
+        assert!(!model.polygons.is_empty());
+        for p in &model.polygons {
+            assert!(p.verts.len() >= 3);
+            assert!((p.source as usize) < model.report.faces_read);
+            assert!(p.verts.iter().all(|v| v.is_finite()));
+        }
+    }
+});

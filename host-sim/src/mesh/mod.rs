@@ -1,0 +1,354 @@
+//! Mesh import: OBJ, OFF, STL (binary and ASCII) and PLY files to planar
+//! [`Polygon`]s for the tree builders.
+//!
+//! Contract:
+//! - [`load`] picks the format from the file extension (case-insensitive),
+//!   [`load_bytes`] takes it explicitly. Neither panics, hangs or makes
+//!   allocations larger than the input justifies, whatever the bytes.
+//! - Every parser only turns bytes into a vertex list and a face list (indices
+//!   into the vertex list, in file order); [`from_faces`] then does the common
+//!   work: weld vertices within `1e-6 × bounding-box diagonal`, drop
+//!   degenerate faces, split non-planar faces into planar pieces and decide
+//!   whether the mesh is a closed volume.
+//! - Each output polygon's `source` is the index of its face among the faces
+//!   of the input (from 0, in file order), also for pieces of a split face.
+//! - Windings are kept: a face counter-clockwise seen from outside gets an
+//!   outward plane normal.
+//! - Vertices of every output polygon lie on its plane (they are snapped onto
+//!   it), so the builder's tighter tolerance sees them as exactly coplanar.
+
+mod obj;
+mod off;
+mod planar;
+mod ply;
+mod prepare;
+mod stl;
+
+#[cfg(test)]
+mod fuzz_tests;
+#[cfg(test)]
+mod shared_models_tests;
+
+use crate::geom::Polygon;
+use std::fmt;
+use std::path::Path;
+
+pub use prepare::{from_faces, is_closed, is_closed_faces};
+
+/// A mesh ready for the tree builders.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// Planar polygons, each with the index of the input face it came from.
+    pub polygons: Vec<Polygon>,
+    /// Whether the welded mesh is a closed volume: every edge is shared by
+    /// exactly two faces, used in opposite directions.
+    pub closed: bool,
+    /// What the import did to the input.
+    pub report: ImportReport,
+}
+
+/// Counts of what the import did, for the user and for tests.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ImportReport {
+    /// Faces in the input.
+    pub faces_read: usize,
+    /// Faces dropped because they had fewer than three distinct vertices or
+    /// no area (within tolerance).
+    pub dropped_degenerate: usize,
+    /// Faces that were not planar and were split into planar pieces.
+    pub nonplanar_split: usize,
+    /// Referenced vertices merged into another vertex by welding.
+    pub welded_vertices: usize,
+}
+
+impl ImportReport {
+    /// One line for the user when degenerate faces were dropped, else `None`.
+    pub fn warning_line(&self) -> Option<String> {
+        match self.dropped_degenerate {
+            0 => None,
+            1 => Some("warning: dropped 1 degenerate face".to_string()),
+            n => Some(format!("warning: dropped {n} degenerate faces")),
+        }
+    }
+}
+
+/// The mesh file formats that can be read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MeshFormat {
+    /// Wavefront OBJ.
+    Obj,
+    /// Object File Format (Geomview OFF).
+    Off,
+    /// STL, binary or ASCII (told apart by the file size).
+    Stl,
+    /// Stanford PLY, ASCII or binary of either byte order.
+    Ply,
+}
+
+impl MeshFormat {
+    /// All formats, for tests and fuzzing.
+    pub const ALL: [MeshFormat; 4] = [
+        MeshFormat::Obj,
+        MeshFormat::Off,
+        MeshFormat::Stl,
+        MeshFormat::Ply,
+    ];
+
+    /// The format for a file extension (without dot, any case).
+    pub fn from_extension(ext: &str) -> Option<MeshFormat> {
+        match ext.to_ascii_lowercase().as_str() {
+            "obj" => Some(MeshFormat::Obj),
+            "off" => Some(MeshFormat::Off),
+            "stl" => Some(MeshFormat::Stl),
+            "ply" => Some(MeshFormat::Ply),
+            _ => None,
+        }
+    }
+
+    /// The short name used in messages, e.g. `"OBJ"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshFormat::Obj => "OBJ",
+            MeshFormat::Off => "OFF",
+            MeshFormat::Stl => "STL",
+            MeshFormat::Ply => "PLY",
+        }
+    }
+}
+
+/// Why a mesh could not be imported.
+#[derive(Debug)]
+pub enum MeshError {
+    /// The file could not be read.
+    Io(std::io::Error),
+    /// The bytes are not a valid file of the format.
+    Parse {
+        /// Format name, e.g. `"OFF"`.
+        format: &'static str,
+        /// 1-based line number, when the parser knows it.
+        line: Option<usize>,
+        /// What is wrong.
+        msg: String,
+    },
+    /// No face with a non-zero area is left.
+    Empty,
+    /// The file extension names no known format.
+    UnknownFormat(String),
+    /// A vertex used by a face has a NaN or infinite coordinate, or the
+    /// model is too large for its size to be a finite number.
+    NonFinite,
+    /// A face refers to a vertex that does not exist.
+    BadIndex {
+        /// Index of the face (from 0).
+        face: usize,
+        /// The vertex index it uses (from 0).
+        index: u64,
+        /// How many vertices there are.
+        vertices: usize,
+    },
+}
+
+impl MeshError {
+    /// A parse error of `format` with no line number.
+    pub(crate) fn parse(format: &'static str, msg: impl Into<String>) -> MeshError {
+        MeshError::Parse {
+            format,
+            line: None,
+            msg: msg.into(),
+        }
+    }
+
+    /// A parse error of `format` at 1-based `line`.
+    pub(crate) fn parse_at(format: &'static str, line: usize, msg: impl Into<String>) -> MeshError {
+        MeshError::Parse {
+            format,
+            line: Some(line),
+            msg: msg.into(),
+        }
+    }
+}
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MeshError::Io(e) => write!(f, "cannot read the mesh file: {e}"),
+            MeshError::Parse {
+                format,
+                line: Some(line),
+                msg,
+            } => write!(f, "invalid {format} file, line {line}: {msg}"),
+            MeshError::Parse {
+                format,
+                line: None,
+                msg,
+            } => write!(f, "invalid {format} file: {msg}"),
+            MeshError::Empty => write!(f, "the mesh has no face with a non-zero area"),
+            MeshError::UnknownFormat(ext) => write!(
+                f,
+                "unknown mesh format {ext:?} (expected a .obj, .off, .stl or .ply file)"
+            ),
+            MeshError::NonFinite => write!(
+                f,
+                "the mesh has a vertex coordinate that is NaN or infinite, or is too large"
+            ),
+            MeshError::BadIndex {
+                face,
+                index,
+                vertices,
+            } => write!(
+                f,
+                "face {face} uses vertex {index}, but the mesh has only {vertices} vertices"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for MeshError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            MeshError::Io(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<std::io::Error> for MeshError {
+    fn from(e: std::io::Error) -> Self {
+        MeshError::Io(e)
+    }
+}
+
+/// What a parser hands to [`from_faces`]: positions and index faces in file
+/// order, with optional per-face colours.
+#[derive(Debug, Default)]
+pub(crate) struct RawMesh {
+    pub vertices: Vec<[f64; 3]>,
+    pub faces: Vec<Vec<u32>>,
+    pub colors: Option<Vec<[u8; 3]>>,
+}
+
+impl RawMesh {
+    fn into_model(self) -> Result<Model, MeshError> {
+        from_faces(&self.vertices, &self.faces, self.colors.as_deref())
+    }
+}
+
+/// Reads a mesh file; the format comes from the extension (any case).
+pub fn load(path: &Path) -> Result<Model, MeshError> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let format = MeshFormat::from_extension(&ext).ok_or(MeshError::UnknownFormat(ext))?;
+    let bytes = std::fs::read(path)?;
+    load_bytes(format, &bytes)
+}
+
+/// Parses a mesh of `format` from memory.
+pub fn load_bytes(format: MeshFormat, bytes: &[u8]) -> Result<Model, MeshError> {
+    parse_raw(format, bytes)?.into_model()
+}
+
+/// Only the parsing step, without the common pipeline.
+pub(crate) fn parse_raw(format: MeshFormat, bytes: &[u8]) -> Result<RawMesh, MeshError> {
+    match format {
+        MeshFormat::Obj => obj::parse(bytes),
+        MeshFormat::Off => off::parse(bytes),
+        MeshFormat::Stl => stl::parse(bytes),
+        MeshFormat::Ply => ply::parse(bytes),
+    }
+}
+
+/// At most this many elements are reserved ahead for a count read from a
+/// file: the rest grows on demand, so a lying header cannot make us allocate
+/// more than the data actually present needs.
+pub(crate) fn capped_capacity(count: u64, bytes_left: usize, min_bytes_each: usize) -> usize {
+    let fit = bytes_left / min_bytes_each.max(1);
+    usize::try_from(count).unwrap_or(usize::MAX).min(fit)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn warning_line_only_when_faces_dropped() {
+        let mut r = ImportReport::default();
+        assert_eq!(r.warning_line(), None);
+        r.dropped_degenerate = 1;
+        assert_eq!(
+            r.warning_line().as_deref(),
+            Some("warning: dropped 1 degenerate face")
+        );
+        r.dropped_degenerate = 3;
+        assert_eq!(
+            r.warning_line().as_deref(),
+            Some("warning: dropped 3 degenerate faces")
+        );
+    }
+
+    #[test]
+    fn extension_is_case_insensitive() {
+        assert_eq!(MeshFormat::from_extension("STL"), Some(MeshFormat::Stl));
+        assert_eq!(MeshFormat::from_extension("Obj"), Some(MeshFormat::Obj));
+        assert_eq!(MeshFormat::from_extension("off"), Some(MeshFormat::Off));
+        assert_eq!(MeshFormat::from_extension("pLy"), Some(MeshFormat::Ply));
+        assert_eq!(MeshFormat::from_extension("3ds"), None);
+    }
+
+    #[test]
+    fn load_rejects_unknown_extension_and_missing_file() {
+        let e = load(Path::new("/nonexistent/model.xyz")).unwrap_err();
+        assert!(
+            matches!(e, MeshError::UnknownFormat(ref x) if x == "xyz"),
+            "{e}"
+        );
+        let e = load(Path::new("/nonexistent/model.OBJ")).unwrap_err();
+        assert!(matches!(e, MeshError::Io(_)), "{e}");
+        assert!(e.to_string().starts_with("cannot read the mesh file"));
+    }
+
+    #[test]
+    fn load_reads_a_file_by_extension() {
+        let dir = std::env::temp_dir().join(format!("fpt-mesh-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("tri.OFF");
+        std::fs::write(&path, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
+        let m = load(&path).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+        assert_eq!(m.polygons.len(), 1);
+        assert_eq!(m.report.faces_read, 1);
+    }
+
+    #[test]
+    fn error_messages_are_one_line() {
+        let errors = [
+            MeshError::parse_at("OFF", 3, "expected 3 coordinates"),
+            MeshError::parse("PLY", "no end_header"),
+            MeshError::Empty,
+            MeshError::UnknownFormat("xyz".into()),
+            MeshError::NonFinite,
+            MeshError::BadIndex {
+                face: 2,
+                index: 9,
+                vertices: 4,
+            },
+            MeshError::Io(std::io::Error::other("boom")),
+        ];
+        for e in errors {
+            let s = e.to_string();
+            assert!(!s.is_empty() && !s.contains('\n'), "{s:?}");
+        }
+        assert_eq!(
+            MeshError::parse_at("OFF", 3, "bad").to_string(),
+            "invalid OFF file, line 3: bad"
+        );
+    }
+
+    #[test]
+    fn capacity_is_capped_by_bytes() {
+        assert_eq!(capped_capacity(1 << 40, 1000, 10), 100);
+        assert_eq!(capped_capacity(5, 1000, 10), 5);
+        assert_eq!(capped_capacity(u64::MAX, 0, 0), 0);
+    }
+}

@@ -1,0 +1,571 @@
+//! The serializer of the flat tree format read by `fpt_nostd::reader`.
+//!
+//! The layout is documented (field by field) in [`fpt_nostd::format`]; this
+//! module writes it from an in-memory [`FpTree`]:
+//!
+//! - connecting nodes go in breadth-first order, which is the layout rule of
+//!   the format (the `k`-th node with a switch owns switch `k`, whose children
+//!   are nodes `2k + 1` and `2k + 2`);
+//! - polygons are **renumbered** so that every bunch is a contiguous range of
+//!   ids: file id `i` is tree polygon [`polygon_order`]`(tree)[i]`. Nodes
+//!   are taken in storage order, and within a node the bunches
+//!   `F_1, B_1, …, F_n, B_n, O`;
+//! - geometry is stored relative to the bounding box centre (`origin`, in
+//!   `f64`), planes re-expressed as `n · (x − origin) + d' = 0` with `d'`
+//!   computed in `f64` before rounding to `f32`;
+//! - vertices are encoded in the chosen [`VertexFormat`] and deduplicated by
+//!   their encoding, which merges every pair of exactly equal vertices (and,
+//!   for `q16`, vertices that quantize to the same point);
+//! - vertex indices are `u16` when there are at most 65 536 vertices.
+//!
+//! Every tree whose bunches hold each polygon exactly once, with at least 3
+//! finite vertices each, serializes; the output passes
+//! `fpt_nostd::reader::Tree::from_bytes`.
+
+use std::collections::HashMap;
+use std::fmt;
+
+pub use fpt_nostd::format::VertexFormat;
+use fpt_nostd::format::{
+    crc32, header as h, polygon as pg, Counts, Sections, FLAG_CLOSED, HEADER_LEN, MAGIC, MAX_SHIFT,
+    NO_SWITCH, POLYGON_LEN, Q16_MAX, VERSION,
+};
+use glam::DVec3;
+
+use crate::geom::Plane;
+use crate::tree::{Connecting, FpTree};
+
+/// Choices made when writing a file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SerializeOptions {
+    /// How vertices are encoded.
+    pub vertex_format: VertexFormat,
+    /// The scene's effect flags, stored as they are.
+    pub effects: u32,
+}
+
+impl Default for SerializeOptions {
+    fn default() -> Self {
+        SerializeOptions {
+            vertex_format: VertexFormat::F32,
+            effects: 0,
+        }
+    }
+}
+
+/// Why a tree cannot be written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum SerializeError {
+    /// A bunch names a polygon id beyond the polygon list.
+    UnknownPolygon(u32),
+    /// A polygon is in more than one bunch.
+    DuplicatePolygon(u32),
+    /// A polygon is in no bunch.
+    UnplacedPolygon(u32),
+    /// A polygon has fewer than 3 vertices.
+    DegeneratePolygon(u32),
+    /// A coordinate or a plane is not finite (or overflows `f32`).
+    NonFinite,
+    /// The model is too large for the chosen vertex format.
+    OutOfRange(&'static str),
+    /// The file would be larger than the format's `u32` sizes allow.
+    TooLarge,
+}
+
+impl fmt::Display for SerializeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SerializeError::UnknownPolygon(i) => write!(f, "bunch names unknown polygon {i}"),
+            SerializeError::DuplicatePolygon(i) => write!(f, "polygon {i} is in two bunches"),
+            SerializeError::UnplacedPolygon(i) => write!(f, "polygon {i} is in no bunch"),
+            SerializeError::DegeneratePolygon(i) => {
+                write!(f, "polygon {i} has fewer than 3 vertices")
+            }
+            SerializeError::NonFinite => f.write_str("non-finite coordinate or plane"),
+            SerializeError::OutOfRange(why) => write!(f, "model out of range: {why}"),
+            SerializeError::TooLarge => f.write_str("tree too large for the file format"),
+        }
+    }
+}
+
+impl std::error::Error for SerializeError {}
+
+/// The connecting nodes in breadth-first (storage) order.
+fn nodes_bfs(root: &Connecting) -> Vec<&Connecting> {
+    let mut nodes = vec![root];
+    let mut i = 0;
+    while let Some(c) = nodes.get(i).copied() {
+        if let Some(s) = &c.switch {
+            nodes.push(&s.front);
+            nodes.push(&s.back);
+        }
+        i += 1;
+    }
+    nodes
+}
+
+/// The bunches of one node in storage order: `F_1, B_1, …, F_n, B_n, O`.
+fn node_bunches(c: &Connecting) -> impl Iterator<Item = &[u32]> {
+    c.levels
+        .iter()
+        .flat_map(|l| [l.front.as_slice(), l.back.as_slice()])
+        .chain(c.switch.iter().map(|s| s.on.as_slice()))
+}
+
+/// The tree polygon id of every file polygon id: the renumbering that makes
+/// each bunch a contiguous range. Fails unless the bunches hold every polygon
+/// of `tree` exactly once.
+pub fn polygon_order(tree: &FpTree) -> Result<Vec<u32>, SerializeError> {
+    let n = tree.polygons.len();
+    let mut seen = vec![false; n];
+    let mut order = Vec::with_capacity(n);
+    for c in nodes_bfs(&tree.root) {
+        for &id in node_bunches(c).flatten() {
+            let slot = seen
+                .get_mut(id as usize)
+                .ok_or(SerializeError::UnknownPolygon(id))?;
+            if std::mem::replace(slot, true) {
+                return Err(SerializeError::DuplicatePolygon(id));
+            }
+            order.push(id);
+        }
+    }
+    if let Some(i) = seen.iter().position(|&s| !s) {
+        return Err(SerializeError::UnplacedPolygon(i as u32));
+    }
+    Ok(order)
+}
+
+/// How vertices are encoded, with the parameters derived from the model.
+struct Encoder {
+    format: VertexFormat,
+    origin: DVec3,
+    half_extent: [f32; 3],
+    shift: u8,
+}
+
+impl Encoder {
+    fn new(format: VertexFormat, lo: DVec3, hi: DVec3) -> Result<Encoder, SerializeError> {
+        let origin = (lo + hi) * 0.5;
+        let half = (hi - lo) * 0.5;
+        // Rounded up so that every offset fits in [-half, half] after rounding.
+        let half_extent = half.to_array().map(round_up_f32);
+        if !half_extent.iter().all(|x| x.is_finite()) {
+            return Err(SerializeError::OutOfRange("bounding box exceeds f32"));
+        }
+        let shift = if format == VertexFormat::Q32 {
+            let m = (hi - origin).max(origin - lo).max_element();
+            // The largest shift with round(m · 2^shift) < 2^31.
+            (0..=MAX_SHIFT)
+                .rev()
+                .find(|&s| (m * 2f64.powi(i32::from(s))).round() <= f64::from(i32::MAX))
+                .ok_or(SerializeError::OutOfRange("q32 needs |x - origin| < 2^31"))?
+        } else {
+            0
+        };
+        Ok(Encoder {
+            format,
+            origin,
+            half_extent,
+            shift,
+        })
+    }
+
+    /// The stored bytes of vertex `v` (model coordinates).
+    fn encode(&self, v: DVec3) -> Result<Vec<u8>, SerializeError> {
+        let rel = (v - self.origin).to_array();
+        let mut out = Vec::with_capacity(self.format.vertex_len());
+        match self.format {
+            VertexFormat::F32 => {
+                for x in rel {
+                    // `+ 0.0` makes -0.0 into 0.0, so equal values share bytes.
+                    let x = x as f32 + 0.0;
+                    if !x.is_finite() {
+                        return Err(SerializeError::NonFinite);
+                    }
+                    out.extend_from_slice(&x.to_le_bytes());
+                }
+            }
+            VertexFormat::Q16 => {
+                for (x, he) in rel.into_iter().zip(self.half_extent) {
+                    let q = if he > 0.0 {
+                        let m = f64::from(Q16_MAX);
+                        (x / f64::from(he) * m).round().clamp(-m, m) as i16
+                    } else {
+                        0
+                    };
+                    out.extend_from_slice(&q.to_le_bytes());
+                }
+            }
+            VertexFormat::Q32 => {
+                let scale = 2f64.powi(i32::from(self.shift));
+                for x in rel {
+                    let q = (x * scale)
+                        .round()
+                        .clamp(-f64::from(i32::MAX), f64::from(i32::MAX))
+                        as i32;
+                    out.extend_from_slice(&q.to_le_bytes());
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The offset from the origin that `bytes` (from [`Self::encode`])
+    /// decode to, in `f64`.
+    fn decode(&self, bytes: &[u8]) -> DVec3 {
+        let mut c = [0f64; 3];
+        match self.format {
+            VertexFormat::F32 => {
+                for (o, w) in c.iter_mut().zip(bytes.chunks_exact(4)) {
+                    *o = f64::from(f32::from_le_bytes([w[0], w[1], w[2], w[3]]));
+                }
+            }
+            VertexFormat::Q16 => {
+                for ((o, w), he) in c
+                    .iter_mut()
+                    .zip(bytes.chunks_exact(2))
+                    .zip(self.half_extent)
+                {
+                    let q = i16::from_le_bytes([w[0], w[1]]);
+                    *o = f64::from(he) * f64::from(q) / f64::from(Q16_MAX);
+                }
+            }
+            VertexFormat::Q32 => {
+                let scale = 2f64.powi(-i32::from(self.shift));
+                for (o, w) in c.iter_mut().zip(bytes.chunks_exact(4)) {
+                    *o = f64::from(i32::from_le_bytes([w[0], w[1], w[2], w[3]])) * scale;
+                }
+            }
+        }
+        DVec3::from_array(c)
+    }
+
+    /// A plane re-expressed relative to the origin, in `f32`.
+    fn plane(&self, p: &Plane) -> Result<[f32; 4], SerializeError> {
+        let d = p.d + p.normal.dot(self.origin);
+        let out = [
+            p.normal.x as f32,
+            p.normal.y as f32,
+            p.normal.z as f32,
+            d as f32,
+        ];
+        if out.iter().all(|x| x.is_finite()) {
+            Ok(out)
+        } else {
+            Err(SerializeError::NonFinite)
+        }
+    }
+}
+
+/// The smallest `f32` not below `x` (for `x ≥ 0`).
+fn round_up_f32(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) < x {
+        f32::from_bits(y.to_bits() + 1)
+    } else {
+        y
+    }
+}
+
+fn put_u32(out: &mut Vec<u8>, x: u32) {
+    out.extend_from_slice(&x.to_le_bytes());
+}
+
+fn put_plane(out: &mut Vec<u8>, p: [f32; 4]) {
+    for x in p {
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+}
+
+/// Writes `tree` in the flat format (see the module docs).
+pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, SerializeError> {
+    let order = polygon_order(tree)?;
+    let nodes = nodes_bfs(&tree.root);
+    let too_large = |_| SerializeError::TooLarge;
+
+    // Geometry: bounding box, encoder, deduplicated vertices.
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for (i, p) in tree.polygons.iter().enumerate() {
+        if p.verts.len() < 3 {
+            return Err(SerializeError::DegeneratePolygon(i as u32));
+        }
+        for &v in &p.verts {
+            if !v.is_finite() {
+                return Err(SerializeError::NonFinite);
+            }
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    if tree.polygons.is_empty() {
+        (lo, hi) = (DVec3::ZERO, DVec3::ZERO);
+    }
+    let enc = Encoder::new(opts.vertex_format, lo, hi)?;
+    let mut vertex_ids: HashMap<Vec<u8>, u32> = HashMap::new();
+    let mut vertex_bytes = Vec::new();
+    let mut indices: Vec<u32> = Vec::new();
+    let mut first_index = Vec::with_capacity(order.len());
+    let mut radius = 0f64;
+    for &id in &order {
+        first_index.push(u32::try_from(indices.len()).map_err(too_large)?);
+        for &v in &tree.polygons[id as usize].verts {
+            let bytes = enc.encode(v)?;
+            let next = u32::try_from(vertex_ids.len()).map_err(too_large)?;
+            let vid = *vertex_ids.entry(bytes).or_insert_with_key(|b| {
+                // The sphere must hold both the exact and the stored vertex.
+                radius = radius
+                    .max((v - enc.origin).length())
+                    .max(enc.decode(b).length());
+                vertex_bytes.extend_from_slice(b);
+                next
+            });
+            indices.push(vid);
+        }
+    }
+    let index_size = if vertex_ids.len() <= 1 << 16 { 2 } else { 4 };
+
+    let mut switch_planes = Vec::new();
+    let mut node_recs = Vec::with_capacity(nodes.len());
+    let mut bunch_offsets = vec![0u32];
+    let mut placed = 0u32;
+    for c in &nodes {
+        let first_bunch = u32::try_from(bunch_offsets.len() - 1).map_err(too_large)?;
+        for b in node_bunches(c) {
+            placed += b.len() as u32; // ≤ polygon count, checked by polygon_order
+            bunch_offsets.push(placed);
+        }
+        let switch = match &c.switch {
+            Some(s) => {
+                switch_planes.push(enc.plane(&s.plane)?);
+                u32::try_from(switch_planes.len() - 1).map_err(too_large)?
+            }
+            None => NO_SWITCH,
+        };
+        let levels = u32::try_from(c.levels.len()).map_err(too_large)?;
+        node_recs.push([first_bunch, levels, switch]);
+    }
+
+    let count = |n: usize| u32::try_from(n).map_err(too_large);
+    let counts = Counts {
+        vertices: count(vertex_ids.len())?,
+        polygons: count(order.len())?,
+        indices: count(indices.len())?,
+        bunches: count(bunch_offsets.len() - 1)?,
+        nodes: count(node_recs.len())?,
+        switches: count(switch_planes.len())?,
+    };
+    let s =
+        Sections::new(&counts, opts.vertex_format, index_size).ok_or(SerializeError::TooLarge)?;
+
+    let mut out = Vec::with_capacity(s.file_len);
+    out.extend_from_slice(&MAGIC);
+    out.extend_from_slice(&VERSION.to_le_bytes());
+    out.extend_from_slice(&(HEADER_LEN as u16).to_le_bytes());
+    put_u32(&mut out, s.file_len as u32);
+    put_u32(&mut out, if tree.closed { FLAG_CLOSED } else { 0 });
+    put_u32(&mut out, opts.effects);
+    out.extend_from_slice(&[opts.vertex_format.code(), enc.shift, index_size as u8, 0]);
+    put_u32(&mut out, count(tree.root.depth())?);
+    for c in [
+        counts.vertices,
+        counts.polygons,
+        counts.indices,
+        counts.bunches,
+        counts.nodes,
+        counts.switches,
+        0,
+    ] {
+        put_u32(&mut out, c);
+    }
+    for x in enc.origin.to_array() {
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+    for x in enc.half_extent {
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+    out.extend_from_slice(&round_up_f32(radius).to_le_bytes());
+    debug_assert_eq!(out.len(), h::RADIUS + 4);
+
+    out.extend_from_slice(&vertex_bytes);
+    out.resize(s.polygons, 0);
+    for (&id, &first) in order.iter().zip(&first_index) {
+        let p = &tree.polygons[id as usize];
+        let start = out.len();
+        put_plane(&mut out, enc.plane(&p.plane)?);
+        put_u32(&mut out, first);
+        put_u32(&mut out, p.source);
+        out.extend_from_slice(&[p.color[0], p.color[1], p.color[2], 0]);
+        debug_assert_eq!(out.len() - start, POLYGON_LEN);
+        debug_assert_eq!(pg::COLOR + 4, POLYGON_LEN);
+    }
+    out.resize(s.indices, 0);
+    for &i in &indices {
+        if index_size == 2 {
+            out.extend_from_slice(&(i as u16).to_le_bytes());
+        } else {
+            put_u32(&mut out, i);
+        }
+    }
+    out.resize(s.bunches, 0);
+    bunch_offsets.iter().for_each(|&o| put_u32(&mut out, o));
+    out.resize(s.nodes, 0);
+    node_recs
+        .iter()
+        .flatten()
+        .for_each(|&x| put_u32(&mut out, x));
+    out.resize(s.switches, 0);
+    switch_planes.iter().for_each(|&p| put_plane(&mut out, p));
+    out.resize(s.crc, 0);
+    let crc = crc32(&out);
+    put_u32(&mut out, crc);
+    debug_assert_eq!(out.len(), s.file_len);
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Polygon;
+    use crate::tree::{Level, Method, Stats, Switch};
+    use fpt_nostd::reader::Tree;
+
+    fn quad(z: f64, flip: bool, source: u32) -> Polygon {
+        let mut v = vec![
+            DVec3::new(0.0, 0.0, z),
+            DVec3::new(1.0, 0.0, z),
+            DVec3::new(1.0, 1.0, z),
+            DVec3::new(0.0, 1.0, z),
+        ];
+        if flip {
+            v.reverse();
+        }
+        Polygon::new(v, source, [source as u8, 2, 3]).unwrap()
+    }
+
+    /// Three stacked quads sharing x/y corners; a switch at z = 1.
+    fn sample(offset: DVec3) -> FpTree {
+        let mut polygons = vec![quad(0.0, true, 0), quad(1.0, false, 1), quad(2.0, false, 2)];
+        for p in &mut polygons {
+            p.verts.iter_mut().for_each(|v| *v += offset);
+            p.plane = Plane::newell(&p.verts).unwrap();
+        }
+        let plane = polygons[1].plane;
+        FpTree {
+            polygons,
+            closed: false,
+            root: Connecting {
+                levels: vec![Level {
+                    front: vec![],
+                    back: vec![2],
+                }],
+                switch: Some(Box::new(Switch {
+                    plane,
+                    on: vec![1],
+                    front: Connecting::default(),
+                    back: Connecting {
+                        levels: vec![Level {
+                            front: vec![0],
+                            back: vec![],
+                        }],
+                        switch: None,
+                    },
+                })),
+            },
+            method: Method::Static,
+            stats: Stats::default(),
+        }
+    }
+
+    #[test]
+    fn renumbers_bunches_breadth_first() {
+        let t = sample(DVec3::ZERO);
+        assert_eq!(polygon_order(&t).unwrap(), vec![2, 1, 0]);
+        let mut dup = t.clone();
+        dup.root.levels[0].front.push(2);
+        assert_eq!(
+            polygon_order(&dup),
+            Err(SerializeError::DuplicatePolygon(2))
+        );
+        let mut lost = t.clone();
+        lost.root.levels.clear();
+        assert_eq!(
+            polygon_order(&lost),
+            Err(SerializeError::UnplacedPolygon(2))
+        );
+        let mut unknown = t;
+        unknown.root.levels[0].back.push(9);
+        assert_eq!(
+            polygon_order(&unknown),
+            Err(SerializeError::UnknownPolygon(9))
+        );
+    }
+
+    #[test]
+    fn every_format_reads_back() {
+        let t = sample(DVec3::new(1e5, -2e5, 3e5));
+        for f in VertexFormat::ALL {
+            let opts = SerializeOptions {
+                vertex_format: f,
+                effects: 0xABCD,
+            };
+            let bytes = serialize(&t, &opts).unwrap();
+            let r = Tree::from_bytes(&bytes).unwrap();
+            assert_eq!(r.vertex_format(), f);
+            assert_eq!(r.effects(), 0xABCD);
+            assert!(!r.is_closed());
+            // 12 corners, but the x/y corners repeat on each z: 12 distinct.
+            assert_eq!(r.vertex_count(), 12);
+            assert_eq!(
+                (r.polygon_count(), r.node_count(), r.switch_count()),
+                (3, 3, 1)
+            );
+            assert_eq!((r.max_depth(), r.level_count(), r.bunch_count()), (2, 2, 5));
+            let tol = match f {
+                VertexFormat::Q16 => 2.0 / 32767.0,
+                _ => 1e-9,
+            };
+            for (fid, &tid) in polygon_order(&t).unwrap().iter().enumerate() {
+                let p = r.polygon(fid as u32).unwrap();
+                let src = &t.polygons[tid as usize];
+                assert_eq!(p.source(), src.source);
+                assert_eq!(p.color(), src.color);
+                for (i, v) in src.verts.iter().enumerate() {
+                    let got = DVec3::from_array(p.vertex_model(i));
+                    assert!((got - *v).length() <= tol, "{f:?}: {got} vs {v}");
+                }
+                let pl = p.plane();
+                let d_model = f64::from(pl.d)
+                    - DVec3::from_array(pl.normal.map(f64::from))
+                        .dot(DVec3::from_array(r.origin()));
+                assert!((d_model - src.plane.d).abs() < 1e-2 * src.plane.d.abs().max(1.0));
+            }
+        }
+    }
+
+    #[test]
+    fn q32_shift_is_the_largest_that_fits() {
+        let t = sample(DVec3::ZERO);
+        let bytes = serialize(
+            &t,
+            &SerializeOptions {
+                vertex_format: VertexFormat::Q32,
+                effects: 0,
+            },
+        )
+        .unwrap();
+        let r = Tree::from_bytes(&bytes).unwrap();
+        // Offsets reach 1.0 (z from 0 to 2 around origin z = 1): 2^30 · 1 < 2^31 ≤ 2^31 · 1.
+        assert_eq!(r.q32_shift(), 30);
+    }
+
+    #[test]
+    fn shared_vertices_are_stored_once() {
+        let mut t = sample(DVec3::ZERO);
+        // Same corners at the same z twice: a duplicate face.
+        t.polygons[2] = quad(1.0, true, 2);
+        let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+        assert_eq!(Tree::from_bytes(&bytes).unwrap().vertex_count(), 8);
+    }
+}

@@ -1,0 +1,252 @@
+//! Round trips through the flat format: host serializer → fpt-nostd reader
+//! and walk, against the in-memory tree and a reference walk of it.
+
+mod format_common;
+
+use std::collections::HashSet;
+use std::path::Path;
+
+use format_common::*;
+use fpt_nostd::format::VertexFormat;
+use fpt_nostd::reader::Tree;
+use glam::DVec3;
+use host_sim::build::{build, NoProgress};
+use host_sim::serialize::{polygon_order, serialize, SerializeOptions};
+use host_sim::tree::{FpTree, Method};
+
+fn opts(f: VertexFormat) -> SerializeOptions {
+    SerializeOptions {
+        vertex_format: f,
+        effects: 0x1234_5678,
+    }
+}
+
+/// The largest distance a vertex may move by being stored in `tree`'s format.
+fn vertex_tolerance(tree: &Tree<'_>) -> f64 {
+    let extent = tree.half_extent().iter().fold(0f32, |m, &x| m.max(x)) as f64;
+    match tree.vertex_format() {
+        // Relative offsets in f32: half an ulp of the largest offset per axis.
+        VertexFormat::F32 => extent * 2f64.powi(-23),
+        VertexFormat::Q16 => extent / 32767.0,
+        VertexFormat::Q32 => 2f64.powi(-i32::from(tree.q32_shift())),
+    }
+}
+
+/// Distinct vertices of `t` (exact equality).
+fn exact_vertices(t: &FpTree) -> usize {
+    let set: HashSet<[u64; 3]> = t
+        .polygons
+        .iter()
+        .flat_map(|p| {
+            p.verts
+                .iter()
+                .map(|v| (*v + DVec3::ZERO).to_array().map(f64::to_bits))
+        })
+        .collect();
+    set.len()
+}
+
+/// Checks geometry and structure of `bytes` against `t`; returns the file id
+/// → tree id map.
+fn check_round_trip(t: &FpTree, bytes: &[u8], f: VertexFormat) -> Vec<u32> {
+    let r = Tree::from_bytes(bytes).expect("serialized tree validates");
+    let order = polygon_order(t).unwrap();
+    assert_eq!(r.vertex_format(), f);
+    assert_eq!(r.is_closed(), t.closed);
+    assert_eq!(r.effects(), 0x1234_5678);
+    assert_eq!(r.polygon_count() as usize, t.polygons.len());
+    assert_eq!(r.node_count() as usize, t.root.count_connecting());
+    assert_eq!(r.switch_count() as usize, t.root.count_switches());
+    assert_eq!(r.level_count() as usize, t.root.count_levels());
+    assert_eq!(r.max_depth() as usize, t.root.depth());
+    assert!(
+        r.vertex_count() as usize <= exact_vertices(t),
+        "vertices deduplicated"
+    );
+    let tol = vertex_tolerance(&r) * 1.01 + 1e-12;
+    let origin = DVec3::from_array(r.origin());
+    let mut radius = 0f64;
+    for (fid, &tid) in order.iter().enumerate() {
+        let p = r.polygon(fid as u32).unwrap();
+        let src = &t.polygons[tid as usize];
+        assert_eq!(p.source(), src.source);
+        assert_eq!(p.color(), src.color);
+        assert_eq!(p.vertex_count(), src.verts.len());
+        for (i, v) in src.verts.iter().enumerate() {
+            let got = DVec3::from_array(p.vertex_model(i));
+            let err = (got - *v).abs().max_element();
+            assert!(
+                err <= tol,
+                "{f:?} polygon {tid} vertex {i}: error {err} > {tol}"
+            );
+            let rel = DVec3::from_array(p.vertex(i).map(f64::from));
+            // The f32 decoding rounds the offset once more.
+            let tol32 = 1e-6 * rel.abs().max_element() + 1e-12 * (1.0 + origin.abs().max_element());
+            assert!((rel + origin - got).abs().max_element() <= tol32);
+            radius = radius.max(rel.length()).max((*v - origin).length());
+        }
+        let pl = p.plane();
+        let n = DVec3::from_array(pl.normal.map(f64::from));
+        assert!((n - src.plane.normal).length() < 1e-6);
+        let d_rel = src.plane.d + src.plane.normal.dot(origin);
+        assert!((f64::from(pl.d) - d_rel).abs() <= 1e-6 * d_rel.abs().max(1.0));
+    }
+    assert!(f64::from(r.bounding_radius()) >= radius * (1.0 - 1e-7));
+    order
+}
+
+/// Compares the no_std walk with the reference walk for `views`; returns
+/// how many views were compared (ambiguous near-ties are skipped).
+fn check_orders(t: &FpTree, bytes: &[u8], order: &[u32], views: &[RefView], scale: f64) -> usize {
+    let r = Tree::from_bytes(bytes).unwrap();
+    let mut compared = 0;
+    for v in views {
+        if v.margin(t) < 1e-4 * scale {
+            continue;
+        }
+        let view = v.to_view(&r);
+        let got = normalized(nostd_classes(&r, view, order));
+        let want = normalized(reference_classes(t, v));
+        assert_eq!(got, want, "view {v:?}");
+        check_walk(&r, view);
+        compared += 1;
+    }
+    compared
+}
+
+#[test]
+fn random_trees_round_trip_in_every_format() {
+    let mut compared = 0;
+    for seed in 0..48u64 {
+        let n = 1 + (seed as usize * 7) % 30;
+        let (scale, offset) = match seed % 3 {
+            0 => (1.0, DVec3::ZERO),
+            1 => (250.0, DVec3::new(1e5, -3e4, 2e5)),
+            _ => (1e-3, DVec3::new(-0.5, 0.25, 3.0)),
+        };
+        let t = random_tree(seed, n, seed % 2 == 0, seed % 4 == 3, scale, offset);
+        let mut rng = Rng::new(seed ^ 0xABCD);
+        let views = some_views(&mut rng, scale * 4.0, offset, 8);
+        for f in VertexFormat::ALL {
+            let bytes = serialize(&t, &opts(f)).unwrap();
+            let order = check_round_trip(&t, &bytes, f);
+            if f == VertexFormat::F32 {
+                // Grid corners are far apart: only exact duplicates merge.
+                let r = Tree::from_bytes(&bytes).unwrap();
+                assert_eq!(r.vertex_count() as usize, exact_vertices(&t));
+            }
+            compared += check_orders(&t, &bytes, &order, &views, scale);
+        }
+    }
+    // Nearly every view is compared (few are near-ties).
+    assert!(
+        compared > 48 * 3 * 8 * 9 / 10,
+        "only {compared} views compared"
+    );
+}
+
+#[test]
+fn bsp_shaped_trees_walk_the_same() {
+    for seed in 100..120u64 {
+        let t = random_tree(seed, 25, seed % 2 == 0, true, 1.0, DVec3::ZERO);
+        assert!(t.root.levels.is_empty() && t.root.switch.is_some());
+        let bytes = serialize(&t, &opts(VertexFormat::F32)).unwrap();
+        let r = Tree::from_bytes(&bytes).unwrap();
+        assert_eq!(r.level_count(), 0);
+        let order = check_round_trip(&t, &bytes, VertexFormat::F32);
+        let views = some_views(&mut Rng::new(seed), 4.0, DVec3::ZERO, 8);
+        assert!(check_orders(&t, &bytes, &order, &views, 1.0) >= 6);
+    }
+}
+
+#[test]
+fn far_from_the_origin_keeps_precision() {
+    // A model of size 1e3 at 1e5: f32 model coordinates would round to
+    // 1e5 · 2^-24 ≈ 6e-3; offsets from the stored origin keep ~6e-5.
+    let t = random_tree(7, 20, true, false, 125.37, DVec3::new(1e5, 1e5, -1e5));
+    let bytes = serialize(&t, &opts(VertexFormat::F32)).unwrap();
+    let r = Tree::from_bytes(&bytes).unwrap();
+    let order = polygon_order(&t).unwrap();
+    let (mut worst, mut worst_naive) = (0f64, 0f64);
+    for (fid, &tid) in order.iter().enumerate() {
+        let p = r.polygon(fid as u32).unwrap();
+        for (i, v) in t.polygons[tid as usize].verts.iter().enumerate() {
+            worst = worst.max(
+                (DVec3::from_array(p.vertex_model(i)) - *v)
+                    .abs()
+                    .max_element(),
+            );
+            let naive = v.to_array().map(|x| f64::from(x as f32));
+            worst_naive = worst_naive.max((DVec3::from_array(naive) - *v).abs().max_element());
+        }
+    }
+    assert!(worst < 1e-4, "error {worst}");
+    assert!(
+        worst_naive > 10.0 * worst,
+        "the test model must be one f32 cannot hold"
+    );
+}
+
+#[test]
+fn quantized_formats_are_smaller() {
+    let t = random_tree(3, 30, true, false, 1.0, DVec3::ZERO);
+    let size = |f| serialize(&t, &opts(f)).unwrap().len();
+    let r = Tree::from_bytes(&serialize(&t, &opts(VertexFormat::F32)).unwrap())
+        .unwrap()
+        .vertex_count() as usize;
+    // q16 saves 6 bytes a vertex (up to 3 of section padding).
+    let saved = size(VertexFormat::F32) - size(VertexFormat::Q16);
+    assert!(
+        saved + 3 >= 6 * r && saved <= 6 * r + 3,
+        "saved {saved} for {r} vertices"
+    );
+    assert_eq!(size(VertexFormat::F32), size(VertexFormat::Q32));
+}
+
+/// The shared models, when present (a fresh clone has none).
+fn shared_model(name: &str) -> Option<host_sim::mesh::Model> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../shared/models")
+        .join(name);
+    if !path.exists() {
+        eprintln!("skipping {name}: {} not found", path.display());
+        return None;
+    }
+    Some(host_sim::mesh::load(&path).expect("shared model loads"))
+}
+
+#[test]
+fn built_trees_round_trip() {
+    for (name, methods) in [
+        (
+            "wallhole.obj",
+            &[Method::Static, Method::Dynamic, Method::Bsp][..],
+        ),
+        ("shuttle.obj", &[Method::Dynamic, Method::Bsp][..]),
+    ] {
+        let Some(model) = shared_model(name) else {
+            continue;
+        };
+        for &method in methods {
+            let t = build(
+                model.polygons.clone(),
+                model.closed,
+                method,
+                1,
+                &mut NoProgress,
+            );
+            let (lo, hi) = host_sim::geom::bounds(&t.polygons);
+            let scale = (hi - lo).length();
+            let views = some_views(&mut Rng::new(5), scale, (lo + hi) * 0.5, 16);
+            for f in VertexFormat::ALL {
+                let bytes = serialize(&t, &opts(f)).unwrap();
+                let order = check_round_trip(&t, &bytes, f);
+                let compared = check_orders(&t, &bytes, &order, &views, scale);
+                assert!(
+                    compared >= 12,
+                    "{name} {method:?}: {compared} views compared"
+                );
+            }
+        }
+    }
+}
