@@ -165,6 +165,17 @@ pub fn build(
         remap[id as usize] = order.len() as u32;
         order.push(id);
     });
+    // A piece keeps the vertices it shares with its parent: map them back to
+    // the exact input coordinates rather than through `center + v · scale`,
+    // whose rounding would make near-duplicates of shared vertices (and
+    // hairline gaps between a piece and its unsplit neighbour).
+    let key = |v: DVec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+    let mut exact: std::collections::HashMap<[u64; 3], DVec3> = std::collections::HashMap::new();
+    for (orig, norm) in polygons.iter().zip(&work) {
+        for (&o, &n) in orig.verts.iter().zip(&norm.verts) {
+            exact.insert(key(n), o);
+        }
+    }
     let mut originals: Vec<Option<Polygon>> = polygons.into_iter().map(Some).collect();
     let out: Vec<Polygon> = order
         .iter()
@@ -175,7 +186,11 @@ pub fn build(
                 None => {
                     let p = &work[id];
                     Polygon {
-                        verts: p.verts.iter().map(|&v| center + v * scale).collect(),
+                        verts: p
+                            .verts
+                            .iter()
+                            .map(|&v| exact.get(&key(v)).copied().unwrap_or(center + v * scale))
+                            .collect(),
                         plane: denormalize(&p.plane, center, scale),
                         source: p.source,
                         color: p.color,

@@ -313,3 +313,20 @@ fn empty_input_gives_empty_tree() {
     assert!(t.polygons.is_empty());
     assert_eq!(t.stats.connecting_nodes, 1);
 }
+
+#[test]
+fn pieces_keep_exact_input_vertices() {
+    let input = transformed(&interpenetrating(), 1.37, DVec3::new(1e3, -7.1, 0.3));
+    let inputs: Vec<DVec3> = input.iter().flat_map(|p| p.verts.clone()).collect();
+    for t in build_all(&input) {
+        assert!(t.stats.splittings > 0);
+        for p in &t.polygons {
+            for v in &p.verts {
+                let near = inputs.iter().find(|u| (**u - *v).length() < 1e-9);
+                if let Some(u) = near {
+                    assert_eq!(u, v, "a vertex shared with the input moved by rounding");
+                }
+            }
+        }
+    }
+}
