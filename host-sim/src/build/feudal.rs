@@ -86,8 +86,8 @@ fn bunch(l: &mut Level, front: bool) -> &mut Vec<u32> {
 fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut [bool]) {
     bunch(level, front).push(t.ids[q]);
     taken[q] = true;
-    for p in 0..t.len() {
-        if p == q || taken[p] || !t.is_alive(p) {
+    for (p, tk) in taken.iter_mut().enumerate() {
+        if p == q || *tk || !t.is_alive(p) {
             continue;
         }
         match t.rel(q, p) {
@@ -95,7 +95,7 @@ fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut [bool])
             Rel::Opposite => bunch(level, !front).push(t.ids[p]),
             _ => continue,
         }
-        taken[p] = true;
+        *tk = true;
     }
 }
 

@@ -24,7 +24,7 @@ impl Rng {
     /// A uniform index below `n` (`n > 0`).
     pub fn below(&mut self, n: usize) -> usize {
         // Multiply-shift: unbiased enough for picking candidates.
-        ((self.next_u64() >> 32) * n as u64 >> 32) as usize
+        (((self.next_u64() >> 32) * n as u64) >> 32) as usize
     }
 
     /// Shuffles `v` in place (Fisher–Yates).

@@ -195,11 +195,10 @@ impl Table {
                 continue;
             }
             // A piece lies in its parent's plane: the parent's row is its row.
-            for p in 0..m {
+            for (p, &(op, p_piece)) in origin.iter().enumerate() {
                 if p == q {
                     continue;
                 }
-                let (op, p_piece) = origin[p];
                 let r = if op == oq {
                     Rel::Same
                 } else if !p_piece {
