@@ -418,7 +418,7 @@ mod tests {
         let v = Fx16::from_f32_saturating(2.5);
         assert_eq!((v.floor_int(), v.ceil_int(), v.round_int()), (2, 3, 3));
         assert_eq!(Fx16::MAX.ceil_int(), 32768);
-        let c: Fx8 = Fx16::from_f32_saturating(1.00390625).convert();
+        let c: Fx8 = Fx16::from_f32_saturating(1.0 + 1.0 / 256.0).convert();
         assert_eq!(c.raw(), 257);
         let c: Fx16 = Fx8::from_int(-40000).convert();
         assert_eq!(c, Fx16::MIN);
@@ -426,7 +426,19 @@ mod tests {
 
     #[test]
     fn isqrt_is_exact_floor() {
-        for v in [0u64, 1, 2, 3, 4, 15, 16, 17, 1 << 40, (1 << 62) + 12345, u64::MAX] {
+        for v in [
+            0u64,
+            1,
+            2,
+            3,
+            4,
+            15,
+            16,
+            17,
+            1 << 40,
+            (1 << 62) + 12345,
+            u64::MAX,
+        ] {
             let r = isqrt_u64(v);
             assert!(r.checked_mul(r).is_some_and(|s| s <= v), "{v}");
             assert!((r + 1).checked_mul(r + 1).is_none_or(|s| s > v), "{v}");

@@ -29,11 +29,25 @@
 //! (12 bytes each); it refuses a tree deeper than `N`. Classes that end up
 //! empty after culling are skipped. The walk is bounded: each node is entered
 //! once, and a node's frame only moves forward through its phases.
+//!
+//! ```ignore
+//! use fpt_nostd::order::{Order, View};
+//! use fpt_nostd::reader::Tree;
+//!
+//! static TREE: &[u8] = include_bytes!("model.fpt");
+//! let tree = Tree::from_bytes(TREE)?; // validate once, at start-up
+//! let view = View::parallel([0.0, 0.0, -1.0]);
+//! for class in Order::<32>::new(&tree, view)? {
+//!     for polygon in class.polygons(&tree) {
+//!         draw(polygon); // any order within a class
+//!     }
+//! }
+//! ```
 
 use core::fmt;
 
 use crate::format::NO_SWITCH;
-use crate::reader::{Plane, PolygonRef, Tree};
+use crate::reader::{Plane, PlaneTable, PolygonRef, Tree};
 
 /// A view, in the model's coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -178,7 +192,7 @@ const NO_SEG: Seg = Seg {
 /// order; the ids come bunch by bunch in the order of the file.
 #[derive(Clone, Copy, Debug)]
 pub struct Class<'a> {
-    tree: Tree<'a>,
+    planes: PlaneTable<'a>,
     view: LocalView,
     segs: [Seg; 2],
     cur: usize,
@@ -190,8 +204,8 @@ impl<'a> Class<'a> {
     fn passes(&self, id: u32, pick: Pick) -> bool {
         match pick {
             Pick::All => true,
-            Pick::Backward => self.view.is_backward(&self.tree.polygon_plane(id)),
-            Pick::Forward => !self.view.is_backward(&self.tree.polygon_plane(id)),
+            Pick::Backward => self.view.is_backward(&self.planes.plane(id)),
+            Pick::Forward => !self.view.is_backward(&self.planes.plane(id)),
         }
     }
 
@@ -320,7 +334,7 @@ impl<'a, const N: usize> Order<'a, N> {
     /// A class of two bunch segments, or `None` if nothing passes.
     fn class(&self, segs: [(u32, Option<Pick>); 2]) -> Option<Class<'a>> {
         let mut c = Class {
-            tree: self.tree,
+            planes: self.tree.planes(),
             view: self.view,
             segs: [NO_SEG; 2],
             cur: 0,

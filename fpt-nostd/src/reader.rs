@@ -207,6 +207,29 @@ impl<'a> Geometry<'a> {
     }
 }
 
+/// The polygon planes by id: all that culling a class needs, small enough
+/// to copy into every class (unlike the whole [`Tree`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PlaneTable<'a> {
+    bytes: &'a [u8],
+    base: usize,
+}
+
+impl PlaneTable<'_> {
+    /// The plane of polygon `id < polygon_count`.
+    #[inline]
+    pub(crate) fn plane(&self, id: u32) -> Plane {
+        let off = self
+            .base
+            .wrapping_add((id as usize).wrapping_mul(POLYGON_LEN))
+            .wrapping_add(pg::NORMAL);
+        Plane {
+            normal: rd_f32x3(self.bytes, off),
+            d: rd_f32(self.bytes, off.wrapping_add(12)),
+        }
+    }
+}
+
 /// One connecting node record.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NodeRec {
@@ -509,7 +532,7 @@ impl<'a> Tree<'a> {
         let mut levels = 0u64;
         for i in 0..self.counts.nodes {
             let n = self.node(i);
-            if u64::from(n.first_bunch) != bunch && false {
+            if u64::from(n.first_bunch) != bunch {
                 return Err(FormatError::BadNode(i));
             }
             let has_switch = n.switch != NO_SWITCH;
@@ -737,11 +760,13 @@ impl<'a> Tree<'a> {
         )
     }
 
-    /// The plane of polygon `id < polygon_count`, without a [`PolygonRef`].
+    /// The polygon planes, for the walk's culling.
     #[inline]
-    pub(crate) fn polygon_plane(&self, id: u32) -> Plane {
-        self.g
-            .plane_at(self.g.polygon_off(id).wrapping_add(pg::NORMAL))
+    pub(crate) fn planes(&self) -> PlaneTable<'a> {
+        PlaneTable {
+            bytes: self.g.bytes,
+            base: self.g.polygons,
+        }
     }
 }
 

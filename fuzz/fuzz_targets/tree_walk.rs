@@ -16,10 +16,18 @@ use fpt_nostd::reader::Tree;
 use libfuzzer_sys::fuzz_target;
 
 const VIEWS: [View; 4] = [
-    View::Parallel { dir: [0.3, -0.5, 0.8] },
-    View::Parallel { dir: [0.0, 0.0, -1.0] },
-    View::Perspective { eye: [10.0, 3.0, -2.0] },
-    View::PerspectiveRelative { eye: [0.0, 0.0, 0.0] },
+    View::Parallel {
+        dir: [0.3, -0.5, 0.8],
+    },
+    View::Parallel {
+        dir: [0.0, 0.0, -1.0],
+    },
+    View::Perspective {
+        eye: [10.0, 3.0, -2.0],
+    },
+    View::PerspectiveRelative {
+        eye: [0.0, 0.0, 0.0],
+    },
 ];
 
 fuzz_target!(|data: &[u8]| {
@@ -62,7 +70,10 @@ fuzz_target!(|data: &[u8]| {
             }
         }
         if !tree.is_closed() {
-            assert!(seen.iter().all(|&s| s), "open volume: a polygon was not emitted");
+            assert!(
+                seen.iter().all(|&s| s),
+                "open volume: a polygon was not emitted"
+            );
         }
     }
 });

@@ -18,7 +18,11 @@ pub struct Tolerance(pub f64);
 impl Tolerance {
     /// The tolerance for a model whose bounding box has diagonal `diag`.
     pub fn for_diagonal(diag: f64) -> Self {
-        let d = if diag.is_finite() && diag > 0.0 { diag } else { 1.0 };
+        let d = if diag.is_finite() && diag > 0.0 {
+            diag
+        } else {
+            1.0
+        };
         Tolerance(REL_EPS * d)
     }
 }
@@ -239,9 +243,17 @@ mod tests {
         let tol = Tolerance(1e-6);
         let tri = [DVec3::new(0.0, 0.0, 1e-7), DVec3::X, DVec3::Y];
         assert_eq!(p.relation(&tri, tol), Relation::Coplanar);
-        let tri = [DVec3::new(0.0, 0.0, 1.0), DVec3::X, DVec3::new(0.0, 1.0, -1e-7)];
+        let tri = [
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::X,
+            DVec3::new(0.0, 1.0, -1e-7),
+        ];
         assert_eq!(p.relation(&tri, tol), Relation::Front);
-        let tri = [DVec3::new(0.0, 0.0, 1.0), DVec3::X, DVec3::new(0.0, 1.0, -1.0)];
+        let tri = [
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::X,
+            DVec3::new(0.0, 1.0, -1.0),
+        ];
         assert_eq!(p.relation(&tri, tol), Relation::Cut);
     }
 }

@@ -561,6 +561,40 @@ mod tests {
     }
 
     #[test]
+    fn many_vertices_use_u32_indices() {
+        // 22 000 triangles with distinct corners: 66 000 vertices > 65 536.
+        let polygons: Vec<Polygon> = (0..22_000)
+            .map(|i| {
+                let z = f64::from(i);
+                let v = vec![
+                    DVec3::new(0.0, 0.0, z),
+                    DVec3::new(1.0, 0.0, z),
+                    DVec3::new(0.0, 1.0, z),
+                ];
+                Polygon::new(v, i, [0; 3]).unwrap()
+            })
+            .collect();
+        let t = FpTree {
+            root: Connecting {
+                levels: vec![Level {
+                    front: (0..22_000).collect(),
+                    back: vec![],
+                }],
+                switch: None,
+            },
+            polygons,
+            closed: true,
+            method: Method::Static,
+            stats: Stats::default(),
+        };
+        let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+        let r = Tree::from_bytes(&bytes).unwrap();
+        assert_eq!((r.index_size(), r.vertex_count()), (4, 66_000));
+        let p = r.polygon(21_999).unwrap();
+        assert_eq!(p.vertex_model(1), [1.0, 0.0, 21_999.0]);
+    }
+
+    #[test]
     fn shared_vertices_are_stored_once() {
         let mut t = sample(DVec3::ZERO);
         // Same corners at the same z twice: a duplicate face.

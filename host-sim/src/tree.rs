@@ -106,10 +106,9 @@ pub struct FpTree {
 impl Connecting {
     /// Number of connecting nodes in this subtree, including this one.
     pub fn count_connecting(&self) -> usize {
-        1 + self
-            .switch
-            .as_ref()
-            .map_or(0, |s| s.front.count_connecting() + s.back.count_connecting())
+        1 + self.switch.as_ref().map_or(0, |s| {
+            s.front.count_connecting() + s.back.count_connecting()
+        })
     }
 
     /// Number of switch nodes in this subtree.

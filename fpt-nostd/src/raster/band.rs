@@ -101,7 +101,8 @@ impl<T: DrawTarget> DrawTarget for Band<'_, T> {
         I: IntoIterator<Item = Pixel<T::Color>>,
     {
         let off = Point::new(0, self.y0);
-        self.inner.draw_iter(pixels.into_iter().map(|Pixel(p, c)| Pixel(p - off, c)))
+        self.inner
+            .draw_iter(pixels.into_iter().map(|Pixel(p, c)| Pixel(p - off, c)))
     }
 
     fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), T::Error>
@@ -145,7 +146,15 @@ mod tests {
             Err(e) => panic!("{e:?}"),
         };
         let mut band = Band::new(&mut fb, 10);
-        assert_eq!(band.bounds(), SpanBounds { x0: 0, y0: 10, x1: 8, y1: 14 });
+        assert_eq!(
+            band.bounds(),
+            SpanBounds {
+                x0: 0,
+                y0: 10,
+                x1: 8,
+                y1: 14
+            }
+        );
         band.span(11, 1, 3, Gray8::new(9));
         band.span(9, 0, 8, Gray8::new(9)); // above the band: ignored
         band.span(14, 0, 8, Gray8::new(9)); // below: ignored
@@ -153,8 +162,14 @@ mod tests {
         let _ = band.fill_solid(&r, Gray8::new(7));
         let _ = band.draw_iter([Pixel(Point::new(0, 13), Gray8::new(3))]);
         let px = |x, y| fb.pixel(x, y).map(|c| c.luma());
-        assert_eq!((px(0, 1), px(1, 1), px(2, 1), px(3, 1)), (Some(0), Some(9), Some(9), Some(0)));
-        assert_eq!((px(6, 2), px(7, 3), px(5, 2), px(6, 1)), (Some(7), Some(7), Some(0), Some(0)));
+        assert_eq!(
+            (px(0, 1), px(1, 1), px(2, 1), px(3, 1)),
+            (Some(0), Some(9), Some(9), Some(0))
+        );
+        assert_eq!(
+            (px(6, 2), px(7, 3), px(5, 2), px(6, 1)),
+            (Some(7), Some(7), Some(0), Some(0))
+        );
         assert_eq!(px(0, 3), Some(3));
         assert_eq!(fb.data().iter().filter(|&&v| v != 0).count(), 2 + 4 + 1);
     }

@@ -1,16 +1,17 @@
 //! Homogeneous clipping in clip space, before anything becomes a screen
 //! integer.
 //!
-//! Sutherland–Hodgman against five planes, in this order:
-//! 1. near: `w − near_w ≥ 0` (drops everything at or behind the eye; the
-//!    caller guarantees `near_w > 0`, so every kept point has `w > 0`);
-//! 2. the guard band: `G·w ∓ x ≥ 0`, `G·w ∓ y ≥ 0` with [`GUARD`] = 4, i.e.
-//!    `|ndc.x|, |ndc.y| ≤ 4` — a band of about four screens around the
-//!    viewport. Polygons crossing the screen edge but not the band (the
-//!    usual case) are not clipped at all, and the band bounds every
-//!    projected coordinate, which is what keeps the fixed-point screen
-//!    coordinates and the scan converter's i64 edge arithmetic from
-//!    overflowing whatever the camera.
+//! Sutherland–Hodgman against five planes (order: near, then the guard
+//! band; see `PLANES` for why):
+//! * near: `w − near_w ≥ 0` (drops everything at or behind the eye; the
+//!   caller guarantees `near_w > 0`, so every kept point has `w > 0`);
+//! * the guard band: `G·w ∓ x ≥ 0`, `G·w ∓ y ≥ 0` with [`GUARD`] = 4, i.e.
+//!   `|ndc.x|, |ndc.y| ≤ 4` — a band of about four screens around the
+//!   viewport. Polygons crossing the screen edge but not the band (the
+//!   usual case) are not clipped at all, and the band bounds every
+//!   projected coordinate, which is what keeps the fixed-point screen
+//!   coordinates and the scan converter's i64 edge arithmetic from
+//!   overflowing whatever the camera.
 //!
 //! Contract:
 //! * Works for convex and concave polygons; a concave polygon may come out
@@ -25,6 +26,14 @@
 //!   the new vertex is snapped exactly onto the plane. Two polygons that
 //!   share an edge (in either direction) therefore produce bit-identical
 //!   intersection vertices, so clipping opens no crack between them.
+//! * Accuracy limit (not a safety issue): clipping is only as good as its
+//!   input. On the f32 path the transform of a vertex with coordinates
+//!   around 1e9 already rounds by ~64 units, more than the distance from
+//!   the eye to a plane seen from 10 units away, so such a scene cannot be
+//!   drawn faithfully in f32 (the fixed path transforms exactly and can);
+//!   and near-plane vertices carry the absolute rounding error of the
+//!   polygon's coordinates divided by `near_w` after projection. Nothing
+//!   overflows or panics either way; non-finite results skip the polygon.
 //! * Arithmetic is generic over [`ClipNum`]: `f32` for the float path,
 //!   [`FxWide`] (i64 with i128 products in the interpolation) for the fixed
 //!   path. Neither overflows on values the transform stage admits.
@@ -128,7 +137,7 @@ impl<const F: u32> ClipNum for FxWide<F> {
     }
 }
 
-/// The five clip planes, in clipping order.
+/// The five clip planes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Plane {
     Near,
@@ -138,6 +147,11 @@ enum Plane {
     Bottom,
 }
 
+/// Clipping order: near plane first. Afterwards every vertex has
+/// `w ≥ near_w > 0`, so the guard passes only interpolate between points
+/// in front of the eye and never create vertices on the line where two
+/// guard planes meet at the eye (`x = w = 0`), where classification would
+/// be at the mercy of rounding.
 const PLANES: [Plane; 5] = [
     Plane::Near,
     Plane::Right,
@@ -318,7 +332,11 @@ mod tests {
 
     #[test]
     fn polygon_behind_eye_gives_nothing() {
-        let p = [cv(-1.0, -1.0, -2.0), cv(1.0, -1.0, -2.0), cv(0.0, 1.0, -0.5)];
+        let p = [
+            cv(-1.0, -1.0, -2.0),
+            cv(1.0, -1.0, -2.0),
+            cv(0.0, 1.0, -0.5),
+        ];
         assert!(run(&p, 0.1).is_empty());
         // Touching the near plane from behind with one vertex leaves only a
         // degenerate polygon on the plane (zero area: no pixel).
@@ -346,7 +364,11 @@ mod tests {
 
     #[test]
     fn guard_band_bounds_huge_coordinates() {
-        let p = [cv(-1e30, -1e30, 1.0), cv(1e30, -1e30, 1.0), cv(0.0, 1e30, 1.0)];
+        let p = [
+            cv(-1e30, -1e30, 1.0),
+            cv(1e30, -1e30, 1.0),
+            cv(0.0, 1e30, 1.0),
+        ];
         let out = run(&p, 0.1);
         assert!(out.len() >= 3);
         for v in &out {
@@ -383,7 +405,11 @@ mod tests {
         let mut a = [ClipVert::<W>::default(); 16];
         let mut b = a;
         for (d, s) in a.iter_mut().zip(pf.iter()) {
-            *d = ClipVert { x: f(s.x), y: f(s.y), w: f(s.w) };
+            *d = ClipVert {
+                x: f(s.x),
+                y: f(s.y),
+                w: f(s.w),
+            };
         }
         let fixed = clip_polygon(&mut a, 3, &mut b, f(0.5)).map(|s| s.verts.to_vec());
         let float = run(&pf, 0.5);

@@ -76,7 +76,11 @@ impl Edge {
         if py == qy {
             return None;
         }
-        let (first, end) = Edge::rows(ScreenPt { x: 0, y: py as i32 }, ScreenPt { x: 0, y: qy as i32 }, sub);
+        let (first, end) = Edge::rows(
+            ScreenPt { x: 0, y: py as i32 },
+            ScreenPt { x: 0, y: qy as i32 },
+            sub,
+        );
         let y0 = first.max(row_lo);
         let y1 = end.min(row_hi);
         if y0 >= y1 {
@@ -131,7 +135,13 @@ impl Edge {
 /// Builds the edges of the closed polygon `pts` that are active within rows
 /// `[row_lo, row_hi)`, sorted by first row, into `out`. Returns how many, or
 /// `None` if `out` is shorter than `pts` (each vertex starts one edge).
-pub fn build_edges(pts: &[ScreenPt], sub: u32, row_lo: i32, row_hi: i32, out: &mut [Edge]) -> Option<usize> {
+pub fn build_edges(
+    pts: &[ScreenPt],
+    sub: u32,
+    row_lo: i32,
+    row_hi: i32,
+    out: &mut [Edge],
+) -> Option<usize> {
     if out.len() < pts.len() {
         return None;
     }
@@ -182,7 +192,9 @@ mod tests {
     fn stepped_crossings_equal_exact_ones() {
         let mut seed = 12345u64;
         let mut rnd = |m: i32| {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((seed >> 33) as i64 % (2 * m as i64 + 1) - m as i64) as i32
         };
         for sub in [0u32, 2, 4, 8] {
@@ -193,14 +205,20 @@ mod tests {
                 let fwd = Edge::new(p, q, sub, lo, i32::MAX);
                 // The reverse traversal prepares identical stepping state.
                 let strip = |e: Edge| Edge { dir: 0, ..e };
-                assert_eq!(fwd.map(strip), Edge::new(q, p, sub, lo, i32::MAX).map(strip));
+                assert_eq!(
+                    fwd.map(strip),
+                    Edge::new(q, p, sub, lo, i32::MAX).map(strip)
+                );
                 let Some(mut e) = fwd else {
                     let (f, end) = Edge::rows(p, q, sub);
                     assert!(f.max(lo) >= end);
                     continue;
                 };
                 for j in e.y0..e.y1 {
-                    assert!(is_crossing(p, q, sub, j, e.crossing()), "{p:?} {q:?} {sub} {j}");
+                    assert!(
+                        is_crossing(p, q, sub, j, e.crossing()),
+                        "{p:?} {q:?} {sub} {j}"
+                    );
                     e.step();
                 }
             }

@@ -25,7 +25,9 @@ use core::marker::PhantomData;
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::geometry::{OriginDimensions, Point, Size};
 use embedded_graphics::pixelcolor::raw::RawU16;
-use embedded_graphics::pixelcolor::{BinaryColor, Gray8, GrayColor, IntoStorage, PixelColor, Rgb565, Rgb888, RgbColor};
+use embedded_graphics::pixelcolor::{
+    BinaryColor, Gray8, GrayColor, IntoStorage, PixelColor, Rgb565, Rgb888, RgbColor,
+};
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
@@ -191,7 +193,13 @@ impl<'a, F: PixelFormat> Framebuffer<'a, F> {
         if buf.len() < stride * height as usize {
             return Err(FramebufferError::BufferTooSmall);
         }
-        Ok(Framebuffer { buf, width, height, stride, _f: PhantomData })
+        Ok(Framebuffer {
+            buf,
+            width,
+            height,
+            stride,
+            _f: PhantomData,
+        })
     }
 
     /// Width in pixels.
@@ -316,7 +324,11 @@ mod tests {
                 F::fill_row(&mut row, 0, width as usize, colors[0]);
                 F::fill_row(&mut row, x0, x1, colors[1]);
                 for x in 0..width as usize {
-                    let want = if (x0..x1).contains(&x) { colors[1] } else { colors[0] };
+                    let want = if (x0..x1).contains(&x) {
+                        colors[1]
+                    } else {
+                        colors[0]
+                    };
                     assert_eq!(F::get(&row, x), want, "x0={x0} x1={x1} x={x}");
                 }
             }
@@ -346,8 +358,14 @@ mod tests {
     #[test]
     fn constructor_checks() {
         let mut small = [0u16; 10];
-        assert_eq!(Rgb565Framebuffer::new(&mut small, 4, 3).err(), Some(FramebufferError::BufferTooSmall));
-        assert_eq!(Rgb565Framebuffer::new(&mut small, 0, 3).err(), Some(FramebufferError::BadSize));
+        assert_eq!(
+            Rgb565Framebuffer::new(&mut small, 4, 3).err(),
+            Some(FramebufferError::BufferTooSmall)
+        );
+        assert_eq!(
+            Rgb565Framebuffer::new(&mut small, 0, 3).err(),
+            Some(FramebufferError::BadSize)
+        );
         assert_eq!(Rgb888Framebuffer::required_len(4, 3), 36);
         assert_eq!(BinaryFramebuffer::required_len(9, 3), 6);
     }
@@ -362,7 +380,10 @@ mod tests {
     impl DrawTarget for Plain {
         type Color = Gray8;
         type Error = Infallible;
-        fn draw_iter<I: IntoIterator<Item = Pixel<Gray8>>>(&mut self, it: I) -> Result<(), Infallible> {
+        fn draw_iter<I: IntoIterator<Item = Pixel<Gray8>>>(
+            &mut self,
+            it: I,
+        ) -> Result<(), Infallible> {
             for Pixel(p, c) in it {
                 if p.x >= 0 && p.y >= 0 && (p.x as u32) < self.1 && (p.y as u32) < self.2 {
                     self.0[(p.y as u32 * self.1 + p.x as u32) as usize] = Some(c);
@@ -378,7 +399,12 @@ mod tests {
         let mut buf = vec![0u8; (w * h) as usize];
         let mut fb = Gray8Framebuffer::new(&mut buf, w, h).unwrap_or_else(|e| panic!("{e:?}"));
         let mut plain = Plain(vec![Some(Gray8::new(0)); (w * h) as usize], w, h);
-        let rects = [((-5, -3), (10, 8)), ((4, 5), (30, 2)), ((20, 15), (9, 9)), ((3, 3), (0, 5))];
+        let rects = [
+            ((-5, -3), (10, 8)),
+            ((4, 5), (30, 2)),
+            ((20, 15), (9, 9)),
+            ((3, 3), (0, 5)),
+        ];
         for (k, ((x, y), (rw, rh))) in rects.into_iter().enumerate() {
             let r = Rectangle::new(Point::new(x, y), Size::new(rw, rh));
             let c = Gray8::new(40 * k as u8 + 30);

@@ -56,12 +56,12 @@ mod tests_render;
 pub use band::{band_starts, Band};
 pub use camera::{Camera, Mat4, Orbit};
 pub use framebuffer::{
-    BinaryFramebuffer, Framebuffer, FramebufferError, Gray8Framebuffer, PixelFormat, Rgb565Framebuffer,
-    Rgb888Framebuffer,
+    BinaryFramebuffer, Framebuffer, FramebufferError, Gray8Framebuffer, PixelFormat,
+    Rgb565Framebuffer, Rgb888Framebuffer,
 };
 pub use precision::{
-    Config, DefaultPrecision, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Libm, MathFns, Micromath,
-    Precision,
+    Config, DefaultPrecision, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Libm,
+    MathFns, Micromath, Precision,
 };
 pub use renderer::{Face, Outcome, RenderStats, Renderer, Scratch, SkipReason};
 pub use scan::{fill_polygon, FillRule, Paint, SpanBounds, SpanSink};

@@ -151,12 +151,23 @@ mod tests {
             max_diff = max_diff.max((Micromath::sin(x) - Libm::sin(x)).abs());
             if (-0.7..0.7).contains(&x) {
                 // The range camera half-fovs use.
-                assert!(close(Micromath::tan(x), Libm::tan(x), 2e-2 * (1.0 + Libm::tan(x).abs())), "{x}");
+                assert!(
+                    close(
+                        Micromath::tan(x),
+                        Libm::tan(x),
+                        2e-2 * (1.0 + Libm::tan(x).abs())
+                    ),
+                    "{x}"
+                );
             }
             let y = 0.37 + i as f32 * 1.7 + 50.0 * 1.7;
             assert!(close(Micromath::recip(y) * y, 1.0, 1e-4));
             // micromath's sqrt is a bit trick with ~5-7 % error (documented).
-            assert!(close(Micromath::sqrt(y), Libm::sqrt(y), 0.08 * Libm::sqrt(y)));
+            assert!(close(
+                Micromath::sqrt(y),
+                Libm::sqrt(y),
+                0.08 * Libm::sqrt(y)
+            ));
             assert_eq!(Micromath::floor(x * 10.0), Libm::floor(x * 10.0));
         }
         // If this were std/libm in disguise the difference would be zero.

@@ -56,7 +56,12 @@ impl SpanBounds {
     /// The rectangle `[0, width) × [0, height)`.
     pub fn of_size(width: u32, height: u32) -> SpanBounds {
         let c = |v: u32| v.min(i32::MAX as u32) as i32;
-        SpanBounds { x0: 0, y0: 0, x1: c(width), y1: c(height) }
+        SpanBounds {
+            x0: 0,
+            y0: 0,
+            x1: c(width),
+            y1: c(height),
+        }
     }
 
     /// The intersection with `o` (possibly empty).
@@ -152,7 +157,7 @@ pub fn fill_polygon<K: SpanSink>(
     // col(x) = floor((x − ½ pixel) in pixels); every crossing lies in
     // [col(lo), col(hi) + 1].
     let col = |x: i32| (2 * x as i64 - (1i64 << sub)).div_euclid(2i64 << sub);
-    if col(hi) + 1 <= b.x0 as i64 || col(lo) >= b.x1 as i64 {
+    if col(hi) < b.x0 as i64 || col(lo) >= b.x1 as i64 {
         return Ok(0);
     }
     let n = build_edges(pts, sub, b.y0, b.y1, edges).ok_or(FillError::Capacity)?;

@@ -96,7 +96,11 @@ impl Light {
     /// weights in `[0, 1]` (clamped).
     pub fn new(toward_light: [f32; 3], ambient: f32, diffuse: f32) -> Light {
         let w = |v: f32| Fx14::from_f32_saturating(v.clamp(0.0, 1.0));
-        Light { dir: unit_from_f32(toward_light), ambient: w(ambient), diffuse: w(diffuse) }
+        Light {
+            dir: unit_from_f32(toward_light),
+            ambient: w(ambient),
+            diffuse: w(diffuse),
+        }
     }
 
     /// The normalised direction toward the light.
@@ -167,8 +171,15 @@ mod tests {
 
     #[test]
     fn unit_vectors_have_unit_length() {
-        for v in [[3.0, 4.0, 0.0], [1e-20, -2e-20, 5e-21], [1e30, 1.0, -1e30], [0.0, 0.0, -7.0]] {
-            let Some(u) = unit_from_f32(v) else { panic!("{v:?}") };
+        for v in [
+            [3.0, 4.0, 0.0],
+            [1e-20, -2e-20, 5e-21],
+            [1e30, 1.0, -1e30],
+            [0.0, 0.0, -7.0],
+        ] {
+            let Some(u) = unit_from_f32(v) else {
+                panic!("{v:?}")
+            };
             let len2: i64 = u.iter().map(|c| c.raw() as i64 * c.raw() as i64).sum();
             let one = 1i64 << 28;
             assert!((len2 - one).abs() < one / 2000, "{v:?} {u:?}");
@@ -189,7 +200,10 @@ mod tests {
         let cos60 = [libm::sqrtf(3.0), 0.0, 1.0]; // 60° from the light
         assert!(near(light.intensity(cos60), 0.2 + 0.8 * 0.5));
         assert!(near(light.intensity([0.0; 3]), 0.2));
-        assert_eq!(light.intensity_q([0, 0, 1 << 16]), light.intensity([0.0, 0.0, 1.0]));
+        assert_eq!(
+            light.intensity_q([0, 0, 1 << 16]),
+            light.intensity([0.0, 0.0, 1.0])
+        );
         // Ambient + diffuse over 1 saturates at 1.
         let hot = Light::new([0.0, 1.0, 0.0], 0.9, 0.9);
         assert_eq!(hot.intensity([0.0, 1.0, 0.0]), Fx14::ONE);
@@ -202,7 +216,10 @@ mod tests {
     fn modes() {
         let light = Light::new([0.0, 0.0, 1.0], 0.0, 1.0);
         let c = [200, 100, 50];
-        assert_eq!(shade(ShadeMode::Flat, &light, [1.0, 0.0, 0.0], c), Rgb888::new(200, 100, 50));
+        assert_eq!(
+            shade(ShadeMode::Flat, &light, [1.0, 0.0, 0.0], c),
+            Rgb888::new(200, 100, 50)
+        );
         let half = [libm::sqrtf(3.0), 0.0, 1.0];
         let l = shade(ShadeMode::Lambert, &light, half, c);
         assert_eq!((l.r(), l.g(), l.b()), (100, 50, 25));

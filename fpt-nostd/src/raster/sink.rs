@@ -29,7 +29,10 @@ where
 {
     /// Wraps `target`.
     pub fn new(target: &'a mut D) -> Self {
-        DrawTargetSink { target, error: None }
+        DrawTargetSink {
+            target,
+            error: None,
+        }
     }
 
     /// The first drawing error, if any.
@@ -144,8 +147,19 @@ mod tests {
     fn draw_target_sink_clips_to_target_and_reports_bounds() {
         let mut d: MockDisplay<BinaryColor> = MockDisplay::new();
         let mut s = DrawTargetSink::new(&mut d);
-        assert_eq!(s.bounds(), SpanBounds { x0: 0, y0: 0, x1: 64, y1: 64 });
-        let c = s.color(&Paint { rgb: Rgb888::new(255, 255, 255), id: 0 });
+        assert_eq!(
+            s.bounds(),
+            SpanBounds {
+                x0: 0,
+                y0: 0,
+                x1: 64,
+                y1: 64
+            }
+        );
+        let c = s.color(&Paint {
+            rgb: Rgb888::new(255, 255, 255),
+            id: 0,
+        });
         s.span(3, 2, 5, c);
         assert!(s.finish().is_ok());
         let on = |x, y| d.get_pixel(Point::new(x, y)) == Some(BinaryColor::On);
@@ -159,7 +173,10 @@ mod tests {
             Ok(b) => b,
             Err(e) => panic!("{e:?}"),
         };
-        let c = ids.color(&Paint { rgb: Rgb888::new(0, 0, 0), id: 7 });
+        let c = ids.color(&Paint {
+            rgb: Rgb888::new(0, 0, 0),
+            id: 7,
+        });
         ids.span(1, -3, 2, c);
         ids.span(5, 0, 4, c); // outside: ignored
         assert_eq!(ids.data(), &[0, 0, 0, 0, 8, 8, 0, 0, 0, 0, 0, 0]);

@@ -44,7 +44,13 @@ pub(crate) struct CountSink {
 
 impl CountSink {
     pub fn new(w: i32, h: i32) -> Self {
-        CountSink { w, h, y0: 0, count: vec![0; (w * h) as usize], id: vec![0; (w * h) as usize] }
+        CountSink {
+            w,
+            h,
+            y0: 0,
+            count: vec![0; (w * h) as usize],
+            id: vec![0; (w * h) as usize],
+        }
     }
     pub fn at(&self, x: i32, y: i32) -> u32 {
         self.count[(y * self.w + x) as usize]
@@ -57,11 +63,19 @@ impl SpanSink for CountSink {
         p.id + 1
     }
     fn bounds(&self) -> SpanBounds {
-        SpanBounds { x0: 0, y0: self.y0, x1: self.w, y1: self.y0 + self.h }
+        SpanBounds {
+            x0: 0,
+            y0: self.y0,
+            x1: self.w,
+            y1: self.y0 + self.h,
+        }
     }
     fn span(&mut self, y: i32, x0: i32, x1: i32, c: u32) {
         let b = self.bounds();
-        assert!(y >= b.y0 && y < b.y1 && b.x0 <= x0 && x0 < x1 && x1 <= b.x1, "span {y} {x0}..{x1}");
+        assert!(
+            y >= b.y0 && y < b.y1 && b.x0 <= x0 && x0 < x1 && x1 <= b.x1,
+            "span {y} {x0}..{x1}"
+        );
         for x in x0..x1 {
             let k = ((y - self.y0) * self.w + x) as usize;
             self.count[k] += 1;
@@ -71,11 +85,25 @@ impl SpanSink for CountSink {
 }
 
 /// Fills `pts` with enough scratch; panics on scratch errors (a bug here).
-pub(crate) fn fill<K: SpanSink>(pts: &[ScreenPt], sub: u32, rule: FillRule, sink: &mut K, id: u32) -> usize {
+pub(crate) fn fill<K: SpanSink>(
+    pts: &[ScreenPt],
+    sub: u32,
+    rule: FillRule,
+    sink: &mut K,
+    id: u32,
+) -> usize {
     let mut edges = vec![Edge::default(); pts.len()];
     let mut active = vec![0u16; pts.len()];
-    let all = SpanBounds { x0: i32::MIN, y0: i32::MIN, x1: i32::MAX, y1: i32::MAX };
-    let c = sink.color(&Paint { rgb: Default::default(), id });
+    let all = SpanBounds {
+        x0: i32::MIN,
+        y0: i32::MIN,
+        x1: i32::MAX,
+        y1: i32::MAX,
+    };
+    let c = sink.color(&Paint {
+        rgb: Default::default(),
+        id,
+    });
     fill_polygon(pts, sub, rule, &all, &mut edges, &mut active, c, sink)
         .unwrap_or_else(|e| panic!("fill failed: {e:?}"))
 }
@@ -95,7 +123,12 @@ fn reference_inside(pts: &[ScreenPt], sub: u32, i: i32, j: i32) -> Option<bool> 
     for k in 0..pts.len() {
         let a = pts[k];
         let b = pts[(k + 1) % pts.len()];
-        let (ax, ay, bx, by) = (2 * a.x as i128, 2 * a.y as i128, 2 * b.x as i128, 2 * b.y as i128);
+        let (ax, ay, bx, by) = (
+            2 * a.x as i128,
+            2 * a.y as i128,
+            2 * b.x as i128,
+            2 * b.y as i128,
+        );
         let cross = (bx - ax) * (py - ay) - (by - ay) * (px - ax);
         let within = px >= ax.min(bx) && px <= ax.max(bx) && py >= ay.min(by) && py <= ay.max(by);
         if cross == 0 && within {
@@ -150,7 +183,12 @@ fn square_covers_exactly_the_expected_pixels() {
 /// A random simple quadrilateral a-b-c-d split along a-c into two
 /// triangles on opposite sides of the diagonal.
 fn random_split_quad(rng: &mut Rng, sub: u32, span: i32) -> Option<[ScreenPt; 4]> {
-    let mut r = || pt(rng.range(-4 << sub, span << sub), rng.range(-4 << sub, span << sub));
+    let mut r = || {
+        pt(
+            rng.range(-4 << sub, span << sub),
+            rng.range(-4 << sub, span << sub),
+        )
+    };
     let (a, b, c, d) = (r(), r(), r(), r());
     let side = |p: ScreenPt| {
         (c.x - a.x) as i64 * (p.y - a.y) as i64 - (c.y - a.y) as i64 * (p.x - a.x) as i64
@@ -177,7 +215,11 @@ fn triangles_sharing_an_edge_cover_their_union_exactly_once() {
             if round % 3 == 0 {
                 t2.reverse();
             }
-            let rule = if round % 5 == 0 { FillRule::EvenOdd } else { FillRule::NonZero };
+            let rule = if round % 5 == 0 {
+                FillRule::EvenOdd
+            } else {
+                FillRule::NonZero
+            };
             let mut both = CountSink::new(40, 40);
             fill(&t1, sub, rule, &mut both, 1);
             fill(&t2, sub, rule, &mut both, 2);
@@ -202,13 +244,21 @@ fn jittered_mesh_covers_its_rectangle_exactly_once() {
             for (i, p) in row.iter_mut().enumerate() {
                 let interior = i > 0 && i < nx && j > 0 && j < ny;
                 let jit = if interior { cell / 3 } else { 0 };
-                *p = pt(i as i32 * cell + rng.range(-jit, jit), j as i32 * cell + rng.range(-jit, jit));
+                *p = pt(
+                    i as i32 * cell + rng.range(-jit, jit),
+                    j as i32 * cell + rng.range(-jit, jit),
+                );
             }
         }
         let mut s = CountSink::new(60, 50);
         for j in 0..ny {
             for i in 0..nx {
-                let (p00, p10, p01, p11) = (grid[j][i], grid[j][i + 1], grid[j + 1][i], grid[j + 1][i + 1]);
+                let (p00, p10, p01, p11) = (
+                    grid[j][i],
+                    grid[j][i + 1],
+                    grid[j + 1][i],
+                    grid[j + 1][i + 1],
+                );
                 if (i + j) % 2 == 0 {
                     fill(&[p00, p10, p11], sub, FillRule::NonZero, &mut s, 0);
                     fill(&[p00, p11, p01], sub, FillRule::NonZero, &mut s, 1);
@@ -263,7 +313,19 @@ fn concave_polygons_match_point_in_polygon() {
     for sub in [0u32, 1, 4, 8] {
         let st = star(30, 25, 22.0, 8.0, 7, sub);
         assert!(check_against_reference(&st, sub, 64, 52) > 300);
-        let u = scaled(&[(5, 5), (15, 5), (15, 30), (35, 30), (35, 5), (45, 5), (45, 40), (5, 40)], sub);
+        let u = scaled(
+            &[
+                (5, 5),
+                (15, 5),
+                (15, 30),
+                (35, 30),
+                (35, 5),
+                (45, 5),
+                (45, 40),
+                (5, 40),
+            ],
+            sub,
+        );
         assert!(check_against_reference(&u, sub, 50, 45) > 500);
         // Same U with fractional vertices.
         let mut uf = u.clone();
@@ -282,7 +344,10 @@ fn concave_polygons_match_point_in_polygon() {
             .map(|k| {
                 let a = k as f32 * 2.0 * core::f32::consts::PI / n as f32;
                 let r = rng.float(3.0, 20.0) * (1 << sub) as f32;
-                pt((20.0 * (1 << sub) as f32 + r * libm::cosf(a)) as i32, (20.0 * (1 << sub) as f32 + r * libm::sinf(a)) as i32)
+                pt(
+                    (20.0 * (1 << sub) as f32 + r * libm::cosf(a)) as i32,
+                    (20.0 * (1 << sub) as f32 + r * libm::sinf(a)) as i32,
+                )
             })
             .collect();
         check_against_reference(&poly, sub, 42, 42);
@@ -310,7 +375,9 @@ fn bounds_and_bands_reproduce_the_full_fill() {
     let polys: Vec<Vec<ScreenPt>> = (0..40)
         .map(|_| {
             let n = rng.range(3, 9) as usize;
-            (0..n).map(|_| pt(rng.range(-200, 1200), rng.range(-200, 900))).collect()
+            (0..n)
+                .map(|_| pt(rng.range(-200, 1200), rng.range(-200, 900)))
+                .collect()
         })
         .collect();
     let (w, h) = (64, 48);
@@ -328,8 +395,15 @@ fn bounds_and_bands_reproduce_the_full_fill() {
                 fill(p, 4, FillRule::NonZero, &mut band, k as u32);
             }
             let at = (y0 * w) as usize;
-            assert_eq!(&band_buf.id[..(n * w) as usize], &full.id[at..at + (n * w) as usize], "rows {rows} y0 {y0}");
-            assert_eq!(&band_buf.count[..(n * w) as usize], &full.count[at..at + (n * w) as usize]);
+            assert_eq!(
+                &band_buf.id[..(n * w) as usize],
+                &full.id[at..at + (n * w) as usize],
+                "rows {rows} y0 {y0}"
+            );
+            assert_eq!(
+                &band_buf.count[..(n * w) as usize],
+                &full.count[at..at + (n * w) as usize]
+            );
             y0 += rows;
         }
     }
@@ -342,18 +416,45 @@ fn spans_respect_an_offset_clip_rectangle() {
     fill(&poly, 2, FillRule::NonZero, &mut full, 0);
     let mut edges = [Edge::default(); 10];
     let mut active = [0u16; 10];
-    let clip = SpanBounds { x0: 7, y0: 9, x1: 23, y1: 31 };
+    let clip = SpanBounds {
+        x0: 7,
+        y0: 9,
+        x1: 23,
+        y1: 31,
+    };
     let mut part = CountSink::new(40, 40);
-    let r = fill_polygon(&poly, 2, FillRule::NonZero, &clip, &mut edges, &mut active, 1, &mut part);
+    let r = fill_polygon(
+        &poly,
+        2,
+        FillRule::NonZero,
+        &clip,
+        &mut edges,
+        &mut active,
+        1,
+        &mut part,
+    );
     assert!(r.is_ok_and(|n| n > 0));
     for y in 0..40 {
         for x in 0..40 {
             let inside = (7..23).contains(&x) && (9..31).contains(&y);
-            assert_eq!(part.at(x, y), if inside { full.at(x, y) } else { 0 }, "({x},{y})");
+            assert_eq!(
+                part.at(x, y),
+                if inside { full.at(x, y) } else { 0 },
+                "({x},{y})"
+            );
         }
     }
     // Scratch too small is an error, not a panic.
     let mut small = [Edge::default(); 4];
-    let r = fill_polygon(&poly, 2, FillRule::NonZero, &clip, &mut small, &mut active, 1, &mut part);
+    let r = fill_polygon(
+        &poly,
+        2,
+        FillRule::NonZero,
+        &clip,
+        &mut small,
+        &mut active,
+        1,
+        &mut part,
+    );
     assert!(r.is_err());
 }

@@ -295,7 +295,10 @@ mod tests {
         let mx = Fix::prepare(&m);
         let a = Fix::transform(&mx, [1.5, -2.0, 0.25]);
         assert_eq!(Fix::transform_q(&mx, [3 << 15, -2 << 16, 1 << 14], 16), a);
-        assert_eq!(Fix::transform_q(&mx, [3, -4, 0], 1), Fix::transform(&mx, [1.5, -2.0, 0.0]));
+        assert_eq!(
+            Fix::transform_q(&mx, [3, -4, 0], 1),
+            Fix::transform(&mx, [1.5, -2.0, 0.0])
+        );
         let q32 = Fix::transform_q(&mx, [1 << 30, 0, 0], 32);
         assert_eq!(q32, Fix::transform(&mx, [0.25, 0.0, 0.0]));
         assert_eq!(Fix::transform_q(&mx, [1, 1, 1], 63), None);
@@ -320,28 +323,64 @@ mod tests {
 
     #[test]
     fn projection_follows_pixel_convention() {
-        let vp = Viewport::new(200, 100, 4).unwrap_or(Viewport { width: 1, height: 1, sub: 0 });
+        let vp = Viewport::new(200, 100, 4).unwrap_or(Viewport {
+            width: 1,
+            height: 1,
+            sub: 0,
+        });
         // ndc (-1, 1) is the top-left corner, (1, -1) the bottom-right.
-        let corners = [((-1.0, 1.0), (0, 0)), ((1.0, -1.0), (3200, 1600)), ((0.0, 0.0), (1600, 800))];
+        let corners = [
+            ((-1.0, 1.0), (0, 0)),
+            ((1.0, -1.0), (3200, 1600)),
+            ((0.0, 0.0), (1600, 800)),
+        ];
         for ((nx, ny), (ex, ey)) in corners {
             for w in [0.5f32, 2.0, 7.0] {
-                let f = ClipVert { x: nx * w, y: ny * w, w };
+                let f = ClipVert {
+                    x: nx * w,
+                    y: ny * w,
+                    w,
+                };
                 let s = Flt::project(&f, &vp);
                 assert_eq!(s, Some(ScreenPt { x: ex, y: ey }));
                 let g = |v: f32| FxWide::<16>::try_from_f32(v).unwrap_or_default();
-                let s = Fix::project(&ClipVert { x: g(f.x), y: g(f.y), w: g(f.w) }, &vp);
+                let s = Fix::project(
+                    &ClipVert {
+                        x: g(f.x),
+                        y: g(f.y),
+                        w: g(f.w),
+                    },
+                    &vp,
+                );
                 assert_eq!(s, Some(ScreenPt { x: ex, y: ey }));
-                assert_eq!(FloatPath::<Micromath>::project(&f, &vp), Some(ScreenPt { x: ex, y: ey }));
+                assert_eq!(
+                    FloatPath::<Micromath>::project(&f, &vp),
+                    Some(ScreenPt { x: ex, y: ey })
+                );
             }
         }
-        assert_eq!(Flt::project(&ClipVert { x: 0.0, y: 0.0, w: 0.0 }, &vp), None);
+        assert_eq!(
+            Flt::project(
+                &ClipVert {
+                    x: 0.0,
+                    y: 0.0,
+                    w: 0.0
+                },
+                &vp
+            ),
+            None
+        );
         let z = FxWide::<16>::ZERO;
         assert_eq!(Fix::project(&ClipVert { x: z, y: z, w: z }, &vp), None);
     }
 
     #[test]
     fn projection_of_extreme_fixed_values_does_not_overflow() {
-        let vp = Viewport::new(MAX_DIM, MAX_DIM, 8).unwrap_or(Viewport { width: 1, height: 1, sub: 0 });
+        let vp = Viewport::new(MAX_DIM, MAX_DIM, 8).unwrap_or(Viewport {
+            width: 1,
+            height: 1,
+            sub: 0,
+        });
         let big = FxWide::<16>::from_raw(i64::MAX);
         let one = FxWide::<16>::from_raw(1);
         for (x, w) in [(big, one), (big, big), (FxWide::from_raw(i64::MIN), one)] {

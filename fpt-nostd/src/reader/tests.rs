@@ -338,3 +338,21 @@ fn errors_display_without_alloc() {
     write!(b, "{}", FormatError::BadNode(12)).unwrap();
     assert_eq!(&b.0[..b.1], b"invalid connecting node 12");
 }
+
+#[test]
+fn reads_u32_indices() {
+    let mut r = one_square();
+    r.index_size = 4;
+    r.indices = std::vec![3, 2, 1, 0];
+    let bytes = r.bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    assert_eq!(t.index_size(), 4);
+    let p = t.polygon(0).unwrap();
+    assert_eq!((p.vertex_index(0), p.vertex_index(3)), (3, 0));
+    assert_eq!(p.vertex(0), [0.0, 1.0, 0.0]);
+    r.indices[1] = 70_000;
+    assert_eq!(
+        Tree::from_bytes(&r.bytes()).unwrap_err(),
+        FormatError::IndexOutOfRange
+    );
+}

@@ -18,7 +18,10 @@
 //!   (its sample lies within `edge_px` of the outline of a polygon that is not
 //!   clearly behind the visible surface there) or `tie` (the two nearest
 //!   covering polygons are within `tie_rel × scene diagonal` in depth, e.g.
-//!   where faces touch or coincide).
+//!   where faces touch or coincide). With culling, the outlines of culled
+//!   polygons seen almost edge-on (`|n · dir| ≤ edge_on_rel`, or the eye
+//!   within `edge_on_rel × scene diagonal` of the plane) count too: a walk
+//!   that tests facing with other rounding (`f32`) may draw them.
 //! - Cost is O(pixels × polygons) in the worst case, pruned by each polygon's
 //!   screen bounding box.
 
@@ -41,6 +44,9 @@ pub struct RefOptions {
     pub edge_px: f64,
     /// Depth differences below `tie_rel × scene diagonal` are ties.
     pub tie_rel: f64,
+    /// A culled polygon seen within this of edge-on (see the module docs)
+    /// still marks its outline as unsure.
+    pub edge_on_rel: f64,
 }
 
 impl Default for RefOptions {
@@ -49,6 +55,7 @@ impl Default for RefOptions {
             cull_backfaces: false,
             edge_px: 0.5,
             tie_rel: 1e-6,
+            edge_on_rel: 1e-6,
         }
     }
 }
@@ -150,22 +157,52 @@ impl Rays {
     }
 }
 
+/// One polygon that takes part, with its projection.
+struct Candidate<'a> {
+    id: u32,
+    poly: &'a Polygon,
+    screen: Screen,
+    /// Drawn; otherwise culled but so close to edge-on that a walk with
+    /// other rounding may draw it, so its outline still makes pixels unsure.
+    drawn: bool,
+}
+
+/// Whether the view sees `plane` within `rel` of edge-on: `|n · dir| ≤ rel`
+/// for a parallel view, the eye within `rel × diag` of the plane otherwise.
+fn edge_on(view: &View, plane: &crate::geom::Plane, rel: f64, diag: f64) -> bool {
+    match *view {
+        View::Parallel { dir } => plane.normal.dot(dir).abs() <= rel,
+        View::Perspective { eye } => plane.distance(eye).abs() <= rel * diag,
+    }
+}
+
 /// The polygons that take part, with their projections.
-fn projected<'a>(
+fn candidates<'a>(
     polys: &'a [Polygon],
     cam: &Camera,
     w: usize,
     h: usize,
-    cull: bool,
-) -> impl Iterator<Item = (usize, &'a Polygon, Screen)> + 'a {
-    let cam = *cam;
+    opt: &RefOptions,
+    diag: f64,
+) -> Vec<Candidate<'a>> {
     let view = cam.view();
-    polys.iter().enumerate().filter_map(move |(k, p)| {
-        if cull && !view.faces(&p.plane) {
-            return None;
-        }
-        Screen::project(&cam, &p.verts, w, h).map(|s| (k, p, s))
-    })
+    polys
+        .iter()
+        .enumerate()
+        .filter_map(|(k, poly)| {
+            let drawn = !opt.cull_backfaces || view.faces(&poly.plane);
+            if !drawn && !edge_on(&view, &poly.plane, opt.edge_on_rel, diag) {
+                return None;
+            }
+            let screen = Screen::project(cam, &poly.verts, w, h)?;
+            Some(Candidate {
+                id: k as u32 + 1,
+                poly,
+                screen,
+                drawn,
+            })
+        })
+        .collect()
 }
 
 /// The exact z-buffer picture of `polys` with the unsure pixels marked.
@@ -182,9 +219,9 @@ pub fn zbuffer(polys: &[Polygon], cam: &Camera, w: usize, h: usize, opt: RefOpti
     let mut ids = vec![0u32; n];
     let mut best = vec![f64::INFINITY; n];
     let mut second = vec![f64::INFINITY; n];
-    let screens: Vec<(usize, &Polygon, Screen)> =
-        projected(polys, cam, w, h, opt.cull_backfaces).collect();
-    for (k, poly, s) in &screens {
+    let cands = candidates(polys, cam, w, h, &opt, diag);
+    for part in cands.iter().filter(|p| p.drawn) {
+        let (poly, s) = (part.poly, &part.screen);
         let Some((i0, i1, j0, j1)) = s.pixel_box(w, h, 0.0) else {
             continue;
         };
@@ -201,7 +238,7 @@ pub fn zbuffer(polys: &[Polygon], cam: &Camera, w: usize, h: usize, opt: RefOpti
                 if z < best[p] {
                     second[p] = best[p];
                     best[p] = z;
-                    ids[p] = *k as u32 + 1;
+                    ids[p] = part.id;
                 } else if z < second[p] {
                     second[p] = z;
                 }
@@ -213,7 +250,8 @@ pub fn zbuffer(polys: &[Polygon], cam: &Camera, w: usize, h: usize, opt: RefOpti
     // surface: in front of it (it might cover the sample with other
     // rounding) or level with it (touching faces).
     let mut near_edge = vec![false; n];
-    for (_, poly, s) in &screens {
+    for part in &cands {
+        let (poly, s) = (part.poly, &part.screen);
         let Some((i0, i1, j0, j1)) = s.pixel_box(w, h, opt.edge_px) else {
             continue;
         };

@@ -42,7 +42,7 @@ impl Screen {
         let clip = clip_by(&clip, |c| c.z + c.w);
         let clip = clip_by(&clip, |c| c.w - c.z);
         // Both planes together imply w ≥ 0; a vertex at w = 0 has no image.
-        if clip.len() < 3 || clip.iter().any(|c| !(c.w > 0.0)) {
+        if clip.len() < 3 || clip.iter().any(|c| c.w.is_nan() || c.w <= 0.0) {
             return None;
         }
         let (wf, hf) = (w as f64, h as f64);

@@ -165,5 +165,39 @@ fn camera_from_matrix_renders_like_look_at() {
     let a = zbuffer_ids(&polys, &cam, 24, 24, false);
     let b = zbuffer_ids(&polys, &again, 24, 24, false);
     assert_eq!(a, b);
-    assert!(a.iter().any(|&i| i == 1) && a.iter().any(|&i| i == 2));
+    assert!(a.contains(&1) && a.contains(&2));
+}
+
+#[test]
+fn culled_faces_seen_almost_edge_on_make_their_outline_unsure() {
+    // A quad in the plane x = 0.01 tilted by 1e-9 rad, turned just away
+    // from a camera looking straight down: culled, yet a walk rounding its
+    // facing test differently could draw it along the line x = 0.01.
+    let mut v = vec![
+        DVec3::new(0.01 - 1e-9 * -0.5, -0.5, -0.5),
+        DVec3::new(0.01 - 1e-9 * -0.5, 0.5, -0.5),
+        DVec3::new(0.01 - 1e-9 * 0.5, 0.5, 0.5),
+        DVec3::new(0.01 - 1e-9 * 0.5, -0.5, 0.5),
+    ];
+    let cam = from_above();
+    let p = Polygon::new(v.clone(), 0, [0; 3]).unwrap();
+    if cam.view().faces(&p.plane) {
+        v.reverse();
+    }
+    let polys = vec![Polygon::new(v, 0, [0; 3]).unwrap()];
+    assert!(!cam.view().faces(&polys[0].plane));
+    let opt = RefOptions {
+        cull_backfaces: true,
+        ..RefOptions::default()
+    };
+    let frame = zbuffer(&polys, &cam, 40, 40, opt);
+    assert!(frame.ids.iter().all(|&i| i == 0));
+    // Column 20 samples x = 0.025, 0.3 px from the line; column 22 is far.
+    assert!(frame.near_edge[20 * 40 + 20] && !frame.near_edge[20 * 40 + 22]);
+    let strict = RefOptions {
+        edge_on_rel: 0.0,
+        ..opt
+    };
+    let frame = zbuffer(&polys, &cam, 40, 40, strict);
+    assert!(!frame.near_edge.contains(&true));
 }

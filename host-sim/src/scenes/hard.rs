@@ -208,7 +208,7 @@ fn slab(
 pub fn near_coplanar_stack() -> Scene {
     let mut s = SceneBuilder::default();
     let (thick, gap) = (2e-3, 1e-5);
-    for k in 0..6 {
+    for (k, &color) in PALETTE.iter().enumerate().take(6) {
         let kf = k as f64;
         let turn = 0.03 * kf;
         let shift = DVec2::new(0.04 * kf, 0.025 * kf);
@@ -222,7 +222,7 @@ pub fn near_coplanar_stack() -> Scene {
         let bottom_tilt = if k % 3 == 1 { 1.1e-6 } else { 0.0 };
         let bottom = move |q: DVec2| base + bottom_tilt * (q.x - q.y) * 0.5;
         let top = move |q: DVec2| base + thick + ta * q.x + tb * q.y;
-        s.add(slab(foot, bottom, top, PALETTE[k]));
+        s.add(slab(foot, bottom, top, color));
     }
     s.finish("near_coplanar_stack", true)
 }

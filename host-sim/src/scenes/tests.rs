@@ -185,7 +185,7 @@ fn closed_scenes_are_unions_of_closed_outward_parts() {
             let origin = part[0].verts[0];
             let volume: f64 = part
                 .iter()
-                .map(|p| crate::geom::area(&p.verts) * p.plane.distance(origin) * -1.0 / 3.0)
+                .map(|p| -crate::geom::area(&p.verts) * p.plane.distance(origin) / 3.0)
                 .sum();
             assert!(volume > 0.0, "{} part {k}: volume {volume}", s.name);
         }
@@ -272,4 +272,3 @@ fn defects_are_found() {
     s.polygons.truncate(5);
     assert_eq!(closed_defects(&cube_grid().polygons[..5], 100).len(), 4);
 }
-
