@@ -178,8 +178,36 @@ fn meshes_in(dir: &Path) -> Vec<PathBuf> {
     v
 }
 
+/// `fpt bench-build --scaling`: build time against polygon count.
+fn bench_scaling() -> CliResult {
+    println!("| polygons | method | output | splittings | relations | build ms |");
+    println!("|---|---|---|---|---|---|");
+    for (major, minor) in [(38, 20), (54, 28), (78, 39), (110, 55), (156, 78)] {
+        let scene = crate::scenes::torus(major, minor);
+        for method in [Method::Static, Method::Dynamic, Method::Bsp] {
+            let mut bar = Bar::new();
+            let seed = crate::build::DEFAULT_SEED;
+            let t = build(scene.polygons.clone(), true, method, seed, &mut bar);
+            let s = &t.stats;
+            println!(
+                "| {} | {} | {} | {} | {} | {:.1} |",
+                s.input_polygons,
+                method.name(),
+                s.output_polygons,
+                s.splittings,
+                s.relations,
+                s.build_ms
+            );
+        }
+    }
+    Ok(())
+}
+
 /// `fpt bench-build`: static, dynamic and BSP side by side per model.
 pub fn bench(a: &BenchBuildArgs) -> CliResult {
+    if a.scaling {
+        return bench_scaling();
+    }
     let meshes = if a.meshes.is_empty() {
         let dir = shared_models_dir()
             .ok_or_else(|| cli_err!("no meshes given and ../shared/models not found"))?;

@@ -116,6 +116,10 @@ pub struct BenchBuildArgs {
     /// Builds per method and model; times are averaged.
     #[arg(long, default_value_t = 1)]
     pub runs: u32,
+    /// Instead of meshes: build faceted tori of 750 to 12,000 polygons and
+    /// show how build time grows with the polygon count.
+    #[arg(long)]
+    pub scaling: bool,
 }
 
 /// Arguments of `fpt bench-order`.
@@ -165,9 +169,16 @@ where
                 print!("{e}");
                 return 0;
             }
-            // clap's message spans several lines; the contract is one line.
+            // clap's message spans several lines; the contract is one line:
+            // keep what comes before the usage text, joined.
             let text = e.to_string();
-            let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("error: bad arguments");
+            let first: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.starts_with("Usage:"))
+                .map(str::trim)
+                .filter(|l| !l.is_empty() && !l.starts_with("For more information"))
+                .collect();
+            let first = first.join(" ");
             let first = first.trim_start_matches("error: ");
             eprintln!("error: {first}");
             return 2;

@@ -18,6 +18,7 @@ mod city;
 mod hard;
 mod house;
 pub(crate) mod parts;
+mod torus;
 mod vise;
 
 pub use city::bench_city;
@@ -26,6 +27,7 @@ pub use hard::{
     slivers,
 };
 pub use house::house;
+pub use torus::torus;
 pub use vise::vise;
 
 use crate::geom::Polygon;

@@ -1,0 +1,164 @@
+//! `fpt build` run as the real binary: good meshes give a tree and a stats
+//! file; bad input of any kind gives exit status 2, one `error: ` line, and
+//! no output file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn fpt(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fpt"))
+        .args(args)
+        .output()
+        .expect("running fpt")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fpt-cli-build-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+const CUBE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+
+fn write(name: &str, text: &[u8]) -> PathBuf {
+    let p = tmp(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// Exit status 2, exactly one line on stderr starting with `error: `.
+fn assert_error(out: &Output, what: &str) {
+    assert_eq!(out.status.code(), Some(2), "{what}: status");
+    let err = String::from_utf8_lossy(&out.stderr);
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 1, "{what}: stderr {err:?}");
+    assert!(lines[0].starts_with("error: "), "{what}: {err:?}");
+}
+
+#[test]
+fn builds_tree_and_stats_with_every_method() {
+    let mesh = write("cube.obj", CUBE_OBJ.as_bytes());
+    for method in ["static", "dynamic", "bsp"] {
+        let out_tree = tmp(&format!("cube-{method}.fpt"));
+        let stats = tmp(&format!("cube-{method}.json"));
+        let out = fpt(&[
+            "build",
+            s(&mesh),
+            "-o",
+            s(&out_tree),
+            "--method",
+            method,
+            "--stats",
+            s(&stats),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
+        for key in [
+            "input_polygons",
+            "output_polygons",
+            "splittings",
+            "connecting_nodes",
+            "switch_nodes",
+            "relations",
+            "max_depth",
+            "build_ms",
+            "closed",
+        ] {
+            assert!(v.get(key).is_some(), "{method}: stats lack {key}");
+        }
+        assert_eq!(v["input_polygons"], 6);
+        assert_eq!(v["closed"], true);
+        let info = fpt(&["info", s(&out_tree)]);
+        assert!(info.status.success());
+    }
+    // --open overrides the detected closed volume.
+    let out_tree = tmp("cube-open.fpt");
+    let stats = tmp("cube-open.json");
+    let out = fpt(&[
+        "build",
+        s(&mesh),
+        "-o",
+        s(&out_tree),
+        "--open",
+        "--stats",
+        s(&stats),
+    ]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
+    assert_eq!(v["closed"], false);
+}
+
+#[test]
+fn bad_input_is_one_error_line_and_no_file() {
+    let good = write("good.obj", CUBE_OBJ.as_bytes());
+    let cases: Vec<(&str, PathBuf, Vec<&str>)> = vec![
+        ("missing mesh", tmp("does-not-exist.obj"), vec![]),
+        ("unknown extension", write("mesh.xyz", b"hello"), vec![]),
+        (
+            "malformed obj",
+            write("bad.obj", b"v 0 0\nf 1 2 3\n"),
+            vec![],
+        ),
+        (
+            "index out of range",
+            write("idx.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
+            vec![],
+        ),
+        (
+            "non-finite vertex",
+            write("nan.obj", b"v 0 0 nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+            vec![],
+        ),
+        ("empty mesh", write("empty.off", b"OFF\n0 0 0\n"), vec![]),
+        ("truncated stl", write("trunc.stl", &[0u8; 90]), vec![]),
+        ("unknown method", good.clone(), vec!["--method", "octree"]),
+        (
+            "unknown vertex format",
+            good.clone(),
+            vec!["--vertex-format", "f16"],
+        ),
+        ("unknown option", good.clone(), vec!["--frobnicate"]),
+        ("bad seed", good.clone(), vec!["--seed", "-1"]),
+        ("closed and open", good.clone(), vec!["--closed", "--open"]),
+    ];
+    for (what, mesh, extra) in cases {
+        let out_tree = tmp(&format!("out-{}.fpt", what.replace(' ', "-")));
+        let mut args = vec!["build", s(&mesh), "-o", s(&out_tree)];
+        args.extend(extra);
+        let out = fpt(&args);
+        assert_error(&out, what);
+        assert!(!out_tree.exists(), "{what}: a partial output file was left");
+    }
+}
+
+#[test]
+fn unwritable_stats_leaves_no_tree() {
+    let good = write("good2.obj", CUBE_OBJ.as_bytes());
+    let out_tree = tmp("never.fpt");
+    let stats = tmp("no/such/dir/stats.json");
+    let out = fpt(&["build", s(&good), "-o", s(&out_tree), "--stats", s(&stats)]);
+    assert_error(&out, "unwritable stats");
+    assert!(!out_tree.exists());
+}
+
+#[test]
+fn degenerate_faces_are_counted_in_one_warning() {
+    let text = format!("{CUBE_OBJ}f 1 1 2\nf 1 2 2 1\n");
+    let mesh = write("degenerate.obj", text.as_bytes());
+    let out_tree = tmp("degenerate.fpt");
+    let out = fpt(&["build", s(&mesh), "-o", s(&out_tree)]);
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    let warnings: Vec<&str> = err.lines().filter(|l| l.contains("warning")).collect();
+    assert_eq!(warnings.len(), 1, "{err}");
+    assert!(warnings[0].contains('2'), "{err}");
+}
