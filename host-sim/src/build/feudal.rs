@@ -6,8 +6,10 @@
 //! a random order and acts on each as soon as it shows an absolute priority
 //! polygon or a separating plane, then finishes what is left statically.
 
+use super::auxiliary::best_aux;
 use super::table::{Rel, Table};
 use super::Ctx;
+use crate::geom::Plane;
 use crate::tree::{Connecting, Level, Switch};
 use std::cmp::Ordering;
 
@@ -47,8 +49,20 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
             switch: None,
         };
     }
-    let s = choose_separator(&table, ctx).unwrap_or_else(|| choose_splitter(&table, ctx));
-    let switch = make_switch(table, s, mode, ctx);
+    let switch = if let Some(s) = choose_separator(&table, ctx) {
+        make_switch(table, s, mode, ctx)
+    } else {
+        let s = choose_splitter(&table, ctx);
+        let [f, b, c] = table.counts(s);
+        let aux = best_aux(&table, ctx, split_score).filter(|a| a.score < split_score(f, b, c));
+        match aux {
+            Some(a) => {
+                let rels = a.rels;
+                make_switch_on(table, a.plane, None, |p| rels[p], mode, ctx)
+            }
+            None => make_switch(table, s, mode, ctx),
+        }
+    };
     Connecting {
         levels,
         switch: Some(Box::new(switch)),
@@ -226,36 +240,54 @@ fn choose_separator(t: &Table, ctx: &Ctx) -> Option<usize> {
 /// `shuttle.obj`, `rabbit.obj` and `suzanne.obj` (`fpt bench-build`).
 pub const SPLIT_WEIGHT: u32 = 8;
 
+/// The rank of a splitting plane with `f` polygons in front, `b` behind
+/// and `c` cut: lower is better (see [`SPLIT_WEIGHT`]).
+fn split_score(f: u32, b: u32, c: u32) -> (u32, u32) {
+    (
+        c.saturating_mul(SPLIT_WEIGHT).saturating_add(f.abs_diff(b)),
+        c,
+    )
+}
+
 /// Step 5: the fewest cuts, weighed against balance (see [`SPLIT_WEIGHT`]).
 fn choose_splitter(t: &Table, ctx: &Ctx) -> usize {
-    best_by(t, ctx, |[f, b, c]| {
-        Some((
-            c.saturating_mul(SPLIT_WEIGHT).saturating_add(f.abs_diff(b)),
-            c,
-        ))
-    })
-    .or_else(|| (0..t.len()).find(|&q| t.is_alive(q)))
-    .unwrap_or(0)
+    best_by(t, ctx, |[f, b, c]| Some(split_score(f, b, c)))
+        .or_else(|| (0..t.len()).find(|&q| t.is_alive(q)))
+        .unwrap_or(0)
 }
 
 /// Makes the switch node on the plane of member `s`: its coplanar bunch, and
 /// the groups in front and behind, splitting the polygons it cuts.
 fn make_switch(t: Table, s: usize, mode: Mode, ctx: &mut Ctx) -> Switch {
-    let sid = t.ids[s];
-    let plane = ctx.polys[sid as usize].plane;
-    let mut on = vec![sid];
+    let plane = ctx.polys[t.ids[s] as usize].plane;
+    let row: Vec<Rel> = (0..t.len()).map(|p| t.rel(s, p)).collect();
+    make_switch_on(t, plane, Some(s), |p| row[p], mode, ctx)
+}
+
+/// Makes a switch node on `plane`, given the relation `rel(p)` of each
+/// member to it (`Unknown` ones are computed); `member` is the polygon the
+/// plane was taken from, if any.
+fn make_switch_on(
+    t: Table,
+    plane: Plane,
+    member: Option<usize>,
+    rel: impl Fn(usize) -> Rel,
+    mode: Mode,
+    ctx: &mut Ctx,
+) -> Switch {
+    let mut on: Vec<u32> = member.map(|s| t.ids[s]).into_iter().collect();
     let (mut front, mut back) = (Vec::new(), Vec::new());
     let (mut front_pieces, mut back_pieces) = (Vec::new(), Vec::new());
     for p in 0..t.len() {
-        if p == s || !t.is_alive(p) {
+        if Some(p) == member || !t.is_alive(p) {
             continue;
         }
         let pid = t.ids[p];
-        let rel = match t.rel(s, p) {
-            Rel::Unknown => ctx.relation(pid, sid),
+        let r = match rel(p) {
+            Rel::Unknown => ctx.relation_to_plane(pid, &plane),
             r => r,
         };
-        match rel {
+        match r {
             Rel::Front => front.push(p),
             Rel::Back => back.push(p),
             Rel::Same | Rel::Opposite => on.push(pid),

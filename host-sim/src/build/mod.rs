@@ -7,6 +7,7 @@
 //! never split come out exactly as they came in; pieces and planes are moved
 //! back into model coordinates.
 
+mod auxiliary;
 mod bsp;
 mod feudal;
 mod rng;
@@ -53,13 +54,19 @@ pub(crate) struct Ctx<'a> {
 impl Ctx<'_> {
     /// One one-way priority relation: polygon `p` against the plane of `q`.
     pub fn relation(&mut self, p: u32, q: u32) -> Rel {
+        let plane = self.polys[q as usize].plane;
+        self.relation_to_plane(p, &plane)
+    }
+
+    /// One one-way priority relation: polygon `p` against `plane`.
+    pub fn relation_to_plane(&mut self, p: u32, plane: &Plane) -> Rel {
         self.relations += 1;
-        let (pp, qp) = (&self.polys[p as usize], &self.polys[q as usize]);
-        match qp.plane.relation(&pp.verts, self.tol) {
+        let pp = &self.polys[p as usize];
+        match plane.relation(&pp.verts, self.tol) {
             Relation::Front => Rel::Front,
             Relation::Back => Rel::Back,
             Relation::Cut => Rel::Cut,
-            Relation::Coplanar if pp.plane.normal.dot(qp.plane.normal) >= 0.0 => Rel::Same,
+            Relation::Coplanar if pp.plane.normal.dot(plane.normal) >= 0.0 => Rel::Same,
             Relation::Coplanar => Rel::Opposite,
         }
     }

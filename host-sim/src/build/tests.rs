@@ -330,3 +330,19 @@ fn pieces_keep_exact_input_vertices() {
         }
     }
 }
+
+#[test]
+fn auxiliary_plane_separates_torus_halves() {
+    let input = crate::scenes::torus(24, 12).polygons;
+    let t = build(input.clone(), true, Method::Static, 1, &mut NoProgress);
+    check_tree(&t, &input);
+    fn aux_switches(c: &Connecting) -> usize {
+        c.switch.as_ref().map_or(0, |s| {
+            usize::from(s.on.is_empty()) + aux_switches(&s.front) + aux_switches(&s.back)
+        })
+    }
+    assert!(aux_switches(&t.root) > 0, "no switch on an auxiliary plane");
+    // BSP uses polygon planes only.
+    let b = build(input, true, Method::Bsp, 1, &mut NoProgress);
+    assert_eq!(aux_switches(&b.root), 0);
+}
