@@ -19,7 +19,7 @@ use crate::geom::Plane;
 use glam::DVec3;
 
 /// Candidate planes per axis, at most.
-const PER_AXIS: usize = 48;
+const PER_AXIS: usize = 16;
 
 /// A chosen auxiliary plane and the relation of every member to it.
 pub struct AuxPlane {
