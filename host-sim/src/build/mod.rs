@@ -184,7 +184,7 @@ pub fn build(
         }
     }
     let mut originals: Vec<Option<Polygon>> = polygons.into_iter().map(Some).collect();
-    let out: Vec<Polygon> = order
+    let mut out: Vec<Polygon> = order
         .iter()
         .map(|&id| {
             let id = id as usize;
@@ -206,6 +206,7 @@ pub fn build(
             }
         })
         .collect();
+    crate::seams::repair_seams(&mut out);
     let root = remap_tree(root, &remap, center, scale);
     let mut tree = FpTree {
         polygons: out,
