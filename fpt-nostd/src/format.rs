@@ -8,12 +8,14 @@
 //!
 //! # Layout
 //!
-//! `header · vertices · polygons · indices · bunches · nodes · switches · crc`
+//! `header · vertices · polygons · indices · runs · bunches · nodes · switches · crc`
 //!
 //! Each section starts right after the previous one, padded with zero bytes
 //! to a multiple of 4 (so a copy to aligned RAM could use them directly); its
 //! length is fixed by the counts in the header (see [`Sections::new`]), and
-//! the file length must equal the sum exactly.
+//! the file length must equal the sum exactly. The sections the walk reads
+//! for every view (runs, bunches, nodes, switches) are contiguous at the end,
+//! after the geometry that only the renderer needs.
 //!
 //! ## Header (96 bytes)
 //!
@@ -36,7 +38,7 @@
 //! | 40 | `u32` | bunch_count | bunches (the bunch section holds `bunch_count + 1` offsets) |
 //! | 44 | `u32` | node_count | connecting nodes, always `2 · switch_count + 1` |
 //! | 48 | `u32` | switch_count | switch nodes |
-//! | 52 | `u32` | reserved | 0 |
+//! | 52 | `u32` | run_count | entries in the run section (runs of polygons sharing a plane) |
 //! | 56 | `f64 × 3` | origin | centre of the bounding box, model coordinates; all geometry below is relative to it |
 //! | 80 | `f32 × 3` | half_extent | half the bounding box size per axis (the `q16` scale) |
 //! | 92 | `f32` | radius | bounding sphere: centre `origin`, this radius, covers every vertex |
@@ -54,16 +56,15 @@
 //!
 //! Vertices shared by several polygons are stored once.
 //!
-//! ## Polygons (`polygon_count` entries of [`POLYGON_LEN`] = 28 bytes)
+//! ## Polygons (`polygon_count` entries of [`POLYGON_LEN`] = 16 bytes)
 //!
 //! | offset | type | field |
 //! |---:|---|---|
-//! | 0 | `f32 × 3` | plane normal `n` (unit, outward) |
-//! | 12 | `f32` | plane offset `d'`, relative to the origin: `n · (x − origin) + d' = 0` |
-//! | 16 | `u32` | first_index: where the polygon's vertex indices start in the index list |
-//! | 20 | `u32` | source: the face of the input mesh it came from |
-//! | 24 | `u8 × 3` | colour, RGB |
-//! | 27 | `u8` | padding, 0 |
+//! | 0 | `u32` | first_index: where the polygon's vertex indices start in the index list |
+//! | 4 | `u32` | run: the run holding it, whose plane is its plane |
+//! | 8 | `u32` | source: the face of the input mesh it came from |
+//! | 12 | `u8 × 3` | colour, RGB |
+//! | 15 | `u8` | padding, 0 |
 //!
 //! The polygons tile the index list in order: polygon 0 starts at index 0 and
 //! polygon `p` ends where polygon `p + 1` starts (the last one at
@@ -74,12 +75,32 @@
 //!
 //! `u16` or `u32` indices into the vertex section.
 //!
+//! ## Runs (`run_count` entries of [`RUN_LEN`] = 20 bytes)
+//!
+//! A run is a non-empty range of consecutive polygon ids that share one
+//! plane (the writer groups the polygons of a bunch by their exact stored
+//! plane): triangles of one flat CAD face, or the coplanar polygons of a
+//! switch's on-plane bunch, are one run, and the walk tests the facing of the
+//! run once instead of once per polygon, with the same result.
+//!
+//! | offset | type | field |
+//! |---:|---|---|
+//! | 0 | `f32 × 3` | plane normal `n` (unit, outward) |
+//! | 12 | `f32` | plane offset `d'`, relative to the origin: `n · (x − origin) + d' = 0` |
+//! | 16 | `u32` | end: one past the last polygon id of the run |
+//!
+//! Run `r` holds the polygons `end[r − 1] .. end[r]` (run 0 starts at 0): the
+//! ends strictly increase and the last is `polygon_count`, so the runs tile
+//! the polygons and each polygon's `run` field names the one run holding it.
+//! There are no runs when there are no polygons.
+//!
 //! ## Bunches (`bunch_count + 1` entries of `u32`)
 //!
-//! Polygons are numbered so that every bunch is a contiguous range of ids:
-//! bunch `b` holds the polygons `offset[b] .. offset[b + 1]`. The offsets start
-//! at 0, never decrease and end at `polygon_count`, so every polygon is in
-//! exactly one bunch. Bunches may be empty.
+//! Polygons are numbered so that every bunch is a contiguous range of runs:
+//! bunch `b` holds the runs `offset[b] .. offset[b + 1]` (so the polygons
+//! from the start of the first to the end of the last). The offsets start at
+//! 0, never decrease and end at `run_count`, so every run, hence every
+//! polygon, is in exactly one bunch. Bunches may be empty.
 //!
 //! ## Connecting nodes (`node_count` entries of [`NODE_LEN`] = 12 bytes)
 //!
@@ -122,7 +143,9 @@ pub const VERSION: u16 = 1;
 /// Length of the header in bytes.
 pub const HEADER_LEN: usize = 96;
 /// Length of one polygon record.
-pub const POLYGON_LEN: usize = 28;
+pub const POLYGON_LEN: usize = 16;
+/// Length of one run record.
+pub const RUN_LEN: usize = 20;
 /// Length of one connecting node record.
 pub const NODE_LEN: usize = 12;
 /// Length of one switch node record.
@@ -174,8 +197,8 @@ pub mod header {
     pub const NODE_COUNT: usize = 44;
     /// `u32` switch node count.
     pub const SWITCH_COUNT: usize = 48;
-    /// `u32` reserved, 0.
-    pub const RESERVED32: usize = 52;
+    /// `u32` run count.
+    pub const RUN_COUNT: usize = 52;
     /// `f64 × 3` origin.
     pub const ORIGIN: usize = 56;
     /// `f32 × 3` half extent.
@@ -186,16 +209,24 @@ pub mod header {
 
 /// Byte offsets inside a polygon record.
 pub mod polygon {
+    /// `u32` first index.
+    pub const FIRST_INDEX: usize = 0;
+    /// `u32` run holding the polygon.
+    pub const RUN: usize = 4;
+    /// `u32` source face.
+    pub const SOURCE: usize = 8;
+    /// `u8 × 3` colour, then one zero byte.
+    pub const COLOR: usize = 12;
+}
+
+/// Byte offsets inside a run record.
+pub mod run {
     /// `f32 × 3` normal.
     pub const NORMAL: usize = 0;
     /// `f32` plane offset relative to the origin.
     pub const D: usize = 12;
-    /// `u32` first index.
-    pub const FIRST_INDEX: usize = 16;
-    /// `u32` source face.
-    pub const SOURCE: usize = 20;
-    /// `u8 × 3` colour, then one zero byte.
-    pub const COLOR: usize = 24;
+    /// `u32` one past the last polygon id of the run.
+    pub const END: usize = 16;
 }
 
 /// Byte offsets inside a connecting node record.
@@ -288,7 +319,9 @@ pub enum FormatError {
     IndexOutOfRange,
     /// This polygon's index range is empty, too short or out of order.
     BadPolygon(u32),
-    /// The bunch offsets do not tile the polygons.
+    /// The run ends or the polygons' run fields do not tile the polygons.
+    BadRuns,
+    /// The bunch offsets do not tile the runs.
     BadBunches,
     /// This connecting node breaks the bunch tiling or the switch numbering.
     BadNode(u32),
@@ -313,7 +346,8 @@ impl fmt::Display for FormatError {
             FormatError::NonFinite(what) => write!(f, "non-finite number in {what}"),
             FormatError::IndexOutOfRange => f.write_str("vertex index out of range"),
             FormatError::BadPolygon(p) => write!(f, "invalid vertex range of polygon {p}"),
-            FormatError::BadBunches => f.write_str("bunch offsets do not tile the polygons"),
+            FormatError::BadRuns => f.write_str("plane runs do not tile the polygons"),
+            FormatError::BadBunches => f.write_str("bunch offsets do not tile the runs"),
             FormatError::BadNode(n) => write!(f, "invalid connecting node {n}"),
             FormatError::NotATree => f.write_str("node graph is not a tree"),
             FormatError::DepthMismatch => f.write_str("tree depth differs from the header's"),
@@ -342,6 +376,8 @@ pub struct Counts {
     pub nodes: u32,
     /// Switch nodes.
     pub switches: u32,
+    /// Runs of polygons sharing a plane.
+    pub runs: u32,
 }
 
 /// Byte offsets of the sections of a file, computed from its counts.
@@ -353,6 +389,8 @@ pub struct Sections {
     pub polygons: usize,
     /// Start of the index list.
     pub indices: usize,
+    /// Start of the runs.
+    pub runs: usize,
     /// Start of the bunch offsets.
     pub bunches: usize,
     /// Start of the connecting nodes.
@@ -378,7 +416,8 @@ impl Sections {
         let v = HEADER_LEN as u64;
         let p = next(v, counts.vertices, format.vertex_len());
         let i = next(p, counts.polygons, POLYGON_LEN);
-        let b = next(i, counts.indices, index_size);
+        let r = next(i, counts.indices, index_size);
+        let b = next(r, counts.runs, RUN_LEN);
         let n = next(b, counts.bunches.checked_add(1)?, 4);
         let s = next(n, counts.nodes, NODE_LEN);
         let c = next(s, counts.switches, SWITCH_LEN);
@@ -393,6 +432,7 @@ impl Sections {
             vertices: cv(v)?,
             polygons: cv(p)?,
             indices: cv(i)?,
+            runs: cv(r)?,
             bunches: cv(b)?,
             nodes: cv(n)?,
             switches: cv(s)?,
@@ -458,6 +498,36 @@ pub(crate) fn rd_f64(b: &[u8], off: usize) -> f64 {
     f64::from_le_bytes(rd(b, off))
 }
 
+/// Record `i` of `L` bytes of a section `s` (a subslice holding whole
+/// records), or zeros if out of range. With `s` sliced once to its validated
+/// length, this is one comparison, and the fields are then read from a
+/// fixed-size array with no further checks.
+#[inline(always)]
+pub(crate) fn rec<const L: usize>(s: &[u8], i: usize) -> [u8; L] {
+    let start = i.wrapping_mul(L);
+    start
+        .checked_add(L)
+        .and_then(|end| s.get(start..end))
+        .and_then(|r| r.try_into().ok())
+        .unwrap_or([0; L])
+}
+
+/// Little-endian `u32` at byte `at` of a record, or 0 past its end (with a
+/// constant `at`, the check folds away).
+#[inline(always)]
+pub(crate) fn le_u32<const L: usize>(r: &[u8; L], at: usize) -> u32 {
+    match r.get(at..at + 4).and_then(|b| b.try_into().ok()) {
+        Some(b) => u32::from_le_bytes(b),
+        None => 0,
+    }
+}
+
+/// Little-endian `f32` at byte `at` of a record.
+#[inline(always)]
+pub(crate) fn le_f32<const L: usize>(r: &[u8; L], at: usize) -> f32 {
+    f32::from_bits(le_u32(r, at))
+}
+
 /// Three little-endian `f32` at `off`.
 #[inline]
 pub(crate) fn rd_f32x3(b: &[u8], off: usize) -> [f32; 3] {
@@ -498,12 +568,14 @@ mod tests {
             bunches: 1,
             nodes: 1,
             switches: 0,
+            runs: 1,
         };
         let s = Sections::new(&c, VertexFormat::Q16, 2).unwrap();
         assert_eq!(s.vertices, HEADER_LEN);
         assert_eq!(s.polygons, HEADER_LEN + 20); // 18 bytes padded to 20
         assert_eq!(s.indices, s.polygons + POLYGON_LEN);
-        assert_eq!(s.bunches, s.indices + 8); // 6 bytes padded to 8
+        assert_eq!(s.runs, s.indices + 8); // 6 bytes padded to 8
+        assert_eq!(s.bunches, s.runs + RUN_LEN);
         assert_eq!(s.nodes, s.bunches + 8);
         assert_eq!(s.switches, s.nodes + NODE_LEN);
         assert_eq!(s.crc, s.switches);
@@ -528,5 +600,11 @@ mod tests {
         assert_eq!(rd_u32(&b, usize::MAX), 0);
         assert_eq!(rd_u8(&b, 9), 0);
         assert_eq!(rd_i16(&b, 3), 0x0504);
+        let s = [1u8, 0, 0, 0, 2, 0, 0, 0, 3];
+        assert_eq!(le_u32(&rec::<4>(&s, 1), 0), 2);
+        assert_eq!(rec::<4>(&s, 2), [0; 4]); // only one byte left
+        assert_eq!(rec::<4>(&s, usize::MAX), [0; 4]);
+        assert_eq!(le_u32(&[7u8; 4], 1), 0); // field past the record
+        assert_eq!(le_f32(&1.5f32.to_le_bytes(), 0), 1.5);
     }
 }

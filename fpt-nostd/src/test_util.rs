@@ -22,8 +22,10 @@ pub struct Raw {
     pub radius: f32,
     /// Encoded vertices, `format.vertex_len()` bytes each.
     pub vertex_bytes: Vec<u8>,
-    /// Plane `[nx, ny, nz, d]`, first index, source, colour.
-    pub polys: Vec<([f32; 4], u32, u32, [u8; 3])>,
+    /// First index, run, source, colour.
+    pub polys: Vec<(u32, u32, u32, [u8; 3])>,
+    /// Plane `[nx, ny, nz, d]` and end of every run.
+    pub runs: Vec<([f32; 4], u32)>,
     pub indices: Vec<u32>,
     pub bunches: Vec<u32>,
     pub nodes: Vec<[u32; 3]>,
@@ -45,6 +47,7 @@ impl Raw {
             radius: 2.0,
             vertex_bytes: Vec::new(),
             polys: Vec::new(),
+            runs: Vec::new(),
             indices: Vec::new(),
             bunches: std::vec![0],
             nodes: std::vec![[0, 0, u32::MAX]],
@@ -61,11 +64,32 @@ impl Raw {
         }
     }
 
-    /// Appends a polygon over `idx` (appended to the index list).
+    /// Appends a polygon over `idx` (appended to the index list), in a run
+    /// of its own: run ids equal polygon ids until [`Raw::merge_runs`].
     pub fn add_polygon(&mut self, plane: [f32; 4], idx: &[u32], source: u32) {
+        let id = self.polys.len() as u32;
         self.polys
-            .push((plane, self.indices.len() as u32, source, [1, 2, 3]));
+            .push((self.indices.len() as u32, id, source, [1, 2, 3]));
+        self.runs.push((plane, id + 1));
         self.indices.extend_from_slice(idx);
+    }
+
+    /// Merges run `r + 1` into run `r` (keeping run `r`'s plane) and
+    /// renumbers the polygons' run fields and the bunch offsets (which must
+    /// not separate the two runs).
+    pub fn merge_runs(&mut self, r: usize) {
+        let end = self.runs.remove(r + 1).1;
+        self.runs[r].1 = end;
+        for p in &mut self.polys {
+            if p.1 as usize > r {
+                p.1 -= 1;
+            }
+        }
+        for b in &mut self.bunches {
+            if *b as usize > r {
+                *b -= 1;
+            }
+        }
     }
 
     /// The file, with its checksum.
@@ -78,6 +102,7 @@ impl Raw {
             bunches: self.bunches.len().saturating_sub(1) as u32,
             nodes: self.nodes.len() as u32,
             switches: self.switches.len() as u32,
+            runs: self.runs.len() as u32,
         };
         let isz = usize::from(self.index_size).max(2);
         let s = Sections::new(&counts, self.format, isz).unwrap();
@@ -101,7 +126,7 @@ impl Raw {
                 counts.bunches,
                 counts.nodes,
                 counts.switches,
-                0,
+                counts.runs,
             ],
         );
         self.origin
@@ -113,11 +138,8 @@ impl Raw {
         o.extend_from_slice(&self.radius.to_le_bytes());
         o.extend_from_slice(&self.vertex_bytes);
         o.resize(s.polygons, 0);
-        for (plane, first, source, c) in &self.polys {
-            plane
-                .iter()
-                .for_each(|x| o.extend_from_slice(&x.to_le_bytes()));
-            u32s(&mut o, &[*first, *source]);
+        for (first, run, source, c) in &self.polys {
+            u32s(&mut o, &[*first, *run, *source]);
             o.extend_from_slice(&[c[0], c[1], c[2], 0]);
         }
         o.resize(s.indices, 0);
@@ -127,6 +149,13 @@ impl Raw {
             } else {
                 o.extend_from_slice(&i.to_le_bytes());
             }
+        }
+        o.resize(s.runs, 0);
+        for (plane, end) in &self.runs {
+            plane
+                .iter()
+                .for_each(|x| o.extend_from_slice(&x.to_le_bytes()));
+            u32s(&mut o, &[*end]);
         }
         o.resize(s.bunches, 0);
         u32s(&mut o, &self.bunches);

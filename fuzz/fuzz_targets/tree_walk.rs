@@ -1,21 +1,24 @@
 //! Fuzzes the tree reader and the postprocessing walk on untrusted bytes.
-//! Run with `cargo +nightly fuzz run tree_walk` from the repository root.
+//! How to run it (and what runs found) is in the docs of
+//! `fpt_nostd::reader`, section "Fuzzing".
 //!
 //! The first byte is a control byte: bit 0 rewrites the file length field
 //! and bit 1 the trailing CRC-32 of the rest, so that the fuzzer gets past
-//! those two checks and exercises the structural validation. The contract
-//! (see `fpt_nostd::reader`): `Tree::from_bytes` either fails or gives a tree
-//! whose every accessor and walk completes without panicking, emits only ids
-//! below the polygon count, each at most once per view (exactly once for an
-//! open volume).
+//! those two checks and exercises the structural validation; bit 2 takes the
+//! classes by ranges ([`Class::next_range`]) instead of id by id. The
+//! contract (see `fpt_nostd::reader`): `Tree::from_bytes` either fails or
+//! gives a tree whose every accessor and walk completes without panicking,
+//! emits only ids below the polygon count, never an empty class, each id at
+//! most once per view (exactly once for an open volume), within the bounds
+//! of the class's `size_hint`.
 #![no_main]
 
 use fpt_nostd::format::{crc32, header};
-use fpt_nostd::order::{Order, View};
+use fpt_nostd::order::{Class, Order, View};
 use fpt_nostd::reader::Tree;
 use libfuzzer_sys::fuzz_target;
 
-const VIEWS: [View; 4] = [
+const VIEWS: [View; 5] = [
     View::Parallel {
         dir: [0.3, -0.5, 0.8],
     },
@@ -28,7 +31,26 @@ const VIEWS: [View; 4] = [
     View::PerspectiveRelative {
         eye: [0.0, 0.0, 0.0],
     },
+    View::Parallel {
+        dir: [f32::NAN, 1.0, 0.0],
+    },
 ];
+
+/// The ids of a class, taken one by one or by ranges.
+fn ids(mut class: Class<'_>, by_range: bool) -> Vec<u32> {
+    let (lo, hi) = class.size_hint();
+    let mut out = Vec::new();
+    if by_range {
+        while let Some(r) = class.next_range() {
+            assert!(r.start < r.end, "empty range {r:?}");
+            out.extend(r);
+        }
+    } else {
+        out.extend(class);
+    }
+    assert!(lo <= out.len() && out.len() <= hi.unwrap_or(usize::MAX));
+    out
+}
 
 fuzz_target!(|data: &[u8]| {
     let Some((&control, rest)) = data.split_first() else {
@@ -47,6 +69,7 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let count = tree.polygon_count();
+    assert!(tree.run_count() <= count);
     for id in 0..count {
         let p = tree.polygon(id).expect("id below the count");
         assert!(p.vertex_count() >= 3);
@@ -56,6 +79,7 @@ fuzz_target!(|data: &[u8]| {
             assert!(p.vertex_index(i) < tree.vertex_count());
         }
     }
+    assert!(tree.polygon(count).is_none());
     let mut seen = vec![false; count as usize];
     for view in VIEWS {
         let Ok(order) = Order::<64>::new(&tree, view) else {
@@ -63,7 +87,9 @@ fuzz_target!(|data: &[u8]| {
         };
         seen.iter_mut().for_each(|s| *s = false);
         for class in order {
-            for id in class {
+            let ids = ids(class, control & 4 != 0);
+            assert!(!ids.is_empty(), "empty class");
+            for id in ids {
                 let slot = seen.get_mut(id as usize).expect("id in range");
                 assert!(!*slot, "polygon {id} emitted twice");
                 *slot = true;

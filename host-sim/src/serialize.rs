@@ -9,7 +9,12 @@
 //! - polygons are **renumbered** so that every bunch is a contiguous range of
 //!   ids: file id `i` is tree polygon [`polygon_order`]`(tree)[i]`. Nodes
 //!   are taken in storage order, and within a node the bunches
-//!   `F_1, B_1, …, F_n, B_n, O`;
+//!   `F_1, B_1, …, F_n, B_n, O`; within a bunch (whose order is free) the
+//!   polygons with the same plane are made consecutive, in order of first
+//!   appearance;
+//! - each maximal sequence of polygons of one bunch with the same stored
+//!   plane becomes one *run* (the plane is stored once, in the run): the walk
+//!   tests a run's facing once for all of its polygons;
 //! - geometry is stored relative to the bounding box centre (`origin`, in
 //!   `f64`), planes re-expressed as `n · (x − origin) + d' = 0` with `d'`
 //!   computed in `f64` before rounding to `f32`;
@@ -28,7 +33,7 @@ use std::fmt;
 pub use fpt_nostd::format::VertexFormat;
 use fpt_nostd::format::{
     crc32, header as h, polygon as pg, Counts, Sections, FLAG_CLOSED, HEADER_LEN, MAGIC, MAX_SHIFT,
-    NO_SWITCH, POLYGON_LEN, Q16_MAX, VERSION,
+    NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION,
 };
 use glam::DVec3;
 
@@ -112,22 +117,51 @@ fn node_bunches(c: &Connecting) -> impl Iterator<Item = &[u32]> {
         .chain(c.switch.iter().map(|s| s.on.as_slice()))
 }
 
+/// The exact bits of a plane, to group equal planes.
+fn plane_key(p: &Plane) -> [u64; 4] {
+    // `+ 0.0` makes -0.0 into 0.0: equal planes get equal keys.
+    let n = p.normal + DVec3::ZERO;
+    [n.x, n.y, n.z, p.d + 0.0].map(f64::to_bits)
+}
+
 /// The tree polygon id of every file polygon id: the renumbering that makes
-/// each bunch a contiguous range. Fails unless the bunches hold every polygon
-/// of `tree` exactly once.
+/// each bunch a contiguous range, with the polygons of one plane consecutive
+/// within their bunch. Fails unless the bunches hold every polygon of `tree`
+/// exactly once.
 pub fn polygon_order(tree: &FpTree) -> Result<Vec<u32>, SerializeError> {
     let n = tree.polygons.len();
     let mut seen = vec![false; n];
     let mut order = Vec::with_capacity(n);
+    let mut first_seen: HashMap<[u64; 4], usize> = HashMap::new();
     for c in nodes_bfs(&tree.root) {
-        for &id in node_bunches(c).flatten() {
-            let slot = seen
-                .get_mut(id as usize)
-                .ok_or(SerializeError::UnknownPolygon(id))?;
-            if std::mem::replace(slot, true) {
-                return Err(SerializeError::DuplicatePolygon(id));
+        for bunch in node_bunches(c) {
+            let start = order.len();
+            for &id in bunch {
+                let slot = seen
+                    .get_mut(id as usize)
+                    .ok_or(SerializeError::UnknownPolygon(id))?;
+                if std::mem::replace(slot, true) {
+                    return Err(SerializeError::DuplicatePolygon(id));
+                }
+                order.push(id);
             }
-            order.push(id);
+            // Group by plane, keeping the order of first appearance (stable).
+            first_seen.clear();
+            let planes = &tree.polygons;
+            let rank = |id: u32, first_seen: &mut HashMap<[u64; 4], usize>| {
+                let next = first_seen.len();
+                *first_seen
+                    .entry(plane_key(&planes[id as usize].plane))
+                    .or_insert(next)
+            };
+            let mut keyed: Vec<(usize, u32)> = order[start..]
+                .iter()
+                .map(|&id| (rank(id, &mut first_seen), id))
+                .collect();
+            keyed.sort_by_key(|&(r, _)| r);
+            for (slot, (_, id)) in order[start..].iter_mut().zip(keyed) {
+                *slot = id;
+            }
         }
     }
     if let Some(i) = seen.iter().position(|&s| !s) {
@@ -244,11 +278,13 @@ impl Encoder {
     /// A plane re-expressed relative to the origin, in `f32`.
     fn plane(&self, p: &Plane) -> Result<[f32; 4], SerializeError> {
         let d = p.d + p.normal.dot(self.origin);
+        // `+ 0.0` makes -0.0 into 0.0, so that equal planes share bytes
+        // (the sign of a zero changes no facing test).
         let out = [
-            p.normal.x as f32,
-            p.normal.y as f32,
-            p.normal.z as f32,
-            d as f32,
+            p.normal.x as f32 + 0.0,
+            p.normal.y as f32 + 0.0,
+            p.normal.z as f32 + 0.0,
+            d as f32 + 0.0,
         ];
         if out.iter().all(|x| x.is_finite()) {
             Ok(out)
@@ -266,6 +302,11 @@ fn round_up_f32(x: f64) -> f32 {
     } else {
         y
     }
+}
+
+/// `n` as a `u32` count or id.
+fn count_u32(n: usize) -> Result<u32, SerializeError> {
+    u32::try_from(n).map_err(|_| SerializeError::TooLarge)
 }
 
 fn put_u32(out: &mut Vec<u8>, x: u32) {
@@ -326,15 +367,35 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     }
     let index_size = if vertex_ids.len() <= 1 << 16 { 2 } else { 4 };
 
+    // The stored plane of every file polygon, and the runs: maximal
+    // sequences of one bunch with bit-identical stored planes.
+    let planes = order
+        .iter()
+        .map(|&id| enc.plane(&tree.polygons[id as usize].plane))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut runs: Vec<([f32; 4], u32)> = Vec::new();
+    let mut run_of = vec![0u32; order.len()];
     let mut switch_planes = Vec::new();
     let mut node_recs = Vec::with_capacity(nodes.len());
     let mut bunch_offsets = vec![0u32];
-    let mut placed = 0u32;
+    let mut placed = 0usize;
     for c in &nodes {
         let first_bunch = u32::try_from(bunch_offsets.len() - 1).map_err(too_large)?;
         for b in node_bunches(c) {
-            placed += b.len() as u32; // ≤ polygon count, checked by polygon_order
-            bunch_offsets.push(placed);
+            let start = placed;
+            placed += b.len(); // ≤ polygon count, checked by polygon_order
+            for fid in start..placed {
+                let end = count_u32(fid + 1)?;
+                let bits = |p: &[f32; 4]| p.map(f32::to_bits);
+                match runs.last_mut() {
+                    Some((plane, e)) if fid > start && bits(plane) == bits(&planes[fid]) => {
+                        *e = end;
+                    }
+                    _ => runs.push((planes[fid], end)),
+                }
+                run_of[fid] = count_u32(runs.len() - 1)?;
+            }
+            bunch_offsets.push(count_u32(runs.len())?);
         }
         let switch = match &c.switch {
             Some(s) => {
@@ -355,6 +416,7 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         bunches: count(bunch_offsets.len() - 1)?,
         nodes: count(node_recs.len())?,
         switches: count(switch_planes.len())?,
+        runs: count(runs.len())?,
     };
     let s =
         Sections::new(&counts, opts.vertex_format, index_size).ok_or(SerializeError::TooLarge)?;
@@ -375,7 +437,7 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         counts.bunches,
         counts.nodes,
         counts.switches,
-        0,
+        counts.runs,
     ] {
         put_u32(&mut out, c);
     }
@@ -390,11 +452,11 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
 
     out.extend_from_slice(&vertex_bytes);
     out.resize(s.polygons, 0);
-    for (&id, &first) in order.iter().zip(&first_index) {
+    for ((&id, &first), &run) in order.iter().zip(&first_index).zip(&run_of) {
         let p = &tree.polygons[id as usize];
         let start = out.len();
-        put_plane(&mut out, enc.plane(&p.plane)?);
         put_u32(&mut out, first);
+        put_u32(&mut out, run);
         put_u32(&mut out, p.source);
         out.extend_from_slice(&[p.color[0], p.color[1], p.color[2], 0]);
         debug_assert_eq!(out.len() - start, POLYGON_LEN);
@@ -408,6 +470,12 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
             put_u32(&mut out, i);
         }
     }
+    out.resize(s.runs, 0);
+    for &(plane, end) in &runs {
+        put_plane(&mut out, plane);
+        put_u32(&mut out, end);
+    }
+    debug_assert_eq!(out.len(), s.runs + runs.len() * RUN_LEN);
     out.resize(s.bunches, 0);
     bunch_offsets.iter().for_each(|&o| put_u32(&mut out, o));
     out.resize(s.nodes, 0);
@@ -592,6 +660,63 @@ mod tests {
         assert_eq!((r.index_size(), r.vertex_count()), (4, 66_000));
         let p = r.polygon(21_999).unwrap();
         assert_eq!(p.vertex_model(1), [1.0, 0.0, 21_999.0]);
+    }
+
+    #[test]
+    fn coplanar_polygons_of_a_bunch_share_a_run() {
+        // One level: F_1 = [a z=0, b z=1, c z=0, d z=1 facing down, e z=1],
+        // B_1 = [f z=0]: a and c (same plane), b and e (same plane) are
+        // grouped; d (reversed normal) and f (another bunch) are not merged.
+        let shifted = |z: f64, flip: bool, source: u32, dx: f64| {
+            let mut p = quad(z, flip, source);
+            p.verts.iter_mut().for_each(|v| v.x += dx);
+            p
+        };
+        let mut polygons = vec![
+            quad(0.0, false, 0),
+            quad(1.0, false, 1),
+            shifted(0.0, false, 2, 2.0),
+            quad(1.0, true, 3),
+            shifted(1.0, false, 4, 2.0),
+            shifted(0.0, false, 5, 4.0),
+        ];
+        // Same plane, exactly, as a builder gives coplanar pieces.
+        polygons[2].plane = polygons[0].plane;
+        polygons[4].plane = polygons[1].plane;
+        polygons[5].plane = polygons[0].plane;
+        let t = FpTree {
+            polygons,
+            closed: true,
+            root: Connecting {
+                levels: vec![Level {
+                    front: vec![0, 1, 2, 3, 4],
+                    back: vec![5],
+                }],
+                switch: None,
+            },
+            method: Method::Static,
+            stats: Stats::default(),
+        };
+        assert_eq!(polygon_order(&t).unwrap(), vec![0, 2, 1, 4, 3, 5]);
+        let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+        let r = Tree::from_bytes(&bytes).unwrap();
+        // Runs {0, 2}, {1, 4}, {3} in F_1 and {5} in B_1.
+        assert_eq!((r.run_count(), r.bunch_count()), (4, 2));
+        let plane = |id: u32| r.polygon(id).unwrap().plane();
+        assert_eq!(plane(0), plane(1));
+        assert_eq!(plane(2), plane(3));
+        assert_ne!(plane(1), plane(2));
+        assert_eq!(plane(5), plane(0));
+        // Looking down at the closed level: backward faces of F_1 on the
+        // way up (file ids 0..4 face up), B_1's on the way down.
+        let classes: Vec<Vec<u32>> = fpt_nostd::order::Order::<1>::new(
+            &r,
+            fpt_nostd::order::View::parallel([0.0, 0.0, -1.0]),
+        )
+        .unwrap()
+        .map(|c| c.collect())
+        .collect();
+        assert_eq!(classes, vec![vec![5], vec![0, 1, 2, 3]]);
     }
 
     #[test]

@@ -182,6 +182,8 @@ fn info_describes_the_file() {
     assert_eq!(field("volume"), "closed");
     assert_eq!(field("polygons"), "6");
     assert_eq!(field("vertices"), "8");
+    // Six faces, six planes: one run each.
+    assert_eq!(field("plane runs"), "6");
     assert_eq!(field("effects"), "0x00000003");
     assert!(field("vertex format").starts_with("q32"));
     let size = std::fs::metadata(&path).unwrap().len();
@@ -208,6 +210,14 @@ fn bench_order_reports_per_view_figures() {
     assert!((2.5..=3.0).contains(&emitted), "{emitted}");
     assert!(v["classes_per_view"].as_f64().unwrap() >= 1.0);
     assert!(v["passes"].as_u64().unwrap() >= 1);
+    // The tree's counts, as `fpt info` gives them.
+    assert_eq!(v["runs"].as_u64(), Some(6));
+    let (nodes, switches) = (
+        v["nodes"].as_u64().unwrap(),
+        v["switches"].as_u64().unwrap(),
+    );
+    assert_eq!(nodes, 2 * switches + 1);
+    assert!(v["bunches"].as_u64().unwrap() >= 1 && v["levels"].as_u64().is_some());
     std::fs::remove_file(path).ok();
 }
 

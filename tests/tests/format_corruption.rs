@@ -156,7 +156,10 @@ fn some_corruptions_pass_validation() {
     let t = random_tree(1, 8, false, false, 1.0, DVec3::ZERO);
     let mut bytes = serialize(&t, &SerializeOptions::default()).unwrap();
     let tree = Tree::from_bytes(&bytes).unwrap();
-    let colour = fpt_nostd::format::HEADER_LEN + tree.vertex_count() as usize * 12 + 24;
+    // Polygon 0's colour: the polygon section follows the f32 vertices.
+    let colour = fpt_nostd::format::HEADER_LEN
+        + tree.vertex_count() as usize * 12
+        + fpt_nostd::format::polygon::COLOR;
     bytes[colour] ^= 0x10;
     bytes[fpt_nostd::format::HEADER_LEN] ^= 0x01;
     fix_length_and_crc(&mut bytes);

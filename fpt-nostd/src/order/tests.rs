@@ -174,3 +174,147 @@ fn class_size_hint_bounds_the_count() {
         assert!(lo <= n && n <= hi.unwrap());
     }
 }
+
+/// Root level 1: F_1 = {0, 1 up at z = 1 (one run), 2 down at z = 0,
+/// 3, 4 up at z = 1 (one run)}, B_1 = {}; 5 runs → 3 runs.
+fn runs_in_a_bunch(closed: bool) -> Raw {
+    let mut r = Raw::empty();
+    add_square(&mut r, 1.0, true, 0);
+    add_square(&mut r, 1.0, true, 1);
+    add_square(&mut r, 0.0, false, 2);
+    add_square(&mut r, 1.0, true, 3);
+    add_square(&mut r, 1.0, true, 4);
+    r.bunches = std::vec![0, 5, 5];
+    r.nodes = std::vec![[0, 1, NO_SWITCH]];
+    r.merge_runs(3);
+    r.merge_runs(0);
+    r.flags = if closed { FLAG_CLOSED } else { 0 };
+    r
+}
+
+#[test]
+fn runs_are_tested_once_and_emitted_whole() {
+    let bytes = runs_in_a_bunch(true).bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    assert_eq!(t.run_count(), 3);
+    // Closed, looking down: F_1's backward faces on the way up, by run.
+    assert_eq!(classes::<1>(&t, DOWN_Z), [[0, 1, 3, 4]]);
+    assert_eq!(classes::<1>(&t, UP_Z), [[2]]);
+    let mut c = Order::<1>::new(&t, DOWN_Z).unwrap().next().unwrap();
+    assert_eq!(c.size_hint(), (2, Some(5)));
+    assert_eq!(c.next(), Some(0));
+    assert_eq!(c.next_range(), Some(1..2));
+    assert_eq!(c.next_range(), Some(3..5));
+    assert_eq!((c.next_range(), c.next()), (None, None));
+    // Open: on the way down the forward faces of F_1, then the backward.
+    let bytes = runs_in_a_bunch(false).bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    assert_eq!(
+        classes::<1>(&t, DOWN_Z),
+        [std::vec![2], std::vec![0, 1, 3, 4]]
+    );
+}
+
+#[test]
+fn open_on_plane_bunch_is_one_range() {
+    // Root: switch at z = 0 with O = {0, 1 up (one run), 2 down}; open.
+    let mut r = Raw::empty();
+    add_square(&mut r, 0.0, true, 0);
+    add_square(&mut r, 0.0, true, 1);
+    add_square(&mut r, 0.0, false, 2);
+    r.bunches = std::vec![0, 3];
+    r.nodes = std::vec![[0, 0, 0], [1, 0, NO_SWITCH], [1, 0, NO_SWITCH]];
+    r.switches = std::vec![[0.0, 0.0, 1.0, 0.0]];
+    r.max_depth = 2;
+    r.merge_runs(0);
+    let bytes = r.bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    let mut c = Order::<2>::new(&t, DOWN_Z).unwrap().next().unwrap();
+    assert_eq!(c.size_hint(), (3, Some(3)));
+    assert_eq!(c.next_range(), Some(0..3));
+    assert_eq!(c.next_range(), None);
+}
+
+#[test]
+fn empty_leaves_are_skipped_but_full_ones_walked() {
+    // A BSP-shaped chain: root switch 0 (z = 0.5) → front leaf empty, back
+    // node 2 with switch 1 (z = 0.25) → both leaves empty. O_0 = {0 at
+    // z = 0.5}, O_1 = {1 at z = 0.25}.
+    let mut r = Raw::empty();
+    add_square(&mut r, 0.5, true, 0);
+    add_square(&mut r, 0.25, true, 1);
+    r.nodes = std::vec![
+        [0, 0, 0],
+        [1, 0, NO_SWITCH],
+        [1, 0, 1],
+        [2, 0, NO_SWITCH],
+        [2, 0, NO_SWITCH],
+    ];
+    r.bunches = std::vec![0, 1, 2];
+    r.switches = std::vec![[0.0, 0.0, 1.0, -0.5], [0.0, 0.0, 1.0, -0.25]];
+    r.max_depth = 3;
+    let bytes = r.bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    // Looking down, back groups are far: O_1 (lower) first.
+    assert_eq!(classes::<3>(&t, DOWN_Z), [[1], [0]]);
+    assert_eq!(classes::<3>(&t, UP_Z), [[0], [1]]);
+    // The stack holds exactly the depth even when leaves are skipped.
+    assert!(Order::<2>::new(&t, DOWN_Z).is_err());
+}
+
+#[test]
+fn the_walks_facing_test_is_the_local_views() {
+    // Facing must agree with LocalView::is_backward bit for bit, for
+    // awkward values too: signed zeros, ties, huge and tiny planes (finite,
+    // as validation makes them), and views with infinities and NaN.
+    let vals = [
+        0.0f32,
+        -0.0,
+        1.0,
+        -1.0,
+        0.5,
+        -3.25,
+        1e-30,
+        -1e-30,
+        3e38,
+        -3e38,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        0.1,
+        -0.7,
+    ];
+    let mut state = 0x1234_5678_9abc_def0u64;
+    let mut pick = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        vals[(state % vals.len() as u64) as usize]
+    };
+    for i in 0..20_000 {
+        let mut finite = || loop {
+            let x = pick();
+            if x.is_finite() {
+                return x;
+            }
+        };
+        let normal = [finite(), finite(), finite()];
+        let d = finite();
+        let v = [pick(), pick(), pick()];
+        let view = if i % 2 == 0 {
+            LocalView::Parallel(v)
+        } else {
+            LocalView::Eye(v)
+        };
+        let mut rec = [0u8; 16];
+        for (k, x) in normal.iter().chain([d].iter()).enumerate() {
+            rec[4 * k..4 * k + 4].copy_from_slice(&x.to_le_bytes());
+        }
+        let plane = Plane { normal, d };
+        assert_eq!(
+            class::Facing::of(&view).backward(&rec),
+            view.is_backward(&plane),
+            "{view:?} {plane:?}"
+        );
+    }
+}

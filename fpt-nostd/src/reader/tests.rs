@@ -3,7 +3,7 @@ extern crate std;
 use std::vec::Vec;
 
 use super::*;
-use crate::format::header as hd;
+use crate::format::{header as hd, NO_SWITCH};
 use crate::test_util::{add_square, fix_crc, two_floors, Raw};
 
 fn one_square() -> Raw {
@@ -211,10 +211,10 @@ fn rejects_bad_geometry() {
     );
 
     let mut r = one_square();
-    r.polys[0].0[3] = f32::NAN;
+    r.runs[0].0[3] = f32::NAN;
     assert_eq!(
         Tree::from_bytes(&r.bytes()).unwrap_err(),
-        FormatError::NonFinite("polygon planes")
+        FormatError::NonFinite("run planes")
     );
 
     // Two polygons whose ranges do not tile: the second starts too early.
@@ -222,7 +222,7 @@ fn rejects_bad_geometry() {
     r.add_polygon([0.0, 0.0, 1.0, 0.0], &[0, 1, 2], 1);
     r.bunches = std::vec![0, 2, 2];
     assert!(Tree::from_bytes(&r.bytes()).is_ok());
-    r.polys[1].1 = 2;
+    r.polys[1].0 = 2;
     assert_eq!(
         Tree::from_bytes(&r.bytes()).unwrap_err(),
         FormatError::BadPolygon(0)
@@ -233,6 +233,58 @@ fn rejects_bad_geometry() {
     assert_eq!(
         Tree::from_bytes(&r.bytes()).unwrap_err(),
         FormatError::BadPolygon(0)
+    );
+}
+
+#[test]
+fn runs_share_a_plane_and_tile_the_polygons() {
+    // Two coplanar squares in one run, one bunch.
+    let mut r = one_square();
+    add_square(&mut r, 0.0, true, 8);
+    r.bunches = std::vec![0, 2, 2];
+    r.merge_runs(0);
+    assert_eq!((r.runs.len(), r.bunches.clone()), (1, std::vec![0, 1, 1]));
+    let bytes = r.bytes();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    assert_eq!((t.run_count(), t.polygon_count()), (1, 2));
+    assert_eq!(t.polygon(1).unwrap().plane(), t.polygon(0).unwrap().plane());
+
+    // A polygon naming the wrong run.
+    let mut bad = r.clone();
+    bad.runs = std::vec![(bad.runs[0].0, 1), (bad.runs[0].0, 2)];
+    bad.bunches = std::vec![0, 2, 2];
+    bad.polys[1].1 = 0;
+    assert_eq!(
+        Tree::from_bytes(&bad.bytes()).unwrap_err(),
+        FormatError::BadRuns
+    );
+    bad.polys[1].1 = 1;
+    assert!(Tree::from_bytes(&bad.bytes()).is_ok());
+    // An empty run, a run past the polygons, runs that stop short.
+    for ends in [[0, 2], [1, 3], [1, 1]] {
+        let mut e = bad.clone();
+        e.runs[0].1 = ends[0];
+        e.runs[1].1 = ends[1];
+        assert_eq!(
+            Tree::from_bytes(&e.bytes()).unwrap_err(),
+            FormatError::BadRuns,
+            "{ends:?}"
+        );
+    }
+    // Runs without polygons.
+    let mut e = Raw::empty();
+    e.runs.push(([0.0, 0.0, 1.0, 0.0], 0));
+    e.bunches = std::vec![0];
+    assert_eq!(
+        Tree::from_bytes(&e.bytes()).unwrap_err(),
+        FormatError::BadRuns
+    );
+    // Bunch offsets must end at the run count, not the polygon count.
+    let mut e = r;
+    e.bunches = std::vec![0, 2, 2];
+    assert_eq!(
+        Tree::from_bytes(&e.bytes()).unwrap_err(),
+        FormatError::BadBunches
     );
 }
 

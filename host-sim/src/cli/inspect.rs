@@ -23,10 +23,14 @@ fn parse<'a>(path: &Path, bytes: &'a [u8]) -> Result<Tree<'a>, CliError> {
 }
 
 /// Walks `tree` for `view` with a stack of `N` frames, handing over each class.
-fn walk_with<const N: usize>(
+///
+/// Not inlined: each stack size gets its own function, so a walk only
+/// reserves (and probes) the stack frame of the size it uses.
+#[inline(never)]
+fn walk_with<const N: usize, F: FnMut(Class<'_>)>(
     tree: &Tree<'_>,
     view: View,
-    f: &mut dyn FnMut(Class<'_>),
+    f: &mut F,
 ) -> Result<(), CliError> {
     for class in Order::<N>::new(tree, view)? {
         f(class);
@@ -36,12 +40,13 @@ fn walk_with<const N: usize>(
 
 /// Walks `tree` for `view` with the smallest stack that holds its depth
 /// (a small stack is cheaper to set up for every view).
-fn walk(tree: &Tree<'_>, view: View, f: &mut dyn FnMut(Class<'_>)) -> Result<(), CliError> {
+fn walk<F: FnMut(Class<'_>)>(tree: &Tree<'_>, view: View, mut f: F) -> Result<(), CliError> {
     match tree.max_depth() {
-        0..=32 => walk_with::<32>(tree, view, f),
-        33..=256 => walk_with::<256>(tree, view, f),
-        257..=2048 => walk_with::<2048>(tree, view, f),
-        _ => walk_with::<16384>(tree, view, f),
+        0..=16 => walk_with::<16, F>(tree, view, &mut f),
+        17..=64 => walk_with::<64, F>(tree, view, &mut f),
+        65..=256 => walk_with::<256, F>(tree, view, &mut f),
+        257..=2048 => walk_with::<2048, F>(tree, view, &mut f),
+        _ => walk_with::<16384, F>(tree, view, &mut f),
     }
 }
 
@@ -85,7 +90,7 @@ pub fn order(a: &OrderArgs) -> CliResult {
     let tree = parse(&a.tree, &bytes)?;
     let view = view_of(a, &tree)?;
     let mut classes: Vec<Vec<u32>> = Vec::new();
-    walk(&tree, view, &mut |c| classes.push(c.collect()))?;
+    walk(&tree, view, |c| classes.push(c.collect()))?;
     println!("{}", serde_json::to_string(&json!({ "classes": classes }))?);
     Ok(())
 }
@@ -131,6 +136,7 @@ pub fn info(a: &InfoArgs) -> CliResult {
     println!("polygons:          {}", t.polygon_count());
     println!("vertices:          {}", t.vertex_count());
     println!("vertex indices:    {}", t.index_count());
+    println!("plane runs:        {}", t.run_count());
     println!("bunches:           {}", t.bunch_count());
     println!("levels:            {}", t.level_count());
     println!("connecting nodes:  {}", t.node_count());
@@ -153,7 +159,12 @@ pub fn fibonacci_sphere(n: u32) -> Vec<[f32; 3]> {
         .collect()
 }
 
-/// `fpt bench-order`.
+/// `fpt bench-order`: times the whole postprocessing of a view, the same
+/// way for every tree (feudal or BSP): [`Order`] yields the classes and the
+/// timed loop takes every polygon id of every class, so the facing tests of
+/// the culling are included. Besides the timings, the JSON gives the tree's
+/// counts that the cost is made of (see the `Cost` section of
+/// `fpt_nostd::order`).
 pub fn bench_order(a: &BenchOrderArgs) -> CliResult {
     if a.views == 0 {
         return Err(cli_err!("--views must be at least 1"));
@@ -171,7 +182,7 @@ pub fn bench_order(a: &BenchOrderArgs) -> CliResult {
     // One untimed pass for the counts (and to warm the caches).
     let (mut emitted, mut classes) = (0u64, 0u64);
     for &v in &views {
-        walk(&tree, v, &mut |c| {
+        walk(&tree, v, |c| {
             classes += 1;
             emitted += c.count() as u64;
         })?;
@@ -182,7 +193,7 @@ pub fn bench_order(a: &BenchOrderArgs) -> CliResult {
     let mut sink = 0u64;
     while passes == 0 || start.elapsed().as_secs_f64() < a.min_seconds {
         for &v in &views {
-            walk(&tree, std::hint::black_box(v), &mut |c| {
+            walk(&tree, std::hint::black_box(v), |c| {
                 sink = c.fold(sink, |s, id| s.wrapping_add(u64::from(id)));
             })?;
         }
@@ -198,6 +209,11 @@ pub fn bench_order(a: &BenchOrderArgs) -> CliResult {
         "polygons": tree.polygon_count(),
         "closed": tree.is_closed(),
         "max_depth": tree.max_depth(),
+        "nodes": tree.node_count(),
+        "switches": tree.switch_count(),
+        "levels": tree.level_count(),
+        "bunches": tree.bunch_count(),
+        "runs": tree.run_count(),
         "ns_per_view": elapsed * 1e9 / walks,
         "emitted_per_view": emitted as f64 / n,
         "classes_per_view": classes as f64 / n,

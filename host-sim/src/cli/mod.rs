@@ -9,7 +9,10 @@ use std::ffi::OsString;
 use std::path::PathBuf;
 
 mod build;
+mod demo;
+pub mod frames;
 mod inspect;
+mod render;
 
 /// A failure reported to the user as `error: MESSAGE`, exit status 2.
 #[derive(Debug)]
@@ -31,7 +34,11 @@ macro_rules! cli_err {
 }
 
 #[derive(Parser, Debug)]
-#[command(name = "fpt", version, about = "Feudal priority trees: build, inspect, order, render")]
+#[command(
+    name = "fpt",
+    version,
+    about = "Feudal priority trees: build, inspect, order, render"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -51,6 +58,12 @@ enum Command {
     BenchBuild(BenchBuildArgs),
     /// Time the postprocessing walk over many view directions.
     BenchOrder(BenchOrderArgs),
+    /// Draw the firmware's frames on the host and print their checksums.
+    Frames(frames::FramesArgs),
+    /// Render a tree to PNG through the no_std pipeline.
+    Render(render::RenderArgs),
+    /// Build, render and save the demo scenes (vise, house, city) as PNG.
+    Demo(demo::DemoArgs),
 }
 
 /// Arguments of `fpt build`.
@@ -191,6 +204,9 @@ where
         Command::Info(a) => inspect::info(&a),
         Command::BenchBuild(a) => build::bench(&a),
         Command::BenchOrder(a) => inspect::bench_order(&a),
+        Command::Frames(a) => frames::run(&a),
+        Command::Render(a) => render::run(&a),
+        Command::Demo(a) => demo::run(&a),
     };
     match result {
         Ok(()) => 0,

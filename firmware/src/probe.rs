@@ -1,0 +1,132 @@
+//! The two measuring probes of a frame ([`fpt_nostd::frames::Probe`]).
+//!
+//! Each frame is drawn twice:
+//!
+//! 1. with [`TotalProbe`], which only reads the clock at the frame's
+//!    start/stop hooks (a few times per frame, one pair per band): the
+//!    per-polygon hooks stay empty and compile to nothing, so this run
+//!    costs what an unmeasured frame costs. It gives `instr`.
+//! 2. with [`PhaseProbe`], which also reads the clock at every phase
+//!    boundary (three times per polygon) and charges the time since the
+//!    previous reading to the phase being left. It gives the parts.
+//!
+//! The second run is slower by the marks' own cost. [`PhaseProbe::parts`]
+//! removes it: the extra time over the first run, divided by the number of
+//! marks, is the cost of one mark, charged to the phase a mark enters (the
+//! clock is read first, the bookkeeping after). The corrected parts then
+//! add up to `instr`; the per-mark cost is reported so that its stability
+//! can be checked.
+
+use core::cell::Cell;
+
+use fpt_nostd::frames::{Phase, Probe};
+
+use crate::clock::now;
+
+/// Frame time only (see the module docs).
+#[derive(Debug, Default)]
+pub struct TotalProbe {
+    since: Cell<u64>,
+    total: Cell<u64>,
+}
+
+impl TotalProbe {
+    /// Ticks between the start and stop hooks, summed.
+    pub fn ticks(&self) -> u64 {
+        self.total.get()
+    }
+}
+
+impl Probe for TotalProbe {
+    #[inline(always)]
+    fn start(&self, _phase: Phase) {
+        self.since.set(now());
+    }
+    #[inline(always)]
+    fn stop(&self) {
+        self.total
+            .set(self.total.get() + now().wrapping_sub(self.since.get()));
+    }
+}
+
+/// Time per phase (see the module docs).
+#[derive(Debug)]
+pub struct PhaseProbe {
+    last: Cell<u64>,
+    cur: Cell<Phase>,
+    ticks: [Cell<u64>; 3],
+    marks: [Cell<u32>; 3],
+}
+
+impl Default for PhaseProbe {
+    fn default() -> Self {
+        PhaseProbe {
+            last: Cell::new(0),
+            cur: Cell::new(Phase::Post),
+            ticks: Default::default(),
+            marks: Default::default(),
+        }
+    }
+}
+
+/// A frame's parts in instructions, indexed like [`Phase::ALL`].
+#[derive(Clone, Copy, Debug)]
+pub struct Parts {
+    /// Post, transform, fill.
+    pub instr: [u64; 3],
+    /// The removed cost of one mark, in instructions (see the module docs).
+    pub mark_cost: u64,
+}
+
+impl PhaseProbe {
+    #[inline(always)]
+    fn charge(&self, t: u64) {
+        let c = &self.ticks[self.cur.get() as usize];
+        c.set(c.get() + t.wrapping_sub(self.last.get()));
+        self.last.set(t);
+    }
+
+    /// The parts in instructions, given the unmarked frame's `total` (in
+    /// instructions) and a ticks → instructions conversion.
+    pub fn parts(&self, total: u64, instr: impl Fn(u64) -> u64) -> Parts {
+        let raw: [u64; 3] = core::array::from_fn(|i| instr(self.ticks[i].get()));
+        let marks: [u64; 3] = core::array::from_fn(|i| u64::from(self.marks[i].get()));
+        let (sum, n) = (raw.iter().sum::<u64>(), marks.iter().sum::<u64>());
+        let extra = sum.saturating_sub(total);
+        let strip = |i: usize| {
+            // extra · marks_i / n, rounded; never more than the phase has.
+            let m = if n == 0 {
+                0
+            } else {
+                (extra * marks[i] + n / 2) / n
+            };
+            raw[i].saturating_sub(m)
+        };
+        let (post, xform) = (strip(0), strip(1));
+        // Rounding leftovers go to the fill, so that the parts add up.
+        let fill = total.saturating_sub(post + xform);
+        Parts {
+            instr: [post, xform, fill],
+            mark_cost: if n == 0 { 0 } else { (extra + n / 2) / n },
+        }
+    }
+}
+
+impl Probe for PhaseProbe {
+    #[inline(always)]
+    fn start(&self, phase: Phase) {
+        self.last.set(now());
+        self.cur.set(phase);
+    }
+    #[inline(always)]
+    fn enter(&self, phase: Phase) {
+        self.charge(now());
+        self.cur.set(phase);
+        let m = &self.marks[phase as usize];
+        m.set(m.get() + 1);
+    }
+    #[inline(always)]
+    fn stop(&self) {
+        self.charge(now());
+    }
+}

@@ -1,0 +1,475 @@
+//! The firmware's frame set: the same frames, drawn by the same code, on the
+//! Cortex-M4 (`firmware/`) and on the host (`fpt frames`), so that their
+//! checksums can be compared bit for bit.
+//!
+//! # Contract
+//!
+//! * **Scenes and views.** A caller supplies the tree of each scene named
+//!   in [`SCENES`] (the firmware embeds the committed files
+//!   `firmware/trees/NAME.fpt`, the host builds them); every scene is drawn
+//!   from each of the [`VIEWS`], orbit cameras around the tree's
+//!   bounding-sphere centre at a distance proportional to its radius, so
+//!   that one list of views frames every scene.
+//! * **Pictures.** [`WIDTH`] × [`HEIGHT`] RGB565, cleared to [`BACKGROUND`],
+//!   drawn with [`FramePrecision`] (the project's default arithmetic) and
+//!   the frame's key light. [`render_full`] draws into a caller-supplied
+//!   full framebuffer; [`render_banded`] draws the same picture through a
+//!   [`BAND_ROWS`]-row band buffer, walking the tree once per band.
+//! * **Checksum.** [`PixelCrc`]: the CRC-32 (IEEE 802.3 / zlib, the same as
+//!   the tree files' [`crate::format::crc32`]) of the pixels' RGB565 storage
+//!   values as **little-endian** `u16`, row-major from the top-left pixel.
+//!   The banded render feeds the bands to it top to bottom, so its checksum
+//!   equals the full frame's.
+//! * **Determinism.** Everything is `f32`/`f64` IEEE arithmetic, integer
+//!   arithmetic and the pure-Rust `libm` (no `std` math, no FMA contraction
+//!   in Rust), so the host and a Cortex-M4F produce identical pixels.
+//! * **Reporting.** [`FrameLine`] is the one line per frame both sides
+//!   print: `frame scene=NAME view=K crc=XXXXXXXX` (8 lowercase hex digits);
+//!   the firmware appends its cost fields to it.
+//!
+//! # Probes
+//!
+//! The renders take a [`Probe`]: hooks at the boundaries between the
+//! phases of a frame ([`Phase`]: tree walk, transform, fill). Every hook has
+//! an empty default body and the probe is a generic parameter, so with
+//! [`NoProbe`] they compile to nothing. The draw loop here is
+//! [`crate::render::draw_frame`]'s loop with the hooks added (tests check
+//! that both draw the same pixels); the fill boundary is seen through the
+//! sink: the rasterizer asks the sink for the polygon's colour exactly once,
+//! after transform, clipping, projection and shading and right before the
+//! scan conversion.
+
+use core::fmt;
+
+use embedded_graphics::pixelcolor::Rgb565;
+
+use crate::order::{Order, OrderError};
+use crate::raster::{
+    band_starts, Band, Face, FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, Paint,
+    RenderStats, Rgb565Framebuffer, SpanBounds, SpanSink,
+};
+use crate::reader::Tree;
+use crate::render::{Frame, TreeRenderer};
+
+/// Frame width in pixels.
+pub const WIDTH: u32 = 240;
+/// Frame height in pixels.
+pub const HEIGHT: u32 = 240;
+/// Rows per band of [`render_banded`].
+pub const BAND_ROWS: u32 = 16;
+/// `u16` words of a full frame.
+pub const FRAME_WORDS: usize = (WIDTH * HEIGHT) as usize;
+/// `u16` words of a band buffer.
+pub const BAND_WORDS: usize = (WIDTH * BAND_ROWS) as usize;
+/// Vertex capacity of the per-polygon scratch: the scenes' polygons have at
+/// most 28 vertices, and clipping a convex polygon adds at most 5 (a
+/// polygon that would exceed this is skipped, never a panic).
+pub const MAX_VERTS: usize = 40;
+/// Stack frames of the tree walk: the scenes' trees are at most 37 deep
+/// (a deeper tree is refused with [`OrderError::StackTooSmall`]).
+pub const WALK_DEPTH: usize = 40;
+/// The arithmetic of the frames: the `f32` vertex path with libm, 4
+/// sub-pixel bits. On a Cortex-M4F the FPU makes it about 5× cheaper in
+/// transform than the fixed-point path, whose `f32 → 16.16` conversions go
+/// through soft `f64` and whose divide is a 64-bit library division.
+pub type FramePrecision = FloatLibm<4>;
+/// The renderer and its scratch buffers, as the frames use them.
+pub type FrameRenderer = TreeRenderer<FramePrecision, MAX_VERTS>;
+/// The scenes, in the order they are drawn.
+pub const SCENES: [&str; 3] = ["vise", "house", "bench_city"];
+/// The colour of pixels no polygon covers.
+pub const BACKGROUND: Rgb565 = Rgb565::new(4, 10, 12);
+/// Ambient and diffuse weights of the key light.
+const AMBIENT: f32 = 0.25;
+const DIFFUSE: f32 = 0.75;
+
+/// The model rotation that stands a z-up model up in the y-up orbit
+/// convention: `(x, y, z) → (x, z, −y)`.
+pub const Z_UP: Mat4 = Mat4([
+    [1.0, 0.0, 0.0, 0.0],
+    [0.0, 0.0, 1.0, 0.0],
+    [0.0, -1.0, 0.0, 0.0],
+    [0.0, 0.0, 0.0, 1.0],
+]);
+
+/// One view: an orbit around the tree's bounding-sphere centre.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewSpec {
+    /// Rotation about the y axis, radians.
+    pub yaw: f32,
+    /// Elevation, radians.
+    pub pitch: f32,
+    /// Eye distance in bounding radii.
+    pub distance: f32,
+    /// Vertical field of view in radians; `0` is a parallel projection.
+    pub fov: f32,
+}
+
+/// The views every scene is drawn from: three perspective views around
+/// the model, one parallel view, and one close-up with the eye inside the
+/// bounding sphere (exercises near-plane and guard-band clipping).
+pub const VIEWS: [ViewSpec; 5] = [
+    ViewSpec {
+        yaw: 0.6,
+        pitch: 0.45,
+        distance: 1.9,
+        fov: 0.9,
+    },
+    ViewSpec {
+        yaw: 2.5,
+        pitch: 0.3,
+        distance: 1.8,
+        fov: 0.9,
+    },
+    ViewSpec {
+        yaw: -2.0,
+        pitch: 0.8,
+        distance: 2.0,
+        fov: 0.9,
+    },
+    ViewSpec {
+        yaw: -0.7,
+        pitch: 0.35,
+        distance: 1.8,
+        fov: 0.0,
+    },
+    ViewSpec {
+        yaw: 1.3,
+        pitch: 0.5,
+        distance: 0.9,
+        fov: 1.2,
+    },
+];
+
+impl ViewSpec {
+    /// The orbit for `tree`, in coordinates relative to its origin.
+    pub fn orbit(&self, tree: &Tree<'_>) -> Orbit {
+        let d = self.distance * tree.bounding_radius();
+        Orbit::new([0.0; 3], self.yaw, self.pitch, d, self.fov)
+    }
+
+    /// What the renderer and the walk need for this view of `tree`.
+    ///
+    /// The scenes are z-up (their ground is the xy plane) while orbits are
+    /// y-up, so the orbit camera sees the model turned by [`Z_UP`] (whose
+    /// entries are 0 and ±1: the product with it is exact).
+    pub fn frame(&self, tree: &Tree<'_>) -> Frame {
+        let aspect = WIDTH as f32 / HEIGHT as f32;
+        let camera = self.orbit(tree).camera::<Libm>(aspect).with_model(&Z_UP);
+        Frame::relative(tree, &camera)
+    }
+}
+
+/// The phases of a frame's cost.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Phase {
+    /// Postprocessing: the back-to-front tree walk and fetching each
+    /// polygon's plane and colour.
+    Post = 0,
+    /// Camera setup, vertex decode and transform, clipping, projection and
+    /// shading.
+    Xform = 1,
+    /// Clearing the buffer, edge setup and scan conversion, pixel writes.
+    Fill = 2,
+}
+
+impl Phase {
+    /// Every phase, in index order.
+    pub const ALL: [Phase; 3] = [Phase::Post, Phase::Xform, Phase::Fill];
+}
+
+/// Hooks at the phase boundaries of a frame (see the module docs). All do
+/// nothing by default; `&self` so that the sink wrapper can call them too
+/// (a measuring probe keeps its state in `Cell`s).
+pub trait Probe {
+    /// The frame's work starts or resumes, in `phase`.
+    #[inline(always)]
+    fn start(&self, _phase: Phase) {}
+    /// From now on the time belongs to `phase`. Called three times per
+    /// drawn polygon: keep it cheap.
+    #[inline(always)]
+    fn enter(&self, _phase: Phase) {}
+    /// The frame's work stops until the next [`Probe::start`] (what
+    /// follows, e.g. checksumming a band, is not the frame's cost).
+    #[inline(always)]
+    fn stop(&self) {}
+}
+
+/// The probe that measures nothing (and costs nothing).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoProbe;
+
+impl Probe for NoProbe {}
+
+/// Why a frame could not be drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameError {
+    /// The tree is deeper than [`WALK_DEPTH`].
+    Order(OrderError),
+    /// The caller's buffer is smaller than [`FRAME_WORDS`] (full) or
+    /// [`BAND_WORDS`] (band).
+    Buffer(FramebufferError),
+}
+
+impl From<OrderError> for FrameError {
+    fn from(e: OrderError) -> Self {
+        FrameError::Order(e)
+    }
+}
+
+impl From<FramebufferError> for FrameError {
+    fn from(e: FramebufferError) -> Self {
+        FrameError::Buffer(e)
+    }
+}
+
+impl fmt::Display for FrameError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FrameError::Order(e) => write!(f, "{e}"),
+            FrameError::Buffer(e) => write!(f, "frame buffer: {e:?}"),
+        }
+    }
+}
+
+/// The result of one frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rendered {
+    /// [`PixelCrc`] of the frame.
+    pub crc: u32,
+    /// The renderer's counters (summed over the bands for a banded frame,
+    /// where a polygon counts once per band).
+    pub stats: RenderStats,
+}
+
+static CRC32: crc::Crc<u32> = crc::Crc::<u32>::new(&crc::CRC_32_ISO_HDLC);
+
+/// The frame checksum (see the module docs for the byte order).
+pub struct PixelCrc {
+    digest: crc::Digest<'static, u32>,
+}
+
+impl fmt::Debug for PixelCrc {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("PixelCrc")
+    }
+}
+
+impl Default for PixelCrc {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl PixelCrc {
+    /// The checksum of no pixels.
+    pub fn new() -> PixelCrc {
+        PixelCrc {
+            digest: CRC32.digest(),
+        }
+    }
+
+    /// Adds `words` (RGB565 storage values, row-major) to the checksum.
+    pub fn update(&mut self, words: &[u16]) {
+        // A few pixels at a time through a small stack buffer: the byte
+        // order is explicit, and the stack stays small on the firmware.
+        let mut bytes = [0u8; 32];
+        for chunk in words.chunks(16) {
+            for (b, w) in bytes.chunks_exact_mut(2).zip(chunk) {
+                b.copy_from_slice(&w.to_le_bytes());
+            }
+            self.digest.update(&bytes[..2 * chunk.len()]);
+        }
+    }
+
+    /// The CRC-32.
+    pub fn finish(self) -> u32 {
+        self.digest.finalize()
+    }
+}
+
+/// Draws view `view` of `tree` into `buf` (at least [`FRAME_WORDS`]
+/// words, a `WIDTH × HEIGHT` RGB565 image on return) and checksums it.
+pub fn render_full<Pr: Probe>(
+    r: &mut FrameRenderer,
+    tree: &Tree<'_>,
+    view: &ViewSpec,
+    buf: &mut [u16],
+    probe: &Pr,
+) -> Result<Rendered, FrameError> {
+    probe.start(Phase::Xform);
+    let frame = setup(r, tree, view);
+    probe.enter(Phase::Fill);
+    let mut fb = Rgb565Framebuffer::new(buf, WIDTH, HEIGHT)?;
+    fb.fill_all(BACKGROUND);
+    let drawn = draw_tree(r, tree, &frame, &mut fb, probe);
+    probe.stop();
+    drawn?;
+    let mut crc = PixelCrc::new();
+    crc.update(fb.data());
+    Ok(Rendered {
+        crc: crc.finish(),
+        stats: r.renderer.stats(),
+    })
+}
+
+/// Draws the same frame as [`render_full`] through `band` (at least
+/// [`BAND_WORDS`] words) one [`BAND_ROWS`]-row band at a time, checksumming
+/// each band as it is finished (outside the probe's start/stop).
+pub fn render_banded<Pr: Probe>(
+    r: &mut FrameRenderer,
+    tree: &Tree<'_>,
+    view: &ViewSpec,
+    band: &mut [u16],
+    probe: &Pr,
+) -> Result<Rendered, FrameError> {
+    probe.start(Phase::Xform);
+    let frame = setup(r, tree, view);
+    probe.stop();
+    let mut crc = PixelCrc::new();
+    for y0 in band_starts(HEIGHT, BAND_ROWS) {
+        let rows = BAND_ROWS.min(HEIGHT.saturating_sub(y0 as u32));
+        probe.start(Phase::Fill);
+        let fb = Rgb565Framebuffer::new(&mut *band, WIDTH, rows);
+        let mut fb = match fb {
+            Ok(fb) => fb,
+            Err(e) => {
+                probe.stop();
+                return Err(e.into());
+            }
+        };
+        fb.fill_all(BACKGROUND);
+        let drawn = draw_tree(r, tree, &frame, &mut Band::new(&mut fb, y0), probe);
+        probe.stop();
+        drawn?;
+        crc.update(fb.data());
+    }
+    Ok(Rendered {
+        crc: crc.finish(),
+        stats: r.renderer.stats(),
+    })
+}
+
+/// Derives the frame, sets the camera and the light, zeroes the counters.
+fn setup(r: &mut FrameRenderer, tree: &Tree<'_>, view: &ViewSpec) -> Frame {
+    let frame = view.frame(tree);
+    r.renderer.set_camera(&frame.camera);
+    r.renderer
+        .set_light(Light::new(frame.key_light(), AMBIENT, DIFFUSE));
+    r.renderer.reset_stats();
+    frame
+}
+
+/// Passes spans through, telling the probe when the fill starts.
+struct ProbeSink<'a, K, Pr> {
+    inner: &'a mut K,
+    probe: &'a Pr,
+}
+
+impl<K: SpanSink, Pr: Probe> SpanSink for ProbeSink<'_, K, Pr> {
+    type Color = K::Color;
+    #[inline(always)]
+    fn color(&self, paint: &Paint) -> K::Color {
+        // Called once per polygon, after shading, right before the scan
+        // conversion (see `Renderer::draw_polygon`).
+        self.probe.enter(Phase::Fill);
+        self.inner.color(paint)
+    }
+    #[inline(always)]
+    fn bounds(&self) -> SpanBounds {
+        self.inner.bounds()
+    }
+    #[inline(always)]
+    fn span(&mut self, y: i32, x0: i32, x1: i32, color: K::Color) {
+        self.inner.span(y, x0, x1, color)
+    }
+}
+
+/// [`crate::render::draw_frame`]'s loop with the probe's hooks: walks the
+/// classes back to front and draws every polygon into `sink`. The counters
+/// accumulate (the callers zero them once per frame).
+fn draw_tree<K: SpanSink, Pr: Probe>(
+    r: &mut FrameRenderer,
+    tree: &Tree<'_>,
+    frame: &Frame,
+    sink: &mut K,
+    probe: &Pr,
+) -> Result<(), OrderError> {
+    probe.enter(Phase::Post);
+    let order = Order::<WALK_DEPTH>::new(tree, frame.view)?;
+    let view = order.view();
+    let two_sided = !tree.is_closed();
+    let scale = frame.vertex_scale;
+    let mut sink = ProbeSink { inner: sink, probe };
+    for class in order {
+        for p in class.polygons(tree) {
+            let plane = p.plane();
+            // As in draw_frame: an open model's back sides are lit as if
+            // they faced the viewer.
+            let normal = if two_sided && !view.is_backward(&plane) {
+                plane.normal.map(|c| -c)
+            } else {
+                plane.normal
+            };
+            let face = Face {
+                normal,
+                color: p.color(),
+                id: p.source(),
+            };
+            let verts = (0..p.vertex_count()).map(|i| {
+                let v = p.vertex(i);
+                [v[0] * scale, v[1] * scale, v[2] * scale]
+            });
+            probe.enter(Phase::Xform);
+            r.renderer
+                .draw_polygon(&mut r.scratch, verts, &face, &mut sink);
+            probe.enter(Phase::Post);
+        }
+    }
+    Ok(())
+}
+
+/// The line both sides print for a frame: `frame scene=NAME view=K
+/// crc=XXXXXXXX`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameLine<'a> {
+    /// The scene's name (one of [`SCENES`]).
+    pub scene: &'a str,
+    /// The index into [`VIEWS`].
+    pub view: u32,
+    /// The frame's [`PixelCrc`].
+    pub crc: u32,
+}
+
+impl fmt::Display for FrameLine<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "frame scene={} view={} crc={:08x}",
+            self.scene, self.view, self.crc
+        )
+    }
+}
+
+impl<'a> FrameLine<'a> {
+    /// Reads the first three fields of a line as [`FrameLine`]'s `Display`
+    /// writes them; anything after them (the firmware's cost fields) is
+    /// ignored. `None` for any other line.
+    pub fn parse(line: &'a str) -> Option<FrameLine<'a>> {
+        let mut it = line.split_ascii_whitespace();
+        if it.next()? != "frame" {
+            return None;
+        }
+        let scene = it.next()?.strip_prefix("scene=")?;
+        let view = it.next()?.strip_prefix("view=")?.parse().ok()?;
+        let crc = it.next()?.strip_prefix("crc=")?;
+        if crc.len() != 8 || scene.is_empty() {
+            return None;
+        }
+        let crc = u32::from_str_radix(crc, 16).ok()?;
+        Some(FrameLine { scene, view, crc })
+    }
+}
+
+#[cfg(test)]
+mod tests;

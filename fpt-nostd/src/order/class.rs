@@ -1,0 +1,242 @@
+//! One class of the walk: the culling loop over a bunch's runs.
+//!
+//! A class is at most two bunches (a level's `B_j` and `F_j`, or a switch's
+//! `O_k`), each a contiguous range of runs with a pick (backward faces,
+//! forward faces, or all). The facing of a run is tested once, from the
+//! run's plane, and a passing run is handed out whole as a range of polygon
+//! ids: a flat face triangulated into many polygons costs one test.
+
+use core::ops::Range;
+
+use super::LocalView;
+use crate::format::{le_f32, le_u32, rec, run as rn, RUN_LEN};
+use crate::reader::{PolygonRef, Tree, WalkData};
+
+/// The facing test in one form for both projections: a plane `(n, d)` is
+/// backward when `n · a + d · w > 0`, with `a = −dir, w = 0` for a parallel
+/// view and `a = eye, w = 1` for an eye. This is exactly
+/// [`LocalView::is_backward`] for every finite plane, as validation makes
+/// them (negation is exact in floating point, and the added `d · 0 = ±0` of a
+/// parallel view changes no sign test), without a branch on the kind of view
+/// in the loop.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Facing {
+    a: [f32; 3],
+    w: f32,
+}
+
+impl Facing {
+    /// The test of `view`.
+    pub(super) fn of(view: &LocalView) -> Facing {
+        match *view {
+            LocalView::Parallel(d) => Facing {
+                a: [-d[0], -d[1], -d[2]],
+                w: 0.0,
+            },
+            LocalView::Eye(e) => Facing { a: e, w: 1.0 },
+        }
+    }
+
+    /// Whether the plane stored at the start of record `r` (normal, offset)
+    /// is backward.
+    #[inline(always)]
+    pub(super) fn backward<const L: usize>(&self, r: &[u8; L]) -> bool {
+        let a = self.a;
+        le_f32(r, 0) * a[0] + le_f32(r, 4) * a[1] + le_f32(r, 8) * a[2] + le_f32(r, 12) * self.w
+            > 0.0
+    }
+}
+
+/// Which faces of a bunch a class takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Pick {
+    Backward,
+    Forward,
+    All,
+}
+
+/// The runs `run..run_end` of one bunch still to test, the first of them
+/// starting at polygon `start`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Seg {
+    run: u32,
+    run_end: u32,
+    start: u32,
+    pick: Pick,
+}
+
+impl Seg {
+    /// Nothing.
+    pub(super) const EMPTY: Seg = Seg {
+        run: 0,
+        run_end: 0,
+        start: 0,
+        pick: Pick::All,
+    };
+
+    /// The runs `runs` of a bunch.
+    #[inline(always)]
+    pub(super) fn new(w: &WalkData<'_>, runs: (u32, u32), pick: Pick) -> Seg {
+        let (run, run_end) = runs;
+        Seg {
+            run,
+            run_end,
+            // Only read when there is a run to start.
+            start: if run < run_end { w.run_start(run) } else { 0 },
+            pick,
+        }
+    }
+
+    /// Whether no run is left.
+    #[inline(always)]
+    pub(super) fn is_empty(&self) -> bool {
+        self.run >= self.run_end
+    }
+
+    /// The polygon ids of the next run that passes, and moves past it.
+    #[inline(always)]
+    fn take(&mut self, runs: &[u8], face: &Facing) -> Option<(u32, u32)> {
+        // Emptiness first: the second bunch of a closed volume's class is
+        // always empty, and this keeps that case to one predictable branch.
+        if self.is_empty() {
+            return None;
+        }
+        let want = match self.pick {
+            Pick::Backward => true,
+            Pick::Forward => false,
+            Pick::All => {
+                // Everything at once: the runs are contiguous.
+                let last = self.run_end.wrapping_sub(1) as usize;
+                let end = le_u32(&rec::<RUN_LEN>(runs, last), rn::END);
+                let start = self.start;
+                self.run = self.run_end;
+                self.start = end;
+                return Some((start, end));
+            }
+        };
+        // One range check for the whole scan; the records are then read
+        // from fixed-size arrays (see `crate::reader`).
+        let lo = (self.run as usize).wrapping_mul(RUN_LEN);
+        let hi = (self.run_end as usize).wrapping_mul(RUN_LEN);
+        let recs = runs.get(lo..hi).unwrap_or(&[]);
+        let mut start = self.start;
+        let mut run = self.run;
+        for r in recs.chunks_exact(RUN_LEN) {
+            let Ok(r) = <&[u8; RUN_LEN]>::try_from(r) else {
+                break;
+            };
+            let end = le_u32(r, rn::END);
+            run = run.wrapping_add(1);
+            if face.backward(r) == want {
+                self.run = run;
+                self.start = end;
+                return Some((start, end));
+            }
+            start = end;
+        }
+        self.run = self.run_end;
+        None
+    }
+
+    /// Polygons left (an upper bound on what passes).
+    fn left(&self, runs: &[u8]) -> u32 {
+        match self.run_end.checked_sub(1).filter(|_| !self.is_empty()) {
+            Some(last) => {
+                le_u32(&rec::<RUN_LEN>(runs, last as usize), rn::END).saturating_sub(self.start)
+            }
+            None => 0,
+        }
+    }
+}
+
+/// One class: polygons of equal priority, already culled, as polygon ids.
+///
+/// Within a class no polygon can hide another, so they may be drawn in any
+/// order; the ids come run by run in the order of the file. Iterate the ids
+/// one by one, or take whole ranges with [`Class::next_range`].
+#[derive(Clone, Copy, Debug)]
+pub struct Class<'a> {
+    runs: &'a [u8],
+    face: Facing,
+    /// The ids `next..end` of a passing run are left to hand out.
+    next: u32,
+    end: u32,
+    segs: [Seg; 2],
+    cur: usize,
+}
+
+impl<'a> Class<'a> {
+    /// The class of `segs`, or `None` if nothing in them passes.
+    #[inline]
+    pub(super) fn new(w: &WalkData<'a>, face: Facing, segs: [Seg; 2]) -> Option<Class<'a>> {
+        let mut c = Class {
+            runs: w.runs,
+            face,
+            next: 0,
+            end: 0,
+            segs,
+            cur: 0,
+        };
+        c.settle().then_some(c)
+    }
+
+    /// Makes `next..end` the next passing run; false when there is none.
+    /// Each run is tested once.
+    #[inline]
+    fn settle(&mut self) -> bool {
+        while let Some(seg) = self.segs.get_mut(self.cur) {
+            if let Some((start, end)) = seg.take(self.runs, &self.face) {
+                self.next = start;
+                self.end = end;
+                return true;
+            }
+            self.cur += 1;
+        }
+        false
+    }
+
+    /// The next range of polygon ids of this class (a whole run, or what is
+    /// left of it after [`Iterator::next`]); `None` at the end. Every id of
+    /// the range belongs to the class.
+    #[inline]
+    pub fn next_range(&mut self) -> Option<Range<u32>> {
+        if self.next >= self.end && !self.settle() {
+            return None;
+        }
+        let r = self.next..self.end;
+        self.next = self.end;
+        Some(r)
+    }
+
+    /// The polygons of this class.
+    pub fn polygons(self, tree: &Tree<'a>) -> impl Iterator<Item = PolygonRef<'a>> + 'a {
+        let tree = *tree;
+        self.filter_map(move |id| tree.polygon(id))
+    }
+}
+
+impl Iterator for Class<'_> {
+    type Item = u32;
+
+    #[inline]
+    fn next(&mut self) -> Option<u32> {
+        if self.next >= self.end && !self.settle() {
+            return None;
+        }
+        let id = self.next;
+        // next < end, so this cannot overflow.
+        self.next += 1;
+        Some(id)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let current = self.end.saturating_sub(self.next);
+        let rest: u32 = self
+            .segs
+            .iter()
+            .skip(self.cur)
+            .map(|s| s.left(self.runs))
+            .fold(current, u32::saturating_add);
+        (current as usize, Some(rest as usize))
+    }
+}

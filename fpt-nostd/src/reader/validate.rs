@@ -1,0 +1,171 @@
+//! The structural checks of [`Tree::from_bytes`], one pass per section, in
+//! the order the sections depend on each other (see the contract in
+//! [`crate::reader`]). Each is linear in its section and allocates nothing.
+
+use super::{finite3_f32, Tree};
+use crate::format::{polygon as pg, rd_f32x3, rd_u32, rd_u8, FormatError, VertexFormat, NO_SWITCH};
+
+impl Tree<'_> {
+    /// `f32` vertices finite; every vertex index below the vertex count.
+    pub(super) fn check_vertices(&self) -> Result<(), FormatError> {
+        if self.g.format == VertexFormat::F32 {
+            for v in 0..self.counts.vertices {
+                if !finite3_f32(rd_f32x3(self.g.bytes, self.g.vertex_off(v))) {
+                    return Err(FormatError::NonFinite("vertices"));
+                }
+            }
+        }
+        for j in 0..self.counts.indices {
+            if self.g.index(j) >= self.counts.vertices {
+                return Err(FormatError::IndexOutOfRange);
+            }
+        }
+        Ok(())
+    }
+
+    /// The polygons tile the index list with at least 3 indices each; the
+    /// padding byte is 0.
+    pub(super) fn check_polygons(&self) -> Result<(), FormatError> {
+        let b = self.g.bytes;
+        let mut prev = 0u32;
+        for p in 0..self.counts.polygons {
+            let rec = self.g.polygon_off(p);
+            if rd_u8(b, rec.wrapping_add(pg::COLOR + 3)) != 0 {
+                return Err(FormatError::BadPolygon(p));
+            }
+            let first = rd_u32(b, rec.wrapping_add(pg::FIRST_INDEX));
+            if p == 0 {
+                if first != 0 {
+                    return Err(FormatError::BadPolygon(0));
+                }
+            } else if first.checked_sub(prev).is_none_or(|n| n < 3) {
+                return Err(FormatError::BadPolygon(p - 1));
+            }
+            prev = first;
+        }
+        match self.counts.polygons.checked_sub(1) {
+            Some(last) if self.counts.indices.checked_sub(prev).is_none_or(|n| n < 3) => {
+                Err(FormatError::BadPolygon(last))
+            }
+            None if self.counts.indices != 0 => Err(FormatError::BadHeader("index_count")),
+            _ => Ok(()),
+        }
+    }
+
+    /// The runs tile the polygons (non-empty, in order, the last ending at
+    /// the polygon count), their planes are finite, and each polygon's `run`
+    /// field names the run holding it.
+    pub(super) fn check_runs(&self) -> Result<(), FormatError> {
+        let mut start = 0u32;
+        for r in 0..self.counts.runs {
+            if !self.w.run_plane(r).is_finite() {
+                return Err(FormatError::NonFinite("run planes"));
+            }
+            let end = self.w.run_end(r);
+            if end <= start || end > self.counts.polygons {
+                return Err(FormatError::BadRuns);
+            }
+            for p in start..end {
+                let field = rd_u32(self.g.bytes, self.g.polygon_off(p).wrapping_add(pg::RUN));
+                if field != r {
+                    return Err(FormatError::BadRuns);
+                }
+            }
+            start = end;
+        }
+        // Also rejects runs for no polygons, or polygons in no run.
+        if start != self.counts.polygons {
+            return Err(FormatError::BadRuns);
+        }
+        Ok(())
+    }
+
+    /// The bunch offsets start at 0, never decrease and end at the run count.
+    pub(super) fn check_bunches(&self) -> Result<(), FormatError> {
+        let mut prev = 0u32;
+        for b in 0..=self.counts.bunches {
+            let off = self.w.bunch_offset(b);
+            if (b == 0 && off != 0) || off < prev {
+                return Err(FormatError::BadBunches);
+            }
+            prev = off;
+        }
+        if prev != self.counts.runs {
+            return Err(FormatError::BadBunches);
+        }
+        Ok(())
+    }
+
+    /// Checks the bunch tiling and the switch numbering; returns the total
+    /// number of levels.
+    pub(super) fn check_nodes(&self) -> Result<u32, FormatError> {
+        let mut bunch = 0u64;
+        let mut next_switch = 0u32;
+        let mut levels = 0u64;
+        for i in 0..self.counts.nodes {
+            let n = self.w.node(i);
+            if u64::from(n.first_bunch) != bunch {
+                return Err(FormatError::BadNode(i));
+            }
+            let has_switch = n.switch != NO_SWITCH;
+            if has_switch {
+                if n.switch != next_switch || next_switch >= self.counts.switches {
+                    return Err(FormatError::BadNode(i));
+                }
+                next_switch += 1;
+            }
+            bunch += 2 * u64::from(n.level_count) + u64::from(has_switch);
+            levels += u64::from(n.level_count);
+            if bunch > u64::from(self.counts.bunches) {
+                return Err(FormatError::BadNode(i));
+            }
+        }
+        if bunch != u64::from(self.counts.bunches) {
+            return Err(FormatError::BadBunches);
+        }
+        if next_switch != self.counts.switches {
+            return Err(FormatError::NotATree);
+        }
+        // levels ≤ bunches / 2, so it fits.
+        u32::try_from(levels).map_err(|_| FormatError::BadBunches)
+    }
+
+    /// Switch planes finite.
+    pub(super) fn check_switches(&self) -> Result<(), FormatError> {
+        for k in 0..self.counts.switches {
+            if !self.w.switch_plane(k).is_finite() {
+                return Err(FormatError::NonFinite("switch planes"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Breadth-first by layers. With the numbering checked by
+    /// [`Self::check_nodes`], the switches of one layer are consecutive and
+    /// their children are exactly the next nodes in storage order: layer
+    /// `L + 1` is `end_L .. end_L + 2 · (switches in layer L)`. So a layer is
+    /// a range, the pass needs no memory, and reaching `node_count` proves
+    /// every node has exactly one parent above it: a tree.
+    pub(super) fn check_depth(&self) -> Result<(), FormatError> {
+        let (mut start, mut end, mut depth) = (0u32, 1u32, 0u32);
+        while start < end {
+            depth += 1;
+            let switches = (start..end)
+                .filter(|&i| self.w.node(i).switch != NO_SWITCH)
+                .count() as u32;
+            start = end;
+            // end = 1 + 2 · (switches so far) ≤ 1 + 2 · switch_count = node_count.
+            end = end.saturating_add(switches.saturating_mul(2));
+            if end > self.counts.nodes {
+                return Err(FormatError::NotATree);
+            }
+        }
+        if end != self.counts.nodes {
+            return Err(FormatError::NotATree);
+        }
+        if depth != self.max_depth {
+            return Err(FormatError::DepthMismatch);
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,527 @@
+//! Drawing a whole tree: the glue between the walk ([`crate::order`]) and
+//! the rasterizer ([`crate::raster`]).
+//!
+//! Per frame, [`Frame::new`] turns the caller's camera (a model → clip
+//! matrix, in the model's own coordinates) into what the two halves need:
+//!
+//! * **the walk's view**, derived from the matrix alone: the centre of
+//!   projection is the homogeneous point `C` with `(M·C).x = (M·C).y =
+//!   (M·C).w = 0` (the null vector of rows x, y, w). `C.w ≠ 0` is a
+//!   perspective camera with the eye at `C.xyz / C.w`; `C.w = 0` a parallel
+//!   one looking along `±C.xyz`, the sign chosen so that `ndc.z` grows along
+//!   it (smaller `ndc.z` is nearer). The eye is computed in `f64` and made
+//!   relative to the tree's origin before rounding to `f32`, so a model far
+//!   from the coordinate origin keeps its precision. A matrix whose x, y
+//!   and w rows are dependent has no centre of projection (it collapses the
+//!   picture); it still gets some view and renders without error.
+//! * **the renderer's matrix**, composed once in `f64`:
+//!   `k · M · T(origin) · S(s)`. `T(origin)` lets the vertices, stored
+//!   relative to the origin, go straight through the transform. `S(s)` and
+//!   `k` are powers of two chosen for the fixed-point path (16.16 vertices
+//!   and matrix, range ±2^15, step 2^-16): the vertices are multiplied by
+//!   the exact `1/s`, which brings the bounding radius to `[2^13, 2^14]`,
+//!   and `k` brings the largest matrix entry to `[2^13, 2^14)`. Both are
+//!   as large as the range allows (half of it, for headroom), which makes
+//!   both rounding errors — of a vertex, `2^-17` against a vertex of up to
+//!   `2^14`, and of an entry, `2^-17` against the largest entry — about
+//!   `2^-31` relative, for a model of any size and any distance from the
+//!   coordinate origin. Products stay below `2^60` (the transform's `i64`
+//!   sums have room for four), and the `f32` path is not affected at all
+//!   (powers of two scale exactly). Neither changes a projected point: `k`
+//!   scales `x, y, w` and the near threshold together, `S` is undone by
+//!   `1/s`.
+//!
+//! Then [`render_tree`] walks the classes back to front and draws each
+//! polygon with its plane normal for the Lambert term. An open (two-sided)
+//! model shows both sides of a face, so a face seen from behind is lit
+//! with its normal flipped toward the viewer. Ids written to an
+//! [`crate::raster::IdBuffer`] are the polygon's source face or its id in
+//! the file ([`FaceIds`]).
+//!
+//! Band rendering ([`TreeRenderer::render_banded`]) walks the tree once per
+//! band into one band buffer; the result is the full-frame picture exactly
+//! (see [`crate::raster::band`]).
+//!
+//! Nothing here allocates or panics, whatever the camera: degenerate,
+//! non-finite or extreme matrices render something or nothing, never fail,
+//! except that a tree deeper than the walk's stack `N` is refused
+//! ([`OrderError`]).
+
+use crate::order::{Order, OrderError, View};
+use crate::raster::{
+    band_starts, Band, Camera, Face, Framebuffer, FramebufferError, Mat4, PixelFormat, Precision,
+    RenderStats, Renderer, Scratch, SpanSink,
+};
+use crate::reader::Tree;
+
+/// Which number a polygon writes into id buffers (as `number + 1`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FaceIds {
+    /// The input face it came from ([`crate::reader::PolygonRef::source`]):
+    /// pieces of a split face share it.
+    #[default]
+    Source,
+    /// Its id in the tree file.
+    Polygon,
+}
+
+/// Why a frame could not be drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RenderError {
+    /// The walk refused the tree (deeper than its stack).
+    Order(OrderError),
+    /// The band buffer is too small or the band has a bad size.
+    Band(FramebufferError),
+}
+
+impl From<OrderError> for RenderError {
+    fn from(e: OrderError) -> Self {
+        RenderError::Order(e)
+    }
+}
+
+impl core::fmt::Display for RenderError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            RenderError::Order(e) => write!(f, "{e}"),
+            RenderError::Band(e) => write!(f, "band buffer: {e:?}"),
+        }
+    }
+}
+
+/// Everything one frame needs, derived from a tree and a camera (see the
+/// module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    /// The renderer's camera: maps origin-relative vertices multiplied by
+    /// [`Frame::vertex_scale`] to clip space.
+    pub camera: Camera,
+    /// The exact power of two every origin-relative vertex is multiplied by.
+    pub vertex_scale: f32,
+    /// The walk's view.
+    pub view: View,
+}
+
+/// The rows of `m` in `f64` (the form [`MatrixView::of`], [`near_w_for`]
+/// and [`Frame::from_f64`] take).
+pub fn rows_f64(m: &Mat4) -> [[f64; 4]; 4] {
+    m.0.map(|r| r.map(f64::from))
+}
+
+fn det3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+        + a[2] * (b[0] * c[1] - b[1] * c[0])
+}
+
+/// The null vector of rows x, y and w: `C_i = (−1)^i · det(minor without
+/// column i)`, which is orthogonal to each of the three rows (expanding a
+/// determinant with a repeated row).
+fn centre_of_projection(r: &[[f64; 4]; 4]) -> [f64; 4] {
+    let pick = |row: [f64; 4], skip: usize| {
+        let mut o = [0.0; 3];
+        let mut k = 0;
+        for (i, v) in row.iter().enumerate() {
+            if i != skip {
+                if let Some(slot) = o.get_mut(k) {
+                    *slot = *v;
+                }
+                k += 1;
+            }
+        }
+        o
+    };
+    let minor = |skip: usize| det3(pick(r[0], skip), pick(r[1], skip), pick(r[3], skip));
+    [minor(0), -minor(1), minor(2), -minor(3)]
+}
+
+/// `2^e` as `f64`, `e` clamped to keep it normal.
+fn pow2(e: i32) -> f64 {
+    f64::from_bits(((e.clamp(-1000, 1000) + 1023) as u64) << 52)
+}
+
+/// `floor(log2(x))` for finite `x > 0`.
+fn log2_floor(x: f64) -> Option<i32> {
+    if !(x.is_finite() && x > 0.0) {
+        return None;
+    }
+    let e = ((x.to_bits() >> 52) & 0x7ff) as i32;
+    // Subnormals are far below anything that matters here.
+    Some(if e == 0 { -1023 } else { e - 1023 })
+}
+
+fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn xyz(r: [f64; 4]) -> [f64; 3] {
+    [r[0], r[1], r[2]]
+}
+
+/// `row · [p, 1]`.
+fn eval_row(r: [f64; 4], p: [f64; 3]) -> f64 {
+    dot3(xyz(r), p) + r[3]
+}
+
+/// `v / |v|`, or `None` for a zero or non-finite vector.
+fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
+    let l = libm::sqrt(dot3(v, v));
+    (l.is_finite() && l > 0.0).then(|| v.map(|c| c / l))
+}
+
+/// A view derived from a model → clip matrix (see the module docs), in
+/// `f64`, in the matrix's input coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MatrixView {
+    /// Parallel projection looking along `dir` (largest component ±1).
+    Parallel {
+        /// Viewing direction, from the viewer into the scene.
+        dir: [f64; 3],
+    },
+    /// Perspective projection from `eye`.
+    Perspective {
+        /// The eye point.
+        eye: [f64; 3],
+    },
+    /// The x, y and w rows are dependent: there is no centre of projection.
+    Degenerate,
+}
+
+impl MatrixView {
+    /// The view of the row-major matrix `r`. `reference` is a point of the
+    /// model (its centre): it only decides the sign of a parallel direction
+    /// when `w` is negative there.
+    pub fn of(r: &[[f64; 4]; 4], reference: [f64; 3]) -> MatrixView {
+        let c = centre_of_projection(r);
+        let big = c[0].abs().max(c[1].abs()).max(c[2].abs());
+        // |C| is at most the product of the three rows' lengths; far below
+        // it, the rows are dependent up to rounding.
+        let len = |row: [f64; 4]| libm::sqrt(row.iter().map(|v| v * v).sum::<f64>());
+        let scale = len(r[0]) * len(r[1]) * len(r[3]);
+        let size = big.max(c[3].abs());
+        if !(size.is_finite() && scale.is_finite()) || size <= 1e-12 * scale {
+            return MatrixView::Degenerate;
+        }
+        // Same threshold as the host reference renderer, so that both call
+        // the same matrices parallel.
+        if c[3].abs() > 1e-12 * (c[0].abs() + c[1].abs() + c[2].abs()) {
+            let eye = [c[0] / c[3], c[1] / c[3], c[2] / c[3]];
+            if eye.iter().all(|v| v.is_finite()) {
+                return MatrixView::Perspective { eye };
+            }
+        }
+        if big == 0.0 {
+            return MatrixView::Degenerate;
+        }
+        let mut dir = [c[0] / big, c[1] / big, c[2] / big];
+        // Along `dir` only clip z changes; ndc.z = z / w must grow.
+        let dz = dot3(xyz(r[2]), dir);
+        let w = eval_row(r[3], reference);
+        if dz * w < 0.0 {
+            dir = dir.map(|v| -v);
+        }
+        MatrixView::Parallel { dir }
+    }
+}
+
+/// The near threshold on `w` that matches the near plane `z = −w` of a
+/// conventional projection matrix (row-major rows `r`, model coordinates),
+/// so that the renderer drops exactly what a z-clipping renderer would drop
+/// at the near plane:
+/// * the plane `z + w = 0` is a plane `w = near` when row z + row w is
+///   `α·(row w) + β·[0, 0, 0, 1]` (every perspective and parallel matrix
+///   built the usual way); then `near = −β/α` when that is positive;
+/// * a parallel matrix (`w` constant) gets half that constant (nothing is
+///   near-clipped: the renderer does not clip at a parallel near plane);
+/// * otherwise a small fraction of the largest `w` over the tree's
+///   bounding sphere.
+///
+/// Always positive and finite.
+pub fn near_w_for(r: &[[f64; 4]; 4], tree: &Tree<'_>) -> f32 {
+    const TINY: f32 = 1e-30;
+    let rw = r[3];
+    let s = [
+        r[2][0] + rw[0],
+        r[2][1] + rw[1],
+        r[2][2] + rw[2],
+        r[2][3] + rw[3],
+    ];
+    let ww = dot3(xyz(rw), xyz(rw));
+    let ok = |v: f64| v.is_finite() && (v as f32) > TINY && (v as f32).is_finite();
+    if ww == 0.0 {
+        let half = 0.5 * rw[3];
+        return if ok(half) { half as f32 } else { TINY };
+    }
+    let alpha = dot3(xyz(s), xyz(rw)) / ww;
+    let resid = [
+        s[0] - alpha * rw[0],
+        s[1] - alpha * rw[1],
+        s[2] - alpha * rw[2],
+    ];
+    if alpha > 0.0 && dot3(resid, resid) <= 1e-12 * dot3(xyz(s), xyz(s)) {
+        let near = -(s[3] - alpha * rw[3]) / alpha;
+        if ok(near) {
+            return near as f32;
+        }
+    }
+    let wmax = eval_row(rw, tree.origin()) + f64::from(tree.bounding_radius()) * libm::sqrt(ww);
+    let near = 1e-5 * wmax;
+    if ok(near) {
+        near as f32
+    } else {
+        TINY
+    }
+}
+
+impl Frame {
+    /// The frame of `tree` seen through `camera`, whose matrix takes model
+    /// coordinates.
+    pub fn new(tree: &Tree<'_>, camera: &Camera) -> Frame {
+        Frame::build(
+            tree,
+            &rows_f64(&camera.matrix),
+            f64::from(camera.near_w),
+            false,
+        )
+    }
+
+    /// The frame of `tree` seen through `camera`, whose matrix takes
+    /// coordinates relative to the tree's origin (e.g. an [`crate::raster::Orbit`]
+    /// around `[0, 0, 0]`, which is the bounding-sphere centre): no large
+    /// translation ever rounds in `f32`.
+    pub fn relative(tree: &Tree<'_>, camera: &Camera) -> Frame {
+        Frame::build(
+            tree,
+            &rows_f64(&camera.matrix),
+            f64::from(camera.near_w),
+            true,
+        )
+    }
+
+    /// Like [`Frame::new`] for a row-major `f64` matrix (model
+    /// coordinates), so that a far-off model loses nothing to an `f32`
+    /// matrix.
+    pub fn from_f64(tree: &Tree<'_>, rows: &[[f64; 4]; 4], near_w: f64) -> Frame {
+        Frame::build(tree, rows, near_w, false)
+    }
+
+    fn build(tree: &Tree<'_>, r: &[[f64; 4]; 4], near_w: f64, relative: bool) -> Frame {
+        let o = if relative { [0.0; 3] } else { tree.origin() };
+        let view = match MatrixView::of(r, o) {
+            MatrixView::Perspective { eye } => View::PerspectiveRelative {
+                eye: [
+                    (eye[0] - o[0]) as f32,
+                    (eye[1] - o[1]) as f32,
+                    (eye[2] - o[2]) as f32,
+                ],
+            },
+            MatrixView::Parallel { dir } => View::Parallel {
+                dir: dir.map(|v| v as f32),
+            },
+            // Any view will do: the picture collapses to a line or a point.
+            MatrixView::Degenerate => View::Parallel {
+                dir: [0.0, 0.0, -1.0],
+            },
+        };
+        // S(s): s = 2^e with radius / s in [2^13, 2^14] (module docs).
+        let e = log2_floor(f64::from(tree.bounding_radius()))
+            .map_or(0, |e| (e + 1 - 14).clamp(-110, 110));
+        let s = pow2(e);
+        let a = r.map(|row| [row[0] * s, row[1] * s, row[2] * s, eval_row(row, o)]);
+        let big = a.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        // k: the largest entry in [2^13, 2^14).
+        let k = log2_floor(big).map_or(1.0, |eb| pow2(13 - eb));
+        let matrix = Mat4(a.map(|row| row.map(|v| (v * k) as f32)));
+        let near = near_w * k;
+        let near_w = if near.is_finite() && near > 0.0 {
+            near as f32
+        } else {
+            near_w as f32
+        };
+        Frame {
+            camera: Camera { matrix, near_w },
+            vertex_scale: pow2(-e) as f32,
+            view,
+        }
+    }
+
+    /// A light direction for [`crate::raster::Light::new`]: toward the
+    /// viewer, raised a little toward the top of the screen and moved to
+    /// its left, so that faces turned to the viewer differ in brightness
+    /// (a pure headlight shades every face of a box seen straight on
+    /// alike). `[0, 0, 1]` for a degenerate camera.
+    pub fn key_light(&self) -> [f32; 3] {
+        let r = rows_f64(&self.camera.matrix);
+        let toward = match self.view {
+            View::Parallel { dir } => dir.map(|v| -f64::from(v)),
+            View::Perspective { eye } | View::PerspectiveRelative { eye } => eye.map(f64::from),
+        };
+        let (Some(t), Some(up), Some(right)) = (unit(toward), unit(xyz(r[1])), unit(xyz(r[0])))
+        else {
+            return [0.0, 0.0, 1.0];
+        };
+        let mix = |a: f64, b: f64, c: f64| (a + 0.6 * b - 0.4 * c) as f32;
+        [
+            mix(t[0], up[0], right[0]),
+            mix(t[1], up[1], right[1]),
+            mix(t[2], up[2], right[2]),
+        ]
+    }
+}
+
+/// Draws `tree` through `camera` into `sink`: derives the [`Frame`], sets
+/// it as `renderer`'s camera, zeroes its counters, walks the classes back
+/// to front (a stack of `N` frames) and draws every polygon; returns the
+/// counters. The renderer's light, shading mode and fill rule are used as
+/// set. Fails only when the tree is deeper than `N`.
+pub fn render_tree<P: Precision, K: SpanSink, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    camera: &Camera,
+    renderer: &mut Renderer<P>,
+    scratch: &mut Scratch<P, V>,
+    ids: FaceIds,
+    sink: &mut K,
+) -> Result<RenderStats, OrderError> {
+    let frame = Frame::new(tree, camera);
+    draw_frame::<P, K, N, V>(tree, &frame, renderer, scratch, ids, sink)
+}
+
+/// [`render_tree`] for an already derived [`Frame`] (saves deriving it
+/// again per band).
+pub fn draw_frame<P: Precision, K: SpanSink, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    renderer: &mut Renderer<P>,
+    scratch: &mut Scratch<P, V>,
+    ids: FaceIds,
+    sink: &mut K,
+) -> Result<RenderStats, OrderError> {
+    renderer.set_camera(&frame.camera);
+    renderer.reset_stats();
+    let order = Order::<N>::new(tree, frame.view)?;
+    let view = order.view();
+    let two_sided = !tree.is_closed();
+    let scale = frame.vertex_scale;
+    for class in order {
+        for p in class.polygons(tree) {
+            let plane = p.plane();
+            // A closed model only emits faces turned to the viewer; an open
+            // one also shows back sides, lit as if they faced the viewer.
+            let normal = if two_sided && !view.is_backward(&plane) {
+                plane.normal.map(|c| -c)
+            } else {
+                plane.normal
+            };
+            let face = Face {
+                normal,
+                color: p.color(),
+                id: match ids {
+                    FaceIds::Source => p.source(),
+                    FaceIds::Polygon => p.id(),
+                },
+            };
+            let verts = (0..p.vertex_count()).map(|i| {
+                let v = p.vertex(i);
+                [v[0] * scale, v[1] * scale, v[2] * scale]
+            });
+            renderer.draw_polygon(scratch, verts, &face, sink);
+        }
+    }
+    Ok(renderer.stats())
+}
+
+/// The band buffer of [`TreeRenderer::render_banded`]: storage for `rows`
+/// full-width rows, and the colour every band starts from.
+#[derive(Debug)]
+pub struct BandBuffer<'b, F: PixelFormat> {
+    /// At least `rows × words_per_row(width)` words.
+    pub buf: &'b mut [F::Word],
+    /// Rows per band (at least 1).
+    pub rows: u32,
+    /// Background colour.
+    pub background: F::Color,
+}
+
+/// A renderer with its scratch buffers and id choice: everything needed to
+/// draw trees, in one value (about `V × 106` bytes plus a few dozen with
+/// the fixed path; place it in a `static` on a small stack).
+#[derive(Debug)]
+pub struct TreeRenderer<P: Precision, const V: usize> {
+    /// The polygon renderer (set its light and shading mode here).
+    pub renderer: Renderer<P>,
+    /// Per-polygon buffers for up to `V` vertices.
+    pub scratch: Scratch<P, V>,
+    /// What id buffers receive.
+    pub ids: FaceIds,
+}
+
+impl<P: Precision, const V: usize> TreeRenderer<P, V> {
+    /// A renderer for `width × height` frames; `None` when a side is 0 or
+    /// too large (see [`Renderer::new`]).
+    pub fn new(width: u32, height: u32) -> Option<Self> {
+        let camera = Camera::from_matrix(Mat4::IDENTITY, 1.0);
+        Some(TreeRenderer {
+            renderer: Renderer::new(width, height, &camera)?,
+            scratch: Scratch::new(),
+            ids: FaceIds::default(),
+        })
+    }
+
+    /// [`draw_frame`] into `sink`, walking with a stack of `N` frames.
+    pub fn render<K: SpanSink, const N: usize>(
+        &mut self,
+        tree: &Tree<'_>,
+        frame: &Frame,
+        sink: &mut K,
+    ) -> Result<RenderStats, OrderError> {
+        draw_frame::<P, K, N, V>(
+            tree,
+            frame,
+            &mut self.renderer,
+            &mut self.scratch,
+            self.ids,
+            sink,
+        )
+    }
+
+    /// Draws the frame band by band through `band`'s buffer: for each band
+    /// (top to bottom) fills it with the background, draws the whole tree
+    /// into it, and hands it to `emit` with its first frame row. The bands
+    /// put together are exactly the full-frame picture. The counters are
+    /// summed over the bands (a polygon is counted once per band).
+    pub fn render_banded<F: PixelFormat, const N: usize>(
+        &mut self,
+        tree: &Tree<'_>,
+        frame: &Frame,
+        band: BandBuffer<'_, F>,
+        mut emit: impl FnMut(i32, &Framebuffer<'_, F>),
+    ) -> Result<RenderStats, RenderError> {
+        let vp = self.renderer.viewport();
+        let (w, h) = (vp.width(), vp.height());
+        let rows = band.rows.max(1);
+        let mut total = RenderStats::default();
+        for y0 in band_starts(h, rows) {
+            let n = rows.min(h.saturating_sub(y0 as u32));
+            let mut fb = Framebuffer::<F>::new(&mut *band.buf, w, n).map_err(RenderError::Band)?;
+            fb.fill_all(band.background);
+            let mut sink = Band::new(&mut fb, y0);
+            let s = draw_frame::<P, _, N, V>(
+                tree,
+                frame,
+                &mut self.renderer,
+                &mut self.scratch,
+                self.ids,
+                &mut sink,
+            )?;
+            total.drawn += s.drawn;
+            total.invisible += s.invisible;
+            total.skipped += s.skipped;
+            total.clipped += s.clipped;
+            total.spans += s.spans;
+            emit(y0, &fb);
+        }
+        Ok(total)
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,202 @@
+//! `fpt frames`: the firmware's frames, drawn on the host by the same no_std
+//! code ([`fpt_nostd::frames`]), one line per frame:
+//! `frame scene=NAME view=K crc=XXXXXXXX`.
+//!
+//! The trees are built here from the procedural scenes
+//! ([`crate::scenes`]) with a fixed method, seed and encoding
+//! ([`scene_tree`]), so the same source always gives the same bytes.
+//! `fpt frames --export DIR` also writes them, with the lines, as the files
+//! the firmware embeds:
+//!
+//! ```text
+//! cargo run --release -p host-sim --bin fpt -- frames --export firmware/trees
+//! ```
+//!
+//! writes `firmware/trees/{vise,house,bench_city}.fpt` and
+//! `firmware/trees/frames.txt` (the expected lines, which the firmware
+//! checks its own checksums against). `--trees DIR` draws the trees found
+//! in `DIR` instead of building them.
+//!
+//! Every frame is drawn twice, into a full framebuffer and through a band
+//! buffer; the two checksums must agree (the firmware's two features rely
+//! on it), otherwise the command fails.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use fpt_nostd::format::VertexFormat;
+use fpt_nostd::frames::{
+    render_banded, render_full, FrameLine, FrameRenderer, NoProbe, BAND_WORDS, FRAME_WORDS, HEIGHT,
+    SCENES, VIEWS, WIDTH,
+};
+use fpt_nostd::reader::Tree;
+
+use super::{CliError, CliResult};
+use crate::build::{build, NoProgress, DEFAULT_SEED};
+use crate::cli_err;
+use crate::output::write_atomic;
+use crate::scenes::Scene;
+use crate::serialize::{serialize, SerializeOptions};
+use crate::tree::Method;
+
+/// The file of expected lines next to the trees.
+pub const EXPECTED_FILE: &str = "frames.txt";
+
+/// The builder the committed trees come from.
+pub const METHOD: Method = Method::Static;
+
+/// Arguments of `fpt frames`.
+#[derive(Args, Debug)]
+pub struct FramesArgs {
+    /// Draw the trees DIR/NAME.fpt instead of building them.
+    #[arg(long, value_name = "DIR", conflicts_with = "export")]
+    pub trees: Option<PathBuf>,
+    /// Also write the trees and the expected lines (frames.txt) into DIR,
+    /// e.g. firmware/trees.
+    #[arg(long, value_name = "DIR")]
+    pub export: Option<PathBuf>,
+}
+
+/// The procedural scene of one of [`SCENES`].
+fn scene(name: &str) -> Result<Scene, CliError> {
+    match name {
+        "vise" => Ok(crate::scenes::vise()),
+        "house" => Ok(crate::scenes::house()),
+        "bench_city" => Ok(crate::scenes::bench_city()),
+        _ => Err(cli_err!("no procedural scene named '{name}'")),
+    }
+}
+
+/// The tree file of scene `name`: [`METHOD`], [`DEFAULT_SEED`], `f32`
+/// vertices, no effects. Deterministic.
+pub fn scene_tree(name: &str) -> Result<Vec<u8>, CliError> {
+    let s = scene(name)?;
+    let tree = build(s.polygons, s.closed, METHOD, DEFAULT_SEED, &mut NoProgress);
+    let opts = SerializeOptions {
+        vertex_format: VertexFormat::F32,
+        effects: 0,
+    };
+    serialize(&tree, &opts).map_err(|e| cli_err!("{name}: {e}"))
+}
+
+/// The tree files of all [`SCENES`], in order.
+pub fn scene_trees() -> Result<Vec<(String, Vec<u8>)>, CliError> {
+    SCENES
+        .iter()
+        .map(|&n| Ok((n.to_string(), scene_tree(n)?)))
+        .collect()
+}
+
+/// Reads `DIR/NAME.fpt` for every scene.
+pub fn read_trees(dir: &Path) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+    SCENES
+        .iter()
+        .map(|&n| {
+            let path = dir.join(format!("{n}.fpt"));
+            let bytes = std::fs::read(&path)
+                .map_err(|e| cli_err!("cannot read {}: {e}", path.display()))?;
+            Ok((n.to_string(), bytes))
+        })
+        .collect()
+}
+
+/// The lines of every frame of `trees` (name and file bytes), in order:
+/// scenes as given, views as in [`VIEWS`]. Fails on a tree that does not
+/// validate, or when the banded checksum differs from the full one.
+pub fn frame_lines(trees: &[(String, Vec<u8>)]) -> Result<Vec<String>, CliError> {
+    let mut r = FrameRenderer::new(WIDTH, HEIGHT).ok_or_else(|| cli_err!("renderer size"))?;
+    let mut full = vec![0u16; FRAME_WORDS];
+    let mut band = vec![0u16; BAND_WORDS];
+    let mut lines = Vec::new();
+    for (name, bytes) in trees {
+        let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{name}: {e}"))?;
+        for (k, v) in VIEWS.iter().enumerate() {
+            let a = render_full(&mut r, &tree, v, &mut full, &NoProbe)
+                .map_err(|e| cli_err!("{name} view {k}: {e}"))?;
+            let b = render_banded(&mut r, &tree, v, &mut band, &NoProbe)
+                .map_err(|e| cli_err!("{name} view {k}: {e}"))?;
+            if a.crc != b.crc {
+                return Err(cli_err!(
+                    "{name} view {k}: banded crc {:08x} differs from full-frame crc {:08x}",
+                    b.crc,
+                    a.crc
+                ));
+            }
+            let line = FrameLine {
+                scene: name,
+                view: k as u32,
+                crc: a.crc,
+            };
+            lines.push(line.to_string());
+        }
+    }
+    Ok(lines)
+}
+
+/// The text of [`EXPECTED_FILE`] for `lines`.
+pub fn expected_text(lines: &[String]) -> String {
+    let mut s = String::from(
+        "# Generated: the frames of the trees in this directory, drawn on the host.\n\
+         # Regenerate with: cargo run --release -p host-sim --bin fpt -- frames --export firmware/trees\n",
+    );
+    for l in lines {
+        s.push_str(l);
+        s.push('\n');
+    }
+    s
+}
+
+/// `fpt frames`.
+pub fn run(a: &FramesArgs) -> CliResult {
+    let trees = match &a.trees {
+        Some(dir) => read_trees(dir)?,
+        None => scene_trees()?,
+    };
+    let lines = frame_lines(&trees)?;
+    if let Some(dir) = &a.export {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| cli_err!("cannot create {}: {e}", dir.display()))?;
+        let mut files: Vec<(PathBuf, Vec<u8>)> = trees
+            .iter()
+            .map(|(n, b)| (dir.join(format!("{n}.fpt")), b.clone()))
+            .collect();
+        files.push((dir.join(EXPECTED_FILE), expected_text(&lines).into_bytes()));
+        for (path, bytes) in files {
+            write_atomic(&path, &bytes)
+                .map_err(|e| cli_err!("cannot write {}: {e}", path.display()))?;
+        }
+    }
+    for l in &lines {
+        println!("{l}");
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unknown_scene_is_an_error() {
+        assert!(scene_tree("nope").is_err());
+    }
+
+    #[test]
+    fn expected_text_lines_parse_back() {
+        let lines = vec!["frame scene=vise view=0 crc=0000abcd".to_string()];
+        let text = expected_text(&lines);
+        let parsed: Vec<_> = text.lines().filter_map(FrameLine::parse).collect();
+        assert_eq!(parsed.len(), 1);
+        assert_eq!(parsed[0].crc, 0xabcd);
+        assert!(text.lines().all(|l| l.starts_with('#') || l == lines[0]));
+    }
+
+    #[test]
+    fn a_bad_tree_is_an_error_naming_the_scene() {
+        let trees = vec![("vise".to_string(), vec![1u8, 2, 3])];
+        match frame_lines(&trees) {
+            Err(CliError(m)) => assert!(m.starts_with("vise:"), "{m}"),
+            Ok(l) => panic!("{l:?}"),
+        }
+    }
+}

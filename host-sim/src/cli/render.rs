@@ -1,0 +1,567 @@
+//! `fpt render`: a tree file to a PNG through the no_std pipeline.
+//!
+//! ```text
+//! fpt render TREE -o OUT.png [--size WxH]
+//!     (--mvp M00,M01,...,M33 | --yaw DEG --pitch DEG [--distance D] [--fov DEG])
+//!     [--ids IDS.bin] [--format rgb565|rgb888|gray8|mono] [--band N]
+//!     [--precision NAME] [--shade lambert|flat|grey] [--up y|z]
+//! ```
+//!
+//! * `--mvp`: 16 numbers, row-major, model → clip (`clip = M·[x, y, z, 1]`;
+//!   the pixel conventions are those of [`fpt_nostd::raster::camera`]). The
+//!   walk's view comes from the matrix ([`fpt_nostd::render::MatrixView`])
+//!   and the near clip from its near plane ([`fpt_nostd::render::near_w_for`]).
+//! * Orbit: around the bounding-sphere centre, `--distance` defaulting to 3×
+//!   the radius, `--fov` (vertical, degrees) to 40; `--fov 0` is parallel.
+//!   The orbit is y-up ([`fpt_nostd::raster::camera`]); `--up z` turns a
+//!   z-up model (the procedural scenes) upright first.
+//! * `--ids`: `W·H` little-endian `u32`, row-major from the top-left: the
+//!   source face index + 1 of the polygon drawn at each pixel, 0 for
+//!   background.
+//! * `--band N`: draw in bands of N rows through one band buffer (the
+//!   picture is identical; this exercises the firmware's path).
+//! * `--precision`: the compile-time arithmetic configuration
+//!   ([`PRECISIONS`]), for accuracy studies.
+//!
+//! The picture is drawn into one of our framebuffers, copied into an
+//! `embedded-graphics-simulator` display and saved as PNG by it (to a
+//! temporary file beside the output, then renamed, so a PNG is written
+//! whole or not at all). Bad input is an error (exit status 2); any
+//! finite, invertible camera renders.
+
+use super::{CliError, CliResult};
+use crate::cli_err;
+use crate::output::write_atomic;
+use clap::Args;
+use embedded_graphics::geometry::{Point, Size};
+use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
+use embedded_graphics::prelude::DrawTarget;
+use embedded_graphics::Pixel;
+use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
+use fpt_nostd::raster::framebuffer::{BinaryFormat, Gray8Format, Rgb565Format, Rgb888Format};
+use fpt_nostd::raster::transform::MAX_DIM;
+use fpt_nostd::raster::{
+    FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Framebuffer, IdBuffer, Light,
+    MathFns, Orbit, PixelFormat, Precision, RenderStats, ShadeMode,
+};
+use fpt_nostd::reader::Tree;
+use fpt_nostd::render::{near_w_for, BandBuffer, FaceIds, Frame, TreeRenderer};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The names `--precision` accepts: vertex path and math library, then
+/// the sub-pixel bits.
+pub const PRECISIONS: [&str; 20] = [
+    "fixed-subpx-0",
+    "fixed-subpx-2",
+    "fixed-subpx-4",
+    "fixed-subpx-6",
+    "fixed-subpx-8",
+    "fixed-micromath-subpx-0",
+    "fixed-micromath-subpx-2",
+    "fixed-micromath-subpx-4",
+    "fixed-micromath-subpx-6",
+    "fixed-micromath-subpx-8",
+    "f32-libm-subpx-0",
+    "f32-libm-subpx-2",
+    "f32-libm-subpx-4",
+    "f32-libm-subpx-6",
+    "f32-libm-subpx-8",
+    "f32-micromath-subpx-0",
+    "f32-micromath-subpx-2",
+    "f32-micromath-subpx-4",
+    "f32-micromath-subpx-6",
+    "f32-micromath-subpx-8",
+];
+
+/// Vertices a polygon may have after clipping; larger ones are skipped
+/// (and counted). Host memory is plentiful: 256 × 106 bytes.
+const MAX_VERTS: usize = 256;
+/// Stack frames of the walk: deeper trees are refused with an error.
+const WALK_STACK: usize = 4096;
+
+/// Arguments of `fpt render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Tree file.
+    pub tree: PathBuf,
+    /// Output PNG file.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+    /// Image size WxH in pixels.
+    #[arg(long, default_value = "320x240")]
+    pub size: String,
+    /// Model → clip matrix: 16 numbers, row-major, comma-separated.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["yaw", "pitch", "distance", "fov"])]
+    pub mvp: Option<String>,
+    /// Orbit: rotation about the y axis, degrees (0 looks down −z).
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "pitch",
+        required_unless_present = "mvp"
+    )]
+    pub yaw: Option<f64>,
+    /// Orbit: elevation, degrees.
+    #[arg(long, allow_hyphen_values = true, requires = "yaw")]
+    pub pitch: Option<f64>,
+    /// Orbit: distance from the bounding-sphere centre (default 3× radius).
+    #[arg(long)]
+    pub distance: Option<f64>,
+    /// Orbit: vertical field of view, degrees; 0 is a parallel projection.
+    #[arg(long, default_value_t = 40.0)]
+    pub fov: f64,
+    /// Orbit: the model's up axis (y, or z for z-up models).
+    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
+    pub up: String,
+    /// Also write the source face id + 1 of every pixel (u32 LE, 0 = none).
+    #[arg(long)]
+    pub ids: Option<PathBuf>,
+    /// Framebuffer format.
+    #[arg(long, default_value = "rgb565", value_parser = ["rgb565", "rgb888", "gray8", "mono"])]
+    pub format: String,
+    /// Draw in bands of N rows through one band buffer.
+    #[arg(long)]
+    pub band: Option<u32>,
+    /// Arithmetic configuration (vertex path, math library, sub-pixel bits).
+    #[arg(long, default_value = "fixed-subpx-4", value_parser = PRECISIONS)]
+    pub precision: String,
+    /// Shading: lambert (face colours lit), flat (unlit) or grey.
+    #[arg(long, default_value = "lambert", value_parser = ["lambert", "flat", "grey"])]
+    pub shade: String,
+}
+
+/// The camera of a render.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CameraSpec {
+    /// A model → clip matrix, row-major.
+    Mvp([[f64; 4]; 4]),
+    /// An orbit around the bounding-sphere centre; angles in degrees,
+    /// distance `None` for 3× the bounding radius, fov 0 for parallel.
+    Orbit {
+        /// Degrees about the y axis.
+        yaw: f64,
+        /// Degrees of elevation.
+        pitch: f64,
+        /// Distance from the centre.
+        distance: Option<f64>,
+        /// Vertical field of view, degrees.
+        fov: f64,
+        /// The model is z-up (the orbit itself is y-up).
+        z_up: bool,
+    },
+}
+
+impl CameraSpec {
+    /// The frame for `tree` in a `w × h` image, with `M`'s trigonometry.
+    pub fn frame<M: MathFns>(&self, tree: &Tree<'_>, w: u32, h: u32) -> Frame {
+        match *self {
+            CameraSpec::Mvp(rows) => {
+                Frame::from_f64(tree, &rows, f64::from(near_w_for(&rows, tree)))
+            }
+            CameraSpec::Orbit {
+                yaw,
+                pitch,
+                distance,
+                fov,
+                z_up,
+            } => {
+                let r = tree.bounding_radius();
+                let r = if r.is_finite() && r > 0.0 { r } else { 1.0 };
+                let d = distance.map_or(3.0 * r, |d| d as f32);
+                let o = Orbit::new(
+                    [0.0; 3],
+                    yaw.to_radians() as f32,
+                    pitch.to_radians() as f32,
+                    d,
+                    fov.to_radians() as f32,
+                );
+                let mut cam = o.camera::<M>(w as f32 / h as f32);
+                if z_up {
+                    // M · R with R taking model (x, y, z) to orbit space
+                    // (x, z, −y), a rotation: an exact column permutation.
+                    for row in cam.matrix.0.iter_mut() {
+                        *row = [row[0], -row[2], row[1], row[3]];
+                    }
+                }
+                Frame::relative(tree, &cam)
+            }
+        }
+    }
+}
+
+/// Pixel format of the framebuffer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// 16-bit colour.
+    Rgb565,
+    /// 24-bit colour.
+    Rgb888,
+    /// 8-bit grey.
+    Gray8,
+    /// 1 bit per pixel.
+    Mono,
+}
+
+impl Format {
+    /// Parses a `--format` name.
+    pub fn parse(s: &str) -> Result<Format, CliError> {
+        match s {
+            "rgb565" => Ok(Format::Rgb565),
+            "rgb888" => Ok(Format::Rgb888),
+            "gray8" => Ok(Format::Gray8),
+            "mono" => Ok(Format::Mono),
+            _ => Err(cli_err!(
+                "unknown format '{s}' (expected rgb565, rgb888, gray8 or mono)"
+            )),
+        }
+    }
+}
+
+/// Everything about one picture but the tree.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Job {
+    /// Width in pixels.
+    pub w: u32,
+    /// Height in pixels.
+    pub h: u32,
+    /// The camera.
+    pub camera: CameraSpec,
+    /// Framebuffer format.
+    pub format: Format,
+    /// Rows per band, `None` for the full-frame path.
+    pub band: Option<u32>,
+    /// Shading mode.
+    pub shade: ShadeMode,
+    /// Background colour.
+    pub background: Rgb888,
+    /// Whether to produce the id buffer too.
+    pub ids: bool,
+}
+
+/// A finished picture: the framebuffer storage of its format.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Image {
+    /// `Rgb565` storage words.
+    Rgb565(Vec<u16>),
+    /// `r, g, b` bytes.
+    Rgb888(Vec<u8>),
+    /// Luma bytes.
+    Gray8(Vec<u8>),
+    /// Packed bits, MSB first, rows padded to bytes.
+    Mono(Vec<u8>),
+}
+
+/// The output of [`render_job`].
+#[derive(Clone, Debug)]
+pub struct Rendered {
+    /// The picture.
+    pub image: Image,
+    /// Source face id + 1 per pixel (empty unless asked for).
+    pub ids: Vec<u32>,
+    /// The renderer's counters for the picture.
+    pub stats: RenderStats,
+    /// Milliseconds spent drawing the picture.
+    pub ms: f64,
+}
+
+/// Draws `job` with `tree` using arithmetic `name` (one of [`PRECISIONS`]).
+pub fn render_job(tree: &Tree<'_>, job: &Job, name: &str) -> Result<Rendered, CliError> {
+    match name {
+        "fixed-subpx-0" => render_with::<FixedPrecision<0>>(tree, job),
+        "fixed-subpx-2" => render_with::<FixedPrecision<2>>(tree, job),
+        "fixed-subpx-4" => render_with::<FixedPrecision<4>>(tree, job),
+        "fixed-subpx-6" => render_with::<FixedPrecision<6>>(tree, job),
+        "fixed-subpx-8" => render_with::<FixedPrecision<8>>(tree, job),
+        "fixed-micromath-subpx-0" => render_with::<FixedMicromath<0>>(tree, job),
+        "fixed-micromath-subpx-2" => render_with::<FixedMicromath<2>>(tree, job),
+        "fixed-micromath-subpx-4" => render_with::<FixedMicromath<4>>(tree, job),
+        "fixed-micromath-subpx-6" => render_with::<FixedMicromath<6>>(tree, job),
+        "fixed-micromath-subpx-8" => render_with::<FixedMicromath<8>>(tree, job),
+        "f32-libm-subpx-0" => render_with::<FloatLibm<0>>(tree, job),
+        "f32-libm-subpx-2" => render_with::<FloatLibm<2>>(tree, job),
+        "f32-libm-subpx-4" => render_with::<FloatLibm<4>>(tree, job),
+        "f32-libm-subpx-6" => render_with::<FloatLibm<6>>(tree, job),
+        "f32-libm-subpx-8" => render_with::<FloatLibm<8>>(tree, job),
+        "f32-micromath-subpx-0" => render_with::<FloatMicromath<0>>(tree, job),
+        "f32-micromath-subpx-2" => render_with::<FloatMicromath<2>>(tree, job),
+        "f32-micromath-subpx-4" => render_with::<FloatMicromath<4>>(tree, job),
+        "f32-micromath-subpx-6" => render_with::<FloatMicromath<6>>(tree, job),
+        "f32-micromath-subpx-8" => render_with::<FloatMicromath<8>>(tree, job),
+        _ => Err(cli_err!(
+            "unknown precision '{name}' (expected one of {})",
+            PRECISIONS.join(", ")
+        )),
+    }
+}
+
+fn render_with<P: Precision>(tree: &Tree<'_>, job: &Job) -> Result<Rendered, CliError> {
+    let mut tr = Box::new(
+        TreeRenderer::<P, MAX_VERTS>::new(job.w, job.h)
+            .ok_or_else(|| cli_err!("bad image size {}x{}", job.w, job.h))?,
+    );
+    let frame = job.camera.frame::<P::Math>(tree, job.w, job.h);
+    tr.renderer.set_shade_mode(job.shade);
+    tr.renderer
+        .set_light(Light::new(frame.key_light(), 0.25, 0.75));
+    let start = Instant::now();
+    let bg = job.background;
+    let (image, stats) = match job.format {
+        Format::Rgb565 => {
+            let (v, s) = draw::<P, Rgb565Format>(&mut tr, tree, &frame, job, bg.into())?;
+            (Image::Rgb565(v), s)
+        }
+        Format::Rgb888 => {
+            let (v, s) = draw::<P, Rgb888Format>(&mut tr, tree, &frame, job, bg)?;
+            (Image::Rgb888(v), s)
+        }
+        Format::Gray8 => {
+            let (v, s) = draw::<P, Gray8Format>(&mut tr, tree, &frame, job, bg.into())?;
+            (Image::Gray8(v), s)
+        }
+        Format::Mono => {
+            let (v, s) = draw::<P, BinaryFormat>(&mut tr, tree, &frame, job, bg.into())?;
+            (Image::Mono(v), s)
+        }
+    };
+    let ms = start.elapsed().as_secs_f64() * 1e3;
+    let mut ids = Vec::new();
+    if job.ids {
+        ids = vec![0u32; job.w as usize * job.h as usize];
+        let mut sink =
+            IdBuffer::new(&mut ids, job.w, job.h).map_err(|e| cli_err!("id buffer: {e:?}"))?;
+        tr.ids = FaceIds::Source;
+        tr.render::<_, WALK_STACK>(tree, &frame, &mut sink)?;
+    }
+    Ok(Rendered {
+        image,
+        ids,
+        stats,
+        ms,
+    })
+}
+
+/// Draws into a new framebuffer of format `F`: directly, or band by band.
+fn draw<P: Precision, F: PixelFormat>(
+    tr: &mut TreeRenderer<P, MAX_VERTS>,
+    tree: &Tree<'_>,
+    frame: &Frame,
+    job: &Job,
+    background: F::Color,
+) -> Result<(Vec<F::Word>, RenderStats), CliError>
+where
+    F::Word: Default,
+{
+    let mut out = vec![F::Word::default(); Framebuffer::<F>::required_len(job.w, job.h)];
+    let stats = match job.band {
+        None => {
+            let mut fb = Framebuffer::<F>::new(&mut out, job.w, job.h)
+                .map_err(|e| cli_err!("framebuffer: {e:?}"))?;
+            fb.fill_all(background);
+            tr.render::<_, WALK_STACK>(tree, frame, &mut fb)?
+        }
+        Some(rows) => {
+            let rows = rows.clamp(1, job.h);
+            let stride = F::words_per_row(job.w);
+            let mut buf = vec![F::Word::default(); stride * rows as usize];
+            let band = BandBuffer::<F> {
+                buf: &mut buf,
+                rows,
+                background,
+            };
+            tr.render_banded::<F, WALK_STACK>(tree, frame, band, |y0, fb| {
+                let d = fb.data();
+                let at = y0 as usize * stride;
+                if let Some(dst) = out.get_mut(at..at + d.len()) {
+                    dst.copy_from_slice(d);
+                }
+            })?
+        }
+    };
+    Ok((out, stats))
+}
+
+/// Copies a framebuffer into a simulator display.
+fn to_display<F: PixelFormat>(
+    data: &mut [F::Word],
+    w: u32,
+    h: u32,
+) -> Result<SimulatorDisplay<F::Color>, CliError>
+where
+    F::Color: PixelColor,
+{
+    let fb = Framebuffer::<F>::new(data, w, h).map_err(|e| cli_err!("framebuffer: {e:?}"))?;
+    let base = fb.pixel(0, 0).ok_or_else(|| cli_err!("empty image"))?;
+    let mut d = SimulatorDisplay::with_default_color(Size::new(w, h), base);
+    let pixels = (0..h).flat_map(|y| (0..w).map(move |x| (x, y)));
+    let _ = d.draw_iter(pixels.filter_map(|(x, y)| {
+        fb.pixel(x, y)
+            .map(|c| Pixel(Point::new(x as i32, y as i32), c))
+    }));
+    Ok(d)
+}
+
+/// Saves `image` (`w × h`) as a PNG through the simulator, atomically.
+pub fn save_png(image: &Image, w: u32, h: u32, path: &Path) -> CliResult {
+    let settings = OutputSettings::default();
+    let out = match image.clone() {
+        Image::Rgb565(mut v) => {
+            to_display::<Rgb565Format>(&mut v, w, h)?.to_rgb_output_image(&settings)
+        }
+        Image::Rgb888(mut v) => {
+            to_display::<Rgb888Format>(&mut v, w, h)?.to_rgb_output_image(&settings)
+        }
+        Image::Gray8(mut v) => {
+            to_display::<Gray8Format>(&mut v, w, h)?.to_rgb_output_image(&settings)
+        }
+        Image::Mono(mut v) => {
+            to_display::<BinaryFormat>(&mut v, w, h)?.to_rgb_output_image(&settings)
+        }
+    };
+    let name = path
+        .file_name()
+        .map_or_else(|| "out.png".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = path.with_file_name(format!(".{name}.{}.tmp.png", std::process::id()));
+    let saved = out
+        .save_png(&tmp)
+        .map_err(|e| cli_err!("{}: {e}", path.display()))
+        .and_then(|()| {
+            std::fs::rename(&tmp, path).map_err(|e| cli_err!("{}: {e}", path.display()))
+        });
+    if saved.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    saved
+}
+
+/// Parses `WxH`.
+pub fn parse_size(s: &str) -> Result<(u32, u32), CliError> {
+    let (a, b) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| cli_err!("--size needs WxH, got '{s}'"))?;
+    let p = |t: &str| -> Result<u32, CliError> {
+        let v: u32 = t
+            .trim()
+            .parse()
+            .map_err(|_| cli_err!("--size: '{t}' is not a whole number"))?;
+        if v == 0 || v > MAX_DIM {
+            return Err(cli_err!("--size: {v} is outside 1..={MAX_DIM}"));
+        }
+        Ok(v)
+    };
+    Ok((p(a)?, p(b)?))
+}
+
+/// Parses and checks a `--mvp` matrix: 16 finite numbers, representable
+/// in `f32`, invertible.
+pub fn parse_mvp(s: &str) -> Result<[[f64; 4]; 4], CliError> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 16 {
+        return Err(cli_err!("--mvp needs 16 numbers, got {}", parts.len()));
+    }
+    let mut flat = [0.0f64; 16];
+    for (o, p) in flat.iter_mut().zip(&parts) {
+        let v: f64 = p
+            .trim()
+            .parse()
+            .map_err(|_| cli_err!("--mvp: '{p}' is not a number"))?;
+        if !v.is_finite() || v.abs() > f64::from(f32::MAX) {
+            return Err(cli_err!("--mvp: '{p}' is not a finite f32 number"));
+        }
+        *o = v;
+    }
+    if crate::reference::Camera::from_mvp(flat).is_none() {
+        return Err(cli_err!("--mvp: the matrix is singular"));
+    }
+    let mut rows = [[0.0; 4]; 4];
+    for (i, v) in flat.iter().enumerate() {
+        rows[i / 4][i % 4] = *v;
+    }
+    Ok(rows)
+}
+
+/// Parses a `--shade` name.
+pub fn parse_shade(s: &str) -> Result<ShadeMode, CliError> {
+    match s {
+        "lambert" => Ok(ShadeMode::Lambert),
+        "flat" => Ok(ShadeMode::Flat),
+        "grey" | "gray" => Ok(ShadeMode::Grey(235)),
+        _ => Err(cli_err!(
+            "unknown shading '{s}' (expected lambert, flat or grey)"
+        )),
+    }
+}
+
+/// The camera of the arguments, checked.
+fn camera_of(a: &RenderArgs) -> Result<CameraSpec, CliError> {
+    if let Some(m) = &a.mvp {
+        return Ok(CameraSpec::Mvp(parse_mvp(m)?));
+    }
+    let (Some(yaw), Some(pitch)) = (a.yaw, a.pitch) else {
+        return Err(cli_err!("give either --mvp or --yaw and --pitch"));
+    };
+    if !(yaw.is_finite() && pitch.is_finite()) {
+        return Err(cli_err!("--yaw and --pitch must be finite"));
+    }
+    if let Some(d) = a.distance {
+        if !(d.is_finite() && d > 0.0 && d < f64::from(f32::MAX)) {
+            return Err(cli_err!("--distance must be a positive number, got {d}"));
+        }
+    }
+    if !(a.fov.is_finite() && (0.0..180.0).contains(&a.fov)) {
+        return Err(cli_err!("--fov must be in [0, 180) degrees, got {}", a.fov));
+    }
+    Ok(CameraSpec::Orbit {
+        yaw,
+        pitch,
+        distance: a.distance,
+        fov: a.fov,
+        z_up: a.up == "z",
+    })
+}
+
+/// `fpt render`.
+pub fn run(a: &RenderArgs) -> CliResult {
+    let (w, h) = parse_size(&a.size)?;
+    let camera = camera_of(a)?;
+    let format = Format::parse(&a.format)?;
+    let shade = parse_shade(&a.shade)?;
+    if a.band == Some(0) {
+        return Err(cli_err!("--band must be at least 1"));
+    }
+    let bytes = std::fs::read(&a.tree).map_err(|e| cli_err!("{}: {e}", a.tree.display()))?;
+    let tree = Tree::from_bytes(&bytes)
+        .map_err(|e| cli_err!("{}: not a valid tree file: {e:?}", a.tree.display()))?;
+    let job = Job {
+        w,
+        h,
+        camera,
+        format,
+        band: a.band,
+        shade,
+        background: Rgb888::new(0, 0, 0),
+        ids: a.ids.is_some(),
+    };
+    let r = render_job(&tree, &job, &a.precision)?;
+    if let Some(path) = &a.ids {
+        let raw: Vec<u8> = r.ids.iter().flat_map(|v| v.to_le_bytes()).collect();
+        write_atomic(path, &raw).map_err(|e| cli_err!("{}: {e}", path.display()))?;
+    }
+    save_png(&r.image, w, h, &a.output)?;
+    let s = r.stats;
+    println!(
+        "{}: {w}x{h} {}, {} polygons drawn ({} clipped, {} invisible, {} skipped), {} spans, {:.2} ms",
+        a.output.display(),
+        a.precision,
+        s.drawn,
+        s.clipped,
+        s.invisible,
+        s.skipped,
+        s.spans,
+        r.ms
+    );
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,182 @@
+//! The firmware's frames against the host's, bit for bit.
+//!
+//! * `committed_trees_are_fresh`: the trees the firmware embeds
+//!   (`firmware/trees/*.fpt`) and the expected lines next to them
+//!   (`frames.txt`) are exactly what `fpt frames --export firmware/trees`
+//!   produces now, so they cannot go stale.
+//! * `firmware_matches_host`: runs the firmware under QEMU in both features
+//!   (`cargo run --release` in `firmware/`, once with `full`, once with
+//!   `band`) and compares its `frame scene=… view=… crc=…` lines with the
+//!   host's for the same trees. Skipped, with a message, when
+//!   `qemu-system-arm` or the `thumbv7em-none-eabihf` target is missing —
+//!   unless `FPT_REQUIRE_FIRMWARE=1` is set (CI sets it), which turns a
+//!   missing tool into a failure.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use fpt_nostd::frames::{FrameLine, SCENES, VIEWS};
+use host_sim::cli::frames::{expected_text, frame_lines, read_trees, scene_trees, EXPECTED_FILE};
+
+const REGENERATE: &str =
+    "regenerate with: cargo run --release -p host-sim --bin fpt -- frames --export firmware/trees";
+
+/// Longest a firmware build and run may take.
+const FIRMWARE_TIMEOUT: Duration = Duration::from_secs(1200);
+
+fn firmware_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join("firmware")
+}
+
+fn trees_dir() -> PathBuf {
+    firmware_dir().join("trees")
+}
+
+fn ok<T, E: std::fmt::Debug>(r: Result<T, E>, what: &str) -> T {
+    r.unwrap_or_else(|e| panic!("{what}: {e:?}"))
+}
+
+#[test]
+fn committed_trees_are_fresh() {
+    let built = ok(scene_trees(), "building the scenes' trees");
+    let committed = ok(read_trees(&trees_dir()), "reading firmware/trees");
+    for ((name, new), (_, old)) in built.iter().zip(&committed) {
+        assert!(
+            new == old,
+            "firmware/trees/{name}.fpt differs from the tree built now ({} vs {} bytes); {REGENERATE}",
+            old.len(),
+            new.len()
+        );
+    }
+    let lines = ok(frame_lines(&built), "drawing the frames");
+    assert_eq!(lines.len(), SCENES.len() * VIEWS.len());
+    let expected = ok(
+        std::fs::read_to_string(trees_dir().join(EXPECTED_FILE)),
+        "reading frames.txt",
+    );
+    assert!(
+        expected == expected_text(&lines),
+        "firmware/trees/{EXPECTED_FILE} is stale; {REGENERATE}"
+    );
+}
+
+/// Why the firmware cannot run here, if it cannot.
+fn missing_tool() -> Option<String> {
+    let qemu = Command::new("qemu-system-arm")
+        .arg("--version")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status();
+    if !qemu.is_ok_and(|s| s.success()) {
+        return Some("qemu-system-arm is not installed".into());
+    }
+    let libdir = Command::new("rustc")
+        .args([
+            "--print",
+            "target-libdir",
+            "--target",
+            "thumbv7em-none-eabihf",
+        ])
+        .output();
+    let has_target = libdir.is_ok_and(|o| {
+        let dir = String::from_utf8_lossy(&o.stdout).trim().to_string();
+        o.status.success()
+            && std::fs::read_dir(&dir).is_ok_and(|mut d| {
+                d.any(|e| e.is_ok_and(|e| e.file_name().to_string_lossy().starts_with("libcore")))
+            })
+    });
+    if !has_target {
+        return Some(
+            "the thumbv7em-none-eabihf target is not installed \
+             (rustup target add thumbv7em-none-eabihf)"
+                .into(),
+        );
+    }
+    None
+}
+
+/// `cargo run --release ARGS` in `firmware/`: exit success and stdout.
+fn run_firmware(args: &[&str]) -> (bool, String) {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let mut child = ok(
+        Command::new(cargo)
+            .current_dir(firmware_dir())
+            .args(["run", "--release", "--locked"])
+            .args(args)
+            // The firmware's own target and linker flags must apply.
+            .env_remove("CARGO_BUILD_TARGET")
+            .env_remove("CARGO_ENCODED_RUSTFLAGS")
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn(),
+        "starting cargo run in firmware/",
+    );
+    let mut stdout = child.stdout.take().map(|mut s| {
+        std::thread::spawn(move || {
+            let mut text = String::new();
+            let _ = s.read_to_string(&mut text);
+            text
+        })
+    });
+    let start = Instant::now();
+    let status = loop {
+        if let Some(s) = ok(child.try_wait(), "waiting for the firmware") {
+            break s;
+        }
+        if start.elapsed() > FIRMWARE_TIMEOUT {
+            let _ = child.kill();
+            panic!("firmware {args:?} did not finish in {FIRMWARE_TIMEOUT:?}");
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    let text = stdout
+        .take()
+        .and_then(|h| h.join().ok())
+        .unwrap_or_default();
+    (status.success(), text)
+}
+
+#[test]
+fn firmware_matches_host() {
+    if let Some(why) = missing_tool() {
+        if std::env::var("FPT_REQUIRE_FIRMWARE").is_ok_and(|v| v == "1") {
+            panic!("FPT_REQUIRE_FIRMWARE=1 but {why}");
+        }
+        println!("SKIPPED firmware_matches_host: {why}");
+        return;
+    }
+    // The host draws the very trees the firmware embeds.
+    let trees = ok(read_trees(&trees_dir()), "reading firmware/trees");
+    let host = ok(frame_lines(&trees), "drawing the frames on the host");
+    for args in [
+        &[][..],
+        &["--no-default-features", "--features", "band"][..],
+    ] {
+        let (success, out) = run_firmware(args);
+        let firmware: Vec<String> = out
+            .lines()
+            .filter_map(FrameLine::parse)
+            .map(|l| l.to_string())
+            .collect();
+        assert_eq!(
+            firmware, host,
+            "firmware {args:?} frames differ from the host's; its output:\n{out}"
+        );
+        // Every frame line carries its cost, and the run ends with the
+        // stack measurement.
+        for l in out.lines().filter(|l| l.starts_with("frame ")) {
+            for field in [" instr=", " post=", " xform=", " fill="] {
+                assert!(l.contains(field), "{l}");
+            }
+        }
+        assert!(
+            out.lines().any(|l| l.starts_with("stack_peak=")),
+            "no stack_peak line:\n{out}"
+        );
+        assert!(success, "firmware {args:?} exited with failure:\n{out}");
+    }
+}
