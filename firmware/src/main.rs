@@ -10,7 +10,11 @@
 //! frame scene=NAME view=K crc=XXXXXXXX instr=N post=N xform=N fill=N
 //! ```
 //!
-//! then `static_ram=BYTES`, `probe mark_cost=...` and `stack_peak=BYTES`.
+//! preceded by a `calib ...` line (the SysTick calibration) and followed
+//! by `static_ram=BYTES` (`.data` + `.bss` + `.uninit`), `probe
+//! mark_cost_min=N mark_cost_max=N` (see [`probe`]), `stack_peak_startup=
+//! BYTES stack_peak_frames=BYTES` and last `stack_peak=BYTES`, the larger
+//! of the two (see [`stack`]). `README.md` has the measured figures.
 //! `crc` is [`fpt_nostd::frames::PixelCrc`] (CRC-32 of the RGB565 pixels as
 //! little-endian `u16`, row-major), `instr` the frame's cost in
 //! instructions (clearing, walking and drawing; not the checksum), and

@@ -10,18 +10,24 @@
 //!    boundary (three times per polygon) and charges the time since the
 //!    previous reading to the phase being left. It gives the parts.
 //!
-//! The second run is slower by the marks' own cost. [`PhaseProbe::parts`]
-//! removes it: the extra time over the first run, divided by the number of
-//! marks, is the cost of one mark, charged to the phase a mark enters (the
-//! clock is read first, the bookkeeping after). The corrected parts then
-//! add up to `instr`; the per-mark cost is reported so that its stability
-//! can be checked.
+//! The second run is slower by the marks' own cost: the reads and the
+//! bookkeeping, and the optimisations the marks prevent around them.
+//! [`PhaseProbe::parts`] removes it: the extra time over the first run,
+//! divided by the number of marks, is taken as the cost of one mark and
+//! charged to the phase a mark enters (the clock is read first, the
+//! bookkeeping after). The corrected parts then add up to `instr`; the
+//! per-mark cost is reported so that its stability can be checked. The
+//! split is an estimate (see `README.md` for a cross-check).
 
 use core::cell::Cell;
 
+use cortex_m::peripheral::SYST;
 use fpt_nostd::frames::{Phase, Probe};
 
 use crate::clock::now;
+
+/// The SysTick counter's 24 bits.
+const COUNTER_MASK: u32 = 0x00FF_FFFF;
 
 /// Frame time only (see the module docs).
 #[derive(Debug, Default)]
@@ -50,9 +56,15 @@ impl Probe for TotalProbe {
 }
 
 /// Time per phase (see the module docs).
+///
+/// Its marks read the raw 24-bit SysTick value only (one load) and keep
+/// 24-bit differences, which stays exact because consecutive marks are far
+/// less than 2^24 ticks (about 100 M instructions) apart: at most one
+/// polygon, one buffer clear or the frame setup lies between two of them.
+/// The cheaper the mark, the less it disturbs the code it measures.
 #[derive(Debug)]
 pub struct PhaseProbe {
-    last: Cell<u64>,
+    last: Cell<u32>,
     cur: Cell<Phase>,
     ticks: [Cell<u64>; 3],
     marks: [Cell<u32>; 3],
@@ -79,11 +91,14 @@ pub struct Parts {
 }
 
 impl PhaseProbe {
+    /// Charges the ticks since the last mark to the current phase; the
+    /// counter counts down.
     #[inline(always)]
-    fn charge(&self, t: u64) {
+    fn charge(&self, now: u32) {
         let c = &self.ticks[self.cur.get() as usize];
-        c.set(c.get() + t.wrapping_sub(self.last.get()));
-        self.last.set(t);
+        let d = self.last.get().wrapping_sub(now) & COUNTER_MASK;
+        c.set(c.get() + u64::from(d));
+        self.last.set(now);
     }
 
     /// The parts in instructions, given the unmarked frame's `total` (in
@@ -93,21 +108,16 @@ impl PhaseProbe {
         let marks: [u64; 3] = core::array::from_fn(|i| u64::from(self.marks[i].get()));
         let (sum, n) = (raw.iter().sum::<u64>(), marks.iter().sum::<u64>());
         let extra = sum.saturating_sub(total);
-        let strip = |i: usize| {
-            // extra · marks_i / n, rounded; never more than the phase has.
-            let m = if n == 0 {
-                0
-            } else {
-                (extra * marks[i] + n / 2) / n
-            };
-            raw[i].saturating_sub(m)
-        };
+        // extra · k / n, rounded (0 when there are no marks).
+        let share = |k: u64| (extra * k + n / 2).checked_div(n).unwrap_or(0);
+        // Never more than the phase has.
+        let strip = |i: usize| raw[i].saturating_sub(share(marks[i]));
         let (post, xform) = (strip(0), strip(1));
         // Rounding leftovers go to the fill, so that the parts add up.
         let fill = total.saturating_sub(post + xform);
         Parts {
             instr: [post, xform, fill],
-            mark_cost: if n == 0 { 0 } else { (extra + n / 2) / n },
+            mark_cost: share(1),
         }
     }
 }
@@ -115,18 +125,18 @@ impl PhaseProbe {
 impl Probe for PhaseProbe {
     #[inline(always)]
     fn start(&self, phase: Phase) {
-        self.last.set(now());
+        self.last.set(SYST::get_current());
         self.cur.set(phase);
     }
     #[inline(always)]
     fn enter(&self, phase: Phase) {
-        self.charge(now());
+        self.charge(SYST::get_current());
         self.cur.set(phase);
         let m = &self.marks[phase as usize];
         m.set(m.get() + 1);
     }
     #[inline(always)]
     fn stop(&self) {
-        self.charge(now());
+        self.charge(SYST::get_current());
     }
 }

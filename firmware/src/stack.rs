@@ -6,11 +6,17 @@
 //! thing in `main`, fills the unused stack — from `_stack_end` up to the
 //! current stack pointer — with [`PATTERN`]; everything below the stack
 //! pointer is free at that moment, and the loop is assembly that uses only
-//! registers, so it overwrites nothing live. (Interrupts are not enabled
-//! yet.) [`peak`] later finds the lowest word that no longer holds the
-//! pattern: the deepest the stack has been, including exception frames.
-//! A pushed word that happens to equal the pattern would be missed only if
-//! it were the deepest one; with a 32-bit pattern that is improbable.
+//! registers, so it overwrites nothing live. [`peak`] later finds the
+//! lowest word that no longer holds the pattern: the deepest the stack has
+//! been, including exception frames. A pushed word that happens to equal
+//! the pattern would be missed only if it were the deepest one; with a
+//! 32-bit pattern that is improbable.
+//!
+//! `main` paints twice: at reset, and again after start-up (when the
+//! SysTick interrupt is already running: an exception taken while painting
+//! stacks its frame below the SP, which the loop may then paint over; the
+//! frame is dead by then, so that is harmless), so that the start-up peak
+//! and the peak while drawing frames are reported apart.
 
 /// What unused stack words hold.
 pub const PATTERN: u32 = 0xDEAD_BEEF;

@@ -40,6 +40,10 @@ fn full(t: &Tree<'_>, v: &ViewSpec, probe: &impl Probe) -> (Vec<u16>, Rendered) 
 /// The two squares of `two_floors`, open, and the same marked closed.
 fn floors(closed: bool) -> Vec<u8> {
     let mut r = two_floors();
+    // Coloured, so that the lighting shows (the helper leaves them black).
+    for (p, c) in r.polys.iter_mut().zip([[200, 120, 40], [60, 160, 220]]) {
+        p.3 = c;
+    }
     if closed {
         r.flags |= FLAG_CLOSED;
     }
@@ -49,7 +53,7 @@ fn floors(closed: bool) -> Vec<u8> {
 #[test]
 fn pixel_crc_is_the_crc_of_little_endian_words_in_any_pieces() {
     let words: Vec<u16> = (0..77u32)
-        .map(|i| (i * 2654435761u32 >> 7) as u16)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 7) as u16)
         .collect();
     let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
     let mut whole = PixelCrc::new();
@@ -94,13 +98,21 @@ fn frame_line_round_trips_and_ignores_extra_fields() {
     }
 }
 
+/// A view from below the squares (every one of [`VIEWS`] looks from above).
+const BELOW: ViewSpec = ViewSpec {
+    yaw: 0.3,
+    pitch: -0.6,
+    distance: 2.0,
+    fov: 0.9,
+};
+
 #[test]
 fn full_frame_equals_draw_frame_and_bands_equal_full() {
     for closed in [false, true] {
         let bytes = floors(closed);
         let t = tree(&bytes);
         let mut drew_something = false;
-        for v in &VIEWS {
+        for v in VIEWS.iter().chain([&BELOW]) {
             let (ours, out) = full(&t, v, &NoProbe);
             // The same frame through render::draw_frame.
             let mut r = renderer();
@@ -141,14 +153,19 @@ fn full_frame_equals_draw_frame_and_bands_equal_full() {
 
 #[test]
 fn closed_and_open_trees_differ_where_back_faces_show() {
-    // View 1 looks at the squares from behind (-z): the open tree draws
-    // their back sides, the closed one culls them.
+    // The squares face +z, which Z_UP turns to "up": seen from below,
+    // the open tree draws their back sides, the closed one culls them.
+    let below = BELOW;
     let (open, closed) = (floors(false), floors(true));
-    let (a, _) = full(&tree(&open), &VIEWS[1], &NoProbe);
-    let (b, _) = full(&tree(&closed), &VIEWS[1], &NoProbe);
     let bg = BACKGROUND.into_storage();
+    let (a, _) = full(&tree(&open), &below, &NoProbe);
+    let (b, _) = full(&tree(&closed), &below, &NoProbe);
     assert!(a.iter().any(|&p| p != bg));
     assert!(b.iter().all(|&p| p == bg));
+    // From above (every one of VIEWS) both draw the same.
+    let (c, _) = full(&tree(&open), &VIEWS[0], &NoProbe);
+    let (d, _) = full(&tree(&closed), &VIEWS[0], &NoProbe);
+    assert!(c.iter().any(|&p| p != bg) && c == d);
 }
 
 /// Counts the hooks and checks that they nest.

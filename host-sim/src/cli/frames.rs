@@ -21,6 +21,7 @@
 //! buffer; the two checksums must agree (the firmware's two features rely
 //! on it), otherwise the command fails.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
@@ -166,8 +167,15 @@ pub fn run(a: &FramesArgs) -> CliResult {
                 .map_err(|e| cli_err!("cannot write {}: {e}", path.display()))?;
         }
     }
+    // Written by hand rather than with println!, so that a closed pipe
+    // (`fpt frames | head`) ends the output quietly instead of panicking.
+    let mut out = std::io::stdout().lock();
     for l in &lines {
-        println!("{l}");
+        match writeln!(out, "{l}") {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => return Ok(()),
+            Err(e) => return Err(cli_err!("cannot write to stdout: {e}")),
+        }
     }
     Ok(())
 }

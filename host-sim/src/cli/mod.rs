@@ -8,6 +8,7 @@ use clap::{Args, Parser, Subcommand};
 use std::ffi::OsString;
 use std::path::PathBuf;
 
+pub mod accuracy;
 mod build;
 mod demo;
 pub mod frames;
@@ -64,6 +65,8 @@ enum Command {
     Render(render::RenderArgs),
     /// Build, render and save the demo scenes (vise, house, city) as PNG.
     Demo(demo::DemoArgs),
+    /// Measure error against time of every arithmetic configuration.
+    BenchAccuracy(accuracy::AccuracyArgs),
 }
 
 /// Arguments of `fpt build`.
@@ -207,6 +210,7 @@ where
         Command::Frames(a) => frames::run(&a),
         Command::Render(a) => render::run(&a),
         Command::Demo(a) => demo::run(&a),
+        Command::BenchAccuracy(a) => accuracy::run(&a),
     };
     match result {
         Ok(()) => 0,

@@ -21,7 +21,7 @@
 //! * `--band N`: draw in bands of N rows through one band buffer (the
 //!   picture is identical; this exercises the firmware's path).
 //! * `--precision`: the compile-time arithmetic configuration
-//!   ([`PRECISIONS`]), for accuracy studies.
+//!   ([`PRECISIONS`], or a short name of [`ALIASES`]), for accuracy studies.
 //!
 //! The picture is drawn into one of our framebuffers, copied into an
 //! `embedded-graphics-simulator` display and saved as PNG by it (to a
@@ -74,6 +74,70 @@ pub const PRECISIONS: [&str; 20] = [
     "f32-micromath-subpx-8",
 ];
 
+/// Short names `--precision` also accepts, for the accuracy study
+/// (`fpt bench-accuracy`), and the configuration each stands for:
+/// `fixed` is the default; `subpx-N` is fixed point with N sub-pixel bits;
+/// `f32-libm` and `f32-micromath` are the `f32` vertex paths with 4 bits;
+/// `trig-libm` and `trig-micromath` are fixed point with 4 bits whose orbit
+/// camera (`--yaw`/`--pitch`) is built with libm's or micromath's sine and
+/// cosine (with `--mvp` there is no trigonometry and they equal `fixed`,
+/// resp. `fixed-micromath-subpx-4`).
+pub const ALIASES: [(&str, &str); 10] = [
+    ("fixed", "fixed-subpx-4"),
+    ("subpx-0", "fixed-subpx-0"),
+    ("subpx-2", "fixed-subpx-2"),
+    ("subpx-4", "fixed-subpx-4"),
+    ("subpx-6", "fixed-subpx-6"),
+    ("subpx-8", "fixed-subpx-8"),
+    ("f32-libm", "f32-libm-subpx-4"),
+    ("f32-micromath", "f32-micromath-subpx-4"),
+    ("trig-libm", "fixed-subpx-4"),
+    ("trig-micromath", "fixed-micromath-subpx-4"),
+];
+
+/// Every name `--precision` accepts: [`PRECISIONS`], then the short names
+/// of [`ALIASES`] (in that order; a unit test keeps the lists in step).
+pub const PRECISION_NAMES: [&str; 30] = [
+    "fixed-subpx-0",
+    "fixed-subpx-2",
+    "fixed-subpx-4",
+    "fixed-subpx-6",
+    "fixed-subpx-8",
+    "fixed-micromath-subpx-0",
+    "fixed-micromath-subpx-2",
+    "fixed-micromath-subpx-4",
+    "fixed-micromath-subpx-6",
+    "fixed-micromath-subpx-8",
+    "f32-libm-subpx-0",
+    "f32-libm-subpx-2",
+    "f32-libm-subpx-4",
+    "f32-libm-subpx-6",
+    "f32-libm-subpx-8",
+    "f32-micromath-subpx-0",
+    "f32-micromath-subpx-2",
+    "f32-micromath-subpx-4",
+    "f32-micromath-subpx-6",
+    "f32-micromath-subpx-8",
+    "fixed",
+    "subpx-0",
+    "subpx-2",
+    "subpx-4",
+    "subpx-6",
+    "subpx-8",
+    "f32-libm",
+    "f32-micromath",
+    "trig-libm",
+    "trig-micromath",
+];
+
+/// The full [`PRECISIONS`] name of `name` (itself unless an alias).
+pub fn resolve_precision(name: &str) -> &str {
+    ALIASES
+        .iter()
+        .find(|(a, _)| *a == name)
+        .map_or(name, |(_, full)| full)
+}
+
 /// Vertices a polygon may have after clipping; larger ones are skipped
 /// (and counted). Host memory is plentiful: 256 × 106 bytes.
 const MAX_VERTS: usize = 256;
@@ -124,7 +188,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub band: Option<u32>,
     /// Arithmetic configuration (vertex path, math library, sub-pixel bits).
-    #[arg(long, default_value = "fixed-subpx-4", value_parser = PRECISIONS)]
+    #[arg(long, default_value = "fixed-subpx-4", value_parser = PRECISION_NAMES)]
     pub precision: String,
     /// Shading: lambert (face colours lit), flat (unlit) or grey.
     #[arg(long, default_value = "lambert", value_parser = ["lambert", "flat", "grey"])]
@@ -265,9 +329,10 @@ pub struct Rendered {
     pub ms: f64,
 }
 
-/// Draws `job` with `tree` using arithmetic `name` (one of [`PRECISIONS`]).
+/// Draws `job` with `tree` using arithmetic `name` (one of
+/// [`PRECISION_NAMES`]).
 pub fn render_job(tree: &Tree<'_>, job: &Job, name: &str) -> Result<Rendered, CliError> {
-    match name {
+    match resolve_precision(name) {
         "fixed-subpx-0" => render_with::<FixedPrecision<0>>(tree, job),
         "fixed-subpx-2" => render_with::<FixedPrecision<2>>(tree, job),
         "fixed-subpx-4" => render_with::<FixedPrecision<4>>(tree, job),
@@ -289,8 +354,9 @@ pub fn render_job(tree: &Tree<'_>, job: &Job, name: &str) -> Result<Rendered, Cl
         "f32-micromath-subpx-6" => render_with::<FloatMicromath<6>>(tree, job),
         "f32-micromath-subpx-8" => render_with::<FloatMicromath<8>>(tree, job),
         _ => Err(cli_err!(
-            "unknown precision '{name}' (expected one of {})",
-            PRECISIONS.join(", ")
+            "unknown precision '{name}' (expected one of {}, or a short name: {})",
+            PRECISIONS.join(", "),
+            ALIASES.map(|(a, _)| a).join(", ")
         )),
     }
 }
