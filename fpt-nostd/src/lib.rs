@@ -32,12 +32,12 @@
 #![no_std]
 #![deny(unsafe_code, missing_docs)]
 
+pub mod fixed;
 pub mod format;
+pub mod frames;
 pub mod order;
+pub mod raster;
 pub mod reader;
+pub mod render;
 #[cfg(test)]
 mod test_util;
-pub mod fixed;
-pub mod raster;
-pub mod render;
-pub mod frames;
