@@ -1,5 +1,6 @@
 //! Fuzzes mesh import: the first byte picks the format, the rest is the file.
-//! Run with `cargo +nightly fuzz run mesh_import` from the repository root.
+//! How to run it (and what a run found) is in the crate docs of `fpt_nostd`
+//! and of `fpt_nostd::reader` ("Fuzzing"); the seeds are `seeds/mesh_import`.
 //! Any panic, hang or huge allocation is a bug; so is an accepted model that
 //! breaks the output contract checked below.
 #![no_main]

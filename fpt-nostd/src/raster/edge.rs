@@ -23,6 +23,11 @@
 //! Ranges: screen coordinates are at most [`SCREEN_LIMIT`] (2^24) in
 //! magnitude in `2^-SUB` units with `SUB ≤ 8`, so the numerators below stay
 //! under 2^53 and everything fits i64; the per-row quotient fits i32.
+//! Polygons within ±2^13 sub-pixel units (the usual case on a small
+//! display) take `Edge::new_small`, the same arithmetic in i32, and the
+//! scan loop steps edges with `D < 2^30` in 32-bit registers (`Dda32`):
+//! on a 32-bit core, 64-bit products, variable shifts and division
+//! routines were most of the fill's cost.
 //!
 //! [`SCREEN_LIMIT`]: super::transform::SCREEN_LIMIT
 
@@ -51,9 +56,72 @@ pub struct Edge {
     pub(crate) dir: i8,
 }
 
-/// `ceil(a / b)` for `b > 0`.
-fn ceil_div(a: i64, b: i64) -> i64 {
-    -((-a).div_euclid(b))
+impl Edge {
+    /// The all-zero edge (scratch initialiser, usable in `const` context).
+    pub const ZERO: Edge = Edge {
+        y0: 0,
+        y1: 0,
+        x: 0,
+        q: 0,
+        qs: 0,
+        r: 0,
+        rs: 0,
+        d: 0,
+        dir: 0,
+    };
+}
+
+/// `ceil(a / 2^k)`: an arithmetic shift is a floor division by a power of
+/// two, so no division routine is needed for the row bounds.
+#[inline]
+fn ceil_shr(a: i64, k: u32) -> i64 {
+    -((-a) >> k)
+}
+
+/// Coordinates (sub-pixel units) below which [`Edge::new_small`] applies:
+/// `|x|, |y| < SMALL`. At 4 sub-pixel bits that is ±512 pixels, so every
+/// polygon of a small display that does not reach far into the guard band.
+pub(crate) const SMALL: i32 = 1 << 13;
+
+/// [`div_floor`] for 32-bit values (`d > 0`): one hardware division.
+#[inline]
+fn div_floor32(n: i32, d: i32) -> (i32, i32) {
+    let q = n / d;
+    let r = n - q * d;
+    if r < 0 {
+        (q - 1, r + d)
+    } else {
+        (q, r)
+    }
+}
+
+/// `(floor(n / d), n mod d)` with `0 ≤ n mod d < d`, for `d > 0`.
+///
+/// Why not `div_euclid`/`rem_euclid`: on a 32-bit core each is a call to
+/// a 64-bit division routine (~100 instructions). On screen, `n` and `d`
+/// fit 32 bits, and one hardware 32-bit division serves both results; only
+/// guard-band-sized edges fall back to one 64-bit division.
+#[inline]
+pub(crate) fn div_floor(n: i64, d: i64) -> (i64, i64) {
+    let (q, r) = match (i32::try_from(n), i32::try_from(d)) {
+        (Ok(n32), Ok(d32)) => {
+            // d32 > 0, so neither overflow case of `/` can occur.
+            let q = n32 / d32;
+            (q as i64, (n32 - q * d32) as i64)
+        }
+        _ => {
+            let q = n / d;
+            // |q·d| ≤ |n|: no overflow.
+            (q, n - q * d)
+        }
+    };
+    // Truncation rounds toward zero; floor needs one correction step for
+    // negative non-exact quotients.
+    if r < 0 {
+        (q - 1, r + d)
+    } else {
+        (q, r)
+    }
 }
 
 impl Edge {
@@ -62,9 +130,8 @@ impl Edge {
     pub fn rows(p: ScreenPt, q: ScreenPt, sub: u32) -> (i32, i32) {
         let (top, bot) = if p.y <= q.y { (p, q) } else { (q, p) };
         let half = 1i64 << sub;
-        let unit = 2i64 << sub;
-        let first = ceil_div(2 * top.y as i64 - half, unit);
-        let end = ceil_div(2 * bot.y as i64 - half, unit);
+        let first = ceil_shr(2 * top.y as i64 - half, sub + 1);
+        let end = ceil_shr(2 * bot.y as i64 - half, sub + 1);
         (first as i32, end as i32)
     }
 
@@ -100,21 +167,126 @@ impl Edge {
         // ceil(x_edge − ½) with x_edge the exact edge x at y = j + ½).
         let d = unit * dy;
         let n = (2 * tx - half) * dy + ((2 * y0 as i64 + 1) * half - 2 * ty) * dx;
-        let step = unit * dx;
+        let (q, r) = div_floor(n, d);
+        // The per-row step N(j+1) − N(j) = unit·dx over D = unit·dy:
+        // floor(dx / dy) with remainder unit·(dx mod dy); |dx|, dy < 2^26,
+        // so this is a 32-bit division.
+        let (qs, rs) = div_floor(dx, dy);
         Some(Edge {
             y0,
             y1,
             x: 0,
-            q: n.div_euclid(d) as i32,
-            r: n.rem_euclid(d),
-            qs: step.div_euclid(d) as i32,
-            rs: step.rem_euclid(d),
+            q: q as i32,
+            r,
+            qs: qs as i32,
+            rs: rs * unit,
             d,
             dir,
         })
     }
 
+    /// [`Edge::new`] for endpoints with `|x|, |y| < SMALL` (checked by the
+    /// caller): the same exact crossings, computed in 32-bit arithmetic.
+    ///
+    /// Ranges: `|dx|, dy < 2^14`, `2^S ≤ 2^8`. The row term
+    /// `(2·y0 + 1)·2^S − 2·ty` lies in `[0, 2·dy + 2^(S+1)]` because
+    /// `first ≤ y0 < end` (so `< 2^16`), so `|N| < 2^15·2^14 + 2^16·2^14
+    /// < 2^31`, `D < 2^23`: no product or sum overflows i32. On a 32-bit
+    /// core this avoids every 64-bit multiply, variable 64-bit shift and
+    /// division routine of the general version.
+    pub(crate) fn new_small(
+        p: ScreenPt,
+        q: ScreenPt,
+        sub: u32,
+        row_lo: i32,
+        row_hi: i32,
+    ) -> Option<Edge> {
+        if p.y == q.y {
+            return None;
+        }
+        let (dir, t, b) = if p.y < q.y { (1, p, q) } else { (-1, q, p) };
+        let half = 1i32 << sub;
+        // ceil((2y − 2^S) / 2^(S+1)) = −floor((2^S − 2y) / 2^(S+1)).
+        let first = -((half - 2 * t.y) >> (sub + 1));
+        let end = -((half - 2 * b.y) >> (sub + 1));
+        let y0 = first.max(row_lo);
+        let y1 = end.min(row_hi);
+        if y0 >= y1 {
+            return None;
+        }
+        let (dx, dy) = (b.x - t.x, b.y - t.y);
+        let d = dy << (sub + 1);
+        let n = (2 * t.x - half) * dy + ((2 * y0 + 1) * half - 2 * t.y) * dx;
+        let (q, r) = div_floor32(n, d);
+        let (qs, rs) = div_floor32(dx, dy);
+        Some(Edge {
+            y0,
+            y1,
+            x: 0,
+            q,
+            r: r as i64,
+            qs,
+            rs: (rs << (sub + 1)) as i64,
+            d: d as i64,
+            dir,
+        })
+    }
+
     /// The crossing pixel on the current row: `ceil(N / D)`.
+    #[inline]
+    pub(crate) fn crossing(&self) -> i32 {
+        self.q + (self.r > 0) as i32
+    }
+
+    /// The stepping state in 32 bits when `D < 2^30` (then `r + rs < 2^31`),
+    /// as every edge from [`Edge::new_small`] has; `None` otherwise.
+    #[inline]
+    pub(crate) fn dda32(&self) -> Option<Dda32> {
+        if self.d < 1 << 30 {
+            Some(Dda32 {
+                q: self.q,
+                r: self.r as i32,
+                qs: self.qs,
+                rs: self.rs as i32,
+                d: self.d as i32,
+            })
+        } else {
+            None
+        }
+    }
+
+    /// Writes back the state of a [`Dda32`] taken from this edge.
+    #[inline]
+    pub(crate) fn set_dda32(&mut self, s: &Dda32) {
+        self.q = s.q;
+        self.r = s.r as i64;
+    }
+
+    /// Advances to the next row.
+    #[inline]
+    pub(crate) fn step(&mut self) {
+        self.q = self.q.wrapping_add(self.qs);
+        self.r += self.rs;
+        if self.r >= self.d {
+            self.r -= self.d;
+            self.q = self.q.wrapping_add(1);
+        }
+    }
+}
+
+/// An edge's quotient/remainder stepping in 32-bit registers (see
+/// [`Edge::dda32`]): the same sequence of crossings as [`Edge`]'s.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Dda32 {
+    q: i32,
+    r: i32,
+    qs: i32,
+    rs: i32,
+    d: i32,
+}
+
+impl Dda32 {
+    /// The crossing pixel on the current row.
     #[inline]
     pub(crate) fn crossing(&self) -> i32 {
         self.q + (self.r > 0) as i32
@@ -142,16 +314,36 @@ pub fn build_edges(
     row_hi: i32,
     out: &mut [Edge],
 ) -> Option<usize> {
+    let small = pts.iter().all(|p| p.x.abs() < SMALL && p.y.abs() < SMALL);
+    build_edges_with(pts, sub, row_lo, row_hi, out, small)
+}
+
+/// [`build_edges`] given whether every vertex is within ±[`SMALL`] (the
+/// caller may know it already); `small` must only be true when it holds.
+pub(crate) fn build_edges_with(
+    pts: &[ScreenPt],
+    sub: u32,
+    row_lo: i32,
+    row_hi: i32,
+    out: &mut [Edge],
+    small: bool,
+) -> Option<usize> {
     if out.len() < pts.len() {
         return None;
     }
+    let small = small && sub <= 8;
     let mut n = 0usize;
     let Some(&last) = pts.last() else {
         return Some(0);
     };
     let mut prev = last;
     for &cur in pts {
-        if let Some(e) = Edge::new(prev, cur, sub, row_lo, row_hi) {
+        let e = if small {
+            Edge::new_small(prev, cur, sub, row_lo, row_hi)
+        } else {
+            Edge::new(prev, cur, sub, row_lo, row_hi)
+        };
+        if let Some(e) = e {
             // Insertion sort by first row: polygons are small, and this
             // keeps the active-edge insertion in the scan loop trivial.
             let mut k = n;
@@ -221,6 +413,62 @@ mod tests {
                     );
                     e.step();
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn small_edges_equal_general_ones() {
+        let mut seed = 777u64;
+        let mut rnd = |m: i32| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) as i64 % (2 * m as i64 + 1) - m as i64) as i32
+        };
+        let lim = SMALL - 1;
+        for sub in [0u32, 1, 4, 8] {
+            for k in 0..2000 {
+                // Mix extreme corners with random points.
+                let c = |v: i32| if k % 7 == 0 { v.signum() * lim } else { v };
+                let p = pt(c(rnd(lim)), c(rnd(lim)));
+                let q = pt(c(rnd(lim)), c(rnd(lim)));
+                let (lo, hi) = if k % 3 == 0 {
+                    (i32::MIN, i32::MAX)
+                } else {
+                    let a = rnd(1 << (13 - sub.min(8)));
+                    (a, a + 16)
+                };
+                assert_eq!(
+                    Edge::new_small(p, q, sub, lo, hi),
+                    Edge::new(p, q, sub, lo, hi),
+                    "{p:?} {q:?} {sub} {lo}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn div_floor_matches_euclid() {
+        let vals = [
+            0i64,
+            1,
+            -1,
+            7,
+            -7,
+            i32::MAX as i64,
+            i32::MIN as i64,
+            i32::MIN as i64 - 1,
+            1 << 40,
+            -(1 << 40) - 3,
+        ];
+        for &n in &vals {
+            for d in [1i64, 2, 3, 7, 1 << 20, i32::MAX as i64, 1 << 33] {
+                assert_eq!(
+                    div_floor(n, d),
+                    (n.div_euclid(d), n.rem_euclid(d)),
+                    "{n} {d}"
+                );
             }
         }
     }

@@ -38,6 +38,7 @@
 
 pub mod band;
 pub mod camera;
+mod chain;
 pub mod clip;
 pub mod edge;
 pub mod framebuffer;

@@ -20,7 +20,7 @@
 //! which faces to emit and in which order.
 
 use super::camera::{Camera, Orbit};
-use super::clip::{clip_polygon, ClipVert};
+use super::clip::{clip_polygon, ClipNum, ClipVert};
 use super::edge::Edge;
 use super::precision::Precision;
 use super::scan::{fill_polygon, FillRule, Paint, SpanBounds, SpanSink};
@@ -45,12 +45,22 @@ pub struct Scratch<P: Precision, const N: usize> {
 
 impl<P: Precision, const N: usize> Scratch<P, N> {
     /// Zeroed buffers.
-    pub fn new() -> Self {
+    ///
+    /// A `const fn` of constant zeroes: usable in a `static` initialiser,
+    /// and at run time the optimiser writes the zeroes straight into the
+    /// destination instead of building a multi-KiB temporary on the stack
+    /// and copying it (which cost a small-RAM target its stack budget).
+    pub const fn new() -> Self {
+        let zero = ClipVert {
+            x: <Scalar<P> as ClipNum>::ZERO,
+            y: <Scalar<P> as ClipNum>::ZERO,
+            w: <Scalar<P> as ClipNum>::ZERO,
+        };
         Scratch {
-            clip_a: [ClipVert::default(); N],
-            clip_b: [ClipVert::default(); N],
-            screen: [ScreenPt::default(); N],
-            edges: [Edge::default(); N],
+            clip_a: [zero; N],
+            clip_b: [zero; N],
+            screen: [ScreenPt { x: 0, y: 0 }; N],
+            edges: [Edge::ZERO; N],
             active: [0; N],
         }
     }
@@ -297,7 +307,25 @@ impl<P: Precision> Renderer<P> {
         let pts = &scratch.screen[..clipped.len()];
         let vp = SpanBounds::of_size(self.viewport.width(), self.viewport.height());
         // Shade only polygons that reach the sink at all (cheap test first).
-        if vp.intersect(&sink.bounds()).is_empty() {
+        let reach = vp.intersect(&sink.bounds());
+        if reach.is_empty() {
+            return Outcome::Drawn { spans: 0 };
+        }
+        // A band renderer sees every polygon once per band: one that misses
+        // the band's rows (the fill would find no active row, the same
+        // outcome) skips shading and edge setup for one pass over its
+        // vertices.
+        let (mut top, mut bot) = (i32::MAX, i32::MIN);
+        for p in pts {
+            top = top.min(p.y);
+            bot = bot.max(p.y);
+        }
+        let (first, end) = Edge::rows(
+            ScreenPt { x: 0, y: top },
+            ScreenPt { x: 0, y: bot },
+            self.viewport.sub_bits(),
+        );
+        if end <= reach.y0 || first >= reach.y1 {
             return Outcome::Drawn { spans: 0 };
         }
         let paint = Paint {

@@ -15,7 +15,8 @@
 //!   nothing (edges start directly at the first row in bounds), so a band
 //!   renderer pays per band only for the polygons that reach it.
 
-use super::edge::{build_edges, Edge};
+use super::chain::fill_monotone;
+use super::edge::{build_edges_with, Edge, SMALL};
 use super::transform::ScreenPt;
 use embedded_graphics::pixelcolor::Rgb888;
 
@@ -150,22 +151,115 @@ pub fn fill_polygon<K: SpanSink>(
     // Cheap reject on the horizontal extent (rows are handled by the edge
     // setup): crossing columns are ceil(x − ½), monotone in x.
     let (mut lo, mut hi) = (i32::MAX, i32::MIN);
+    let (mut top, mut bot) = (i32::MAX, i32::MIN);
     for p in pts {
         lo = lo.min(p.x);
         hi = hi.max(p.x);
+        top = top.min(p.y);
+        bot = bot.max(p.y);
     }
-    // col(x) = floor((x − ½ pixel) in pixels); every crossing lies in
+    // col(x) = floor((x − ½ pixel) in pixels) (an arithmetic shift is a
+    // floor division by 2^(sub+1)); every crossing lies in
     // [col(lo), col(hi) + 1].
-    let col = |x: i32| (2 * x as i64 - (1i64 << sub)).div_euclid(2i64 << sub);
+    let col = |x: i32| (2 * x as i64 - (1i64 << sub)) >> (sub + 1);
     if col(hi) < b.x0 as i64 || col(lo) >= b.x1 as i64 {
         return Ok(0);
     }
-    let n = build_edges(pts, sub, b.y0, b.y1, edges).ok_or(FillError::Capacity)?;
+    // Same on rows, before any edge setup: the polygon's active rows are
+    // within Edge::rows(top, bottom), so a band it misses costs one pass
+    // over the vertices.
+    let (first, end) = Edge::rows(ScreenPt { x: 0, y: top }, ScreenPt { x: 0, y: bot }, sub);
+    if end <= b.y0 || first >= b.y1 {
+        return Ok(0);
+    }
+    // The bounding box decides the 32-bit edge setup (see Edge::new_small).
+    let small = lo > -SMALL && hi < SMALL && top > -SMALL && bot < SMALL;
+    if edges.len() < pts.len() {
+        return Err(FillError::Capacity);
+    }
+    if small && sub <= 8 {
+        // Convex and other y-monotone polygons: two chains, no edge list.
+        if let Some(spans) = fill_monotone(pts, sub, &b, color, sink) {
+            return Ok(spans);
+        }
+    }
+    let n = build_edges_with(pts, sub, b.y0, b.y1, edges, small).ok_or(FillError::Capacity)?;
     Ok(scan(&mut edges[..n], active, rule, &b, color, sink))
 }
 
+/// Rows `[y, stop)` with exactly the two active edges `ia`, `ib`, stepping
+/// both to row `stop`. The general walk on two crossings `x_a ≤ x_b` with
+/// directions `d_a`, `d_b` starts a span at `x_a` (winding ±1 is inside
+/// under both rules) and ends it at `x_b` exactly when the winding
+/// `d_a + d_b` is outside: always for opposite directions, only under
+/// even-odd for equal ones (winding ±2). So the span is `[min, max)` or
+/// nothing for the whole run, whichever crossing comes first.
+#[allow(clippy::too_many_arguments)]
+// Not inlined: inside the caller's (already inlined) pipeline the loop's
+// dozen live values spilled to the stack on every row; on its own it keeps
+// them in registers (about half the instructions per row on a Cortex-M4).
+#[inline(never)]
+fn two_edge_rows<K: SpanSink>(
+    edges: &mut [Edge],
+    ia: usize,
+    ib: usize,
+    rule: FillRule,
+    b: &SpanBounds,
+    mut y: i32,
+    stop: i32,
+    color: K::Color,
+    sink: &mut K,
+) -> usize {
+    let (mut ea, mut eb) = (edges[ia], edges[ib]);
+    let mut spans = 0usize;
+    let paint = ea.dir != eb.dir || rule == FillRule::EvenOdd;
+    if let (Some(mut da), Some(mut db)) = (ea.dda32(), eb.dda32()) {
+        // Same loop in 32-bit registers (the usual case on screen).
+        while y < stop {
+            if paint {
+                let (xa, xb) = (da.crossing(), db.crossing());
+                let (l, r) = if xa <= xb { (xa, xb) } else { (xb, xa) };
+                let (x0, x1) = (l.max(b.x0), r.min(b.x1));
+                if x0 < x1 {
+                    sink.span(y, x0, x1, color);
+                    spans += 1;
+                }
+            }
+            da.step();
+            db.step();
+            y += 1;
+        }
+        edges[ia].set_dda32(&da);
+        edges[ib].set_dda32(&db);
+        return spans;
+    }
+    if paint {
+        while y < stop {
+            let (xa, xb) = (ea.crossing(), eb.crossing());
+            let (l, r) = if xa <= xb { (xa, xb) } else { (xb, xa) };
+            let (x0, x1) = (l.max(b.x0), r.min(b.x1));
+            if x0 < x1 {
+                sink.span(y, x0, x1, color);
+                spans += 1;
+            }
+            ea.step();
+            eb.step();
+            y += 1;
+        }
+    } else {
+        while y < stop {
+            ea.step();
+            eb.step();
+            y += 1;
+        }
+    }
+    edges[ia] = ea;
+    edges[ib] = eb;
+    spans
+}
+
 /// The active-edge loop over edges sorted by first row.
-fn scan<K: SpanSink>(
+pub(super) fn scan<K: SpanSink>(
     edges: &mut [Edge],
     active: &mut [u16],
     rule: FillRule,
@@ -204,6 +298,21 @@ fn scan<K: SpanSink>(
                 }
                 None => break,
             }
+        }
+        if nact == 2 {
+            // The common case (every row of a convex polygon, most rows of
+            // others): two edges stay active until one ends or another
+            // starts, and the rows between are a tight two-DDA loop that
+            // gives exactly what the general walk below would.
+            let mut stop = b.y1;
+            if let Some(e) = edges.get(next) {
+                stop = stop.min(e.y0);
+            }
+            let (ia, ib) = (active[0] as usize, active[1] as usize);
+            stop = stop.min(edges[ia].y1).min(edges[ib].y1);
+            spans += two_edge_rows(edges, ia, ib, rule, b, y, stop, color, sink);
+            y = stop;
+            continue;
         }
         // Crossings, then insertion sort by crossing: the order changes
         // little from row to row, so this is close to linear.

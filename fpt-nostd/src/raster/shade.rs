@@ -3,11 +3,12 @@
 //!
 //! `intensity = clamp(ambient + diffuse · max(0, n̂ · l̂), 0, 1)` with `n̂` the
 //! face's unit normal and `l̂` the unit direction *toward* the light, both in
-//! the same (model) space. Unit vectors are [`Fx14`] triples normalised
-//! with an integer square root, so the result is bit-identical on every
-//! target and for every [`super::precision::Precision`]; the only float
-//! operation is one division that brings an `f32` normal to a common scale
-//! (normals are unnormalised Newell normals of any magnitude).
+//! the same (model) space. Unit vectors are [`Fx14`] triples: an `f32`
+//! vector that is unit length already (the tree's stored plane normals) is
+//! rounded to Q14 directly; any other is normalised with an integer square
+//! root after one division that brings it to a common scale. Both are
+//! IEEE-exact operations, so the result is bit-identical on every target
+//! and for every [`super::precision::Precision`].
 //!
 //! Lighting is one-sided: a face whose normal points away from the light
 //! gets the ambient term only. For open (two-sided) models the caller
@@ -75,10 +76,32 @@ fn unit_from_ints(v: [i64; 3]) -> Option<[Fx14; 3]> {
     }))
 }
 
+/// Tolerance on `|v|² − 1` under which an `f32` vector counts as already
+/// unit length. The tree stores normalised plane normals (squared length
+/// within a few f32 ulps of 1); 2^-13 on the square is 2^-14 on the length,
+/// under one Fx14 unit, so rounding each component to Q14 directly gives
+/// the normalised vector as exactly as the square-root path does.
+const UNIT_TOLERANCE: f32 = 1.0 / 8192.0;
+
+/// `c` in `[-1, 1]` rounded to Q14 (halves away from zero, as
+/// [`unit_from_ints`]).
+fn q14_round(c: f32) -> Fx14 {
+    let m = (c.abs() * 16384.0 + 0.5) as i32;
+    Fx14::from_raw(if c < 0.0 { -m } else { m })
+}
+
 /// Normalises an `f32` vector; `None` for zero or non-finite input.
 fn unit_from_f32(v: [f32; 3]) -> Option<[Fx14; 3]> {
     if !v.iter().all(|c| c.is_finite()) {
         return None;
+    }
+    // Fast path: stored normals are unit already, and a 64-bit integer
+    // square root plus three 64-bit divisions per face was the whole cost
+    // of shading on a 32-bit core. Finite components with |v|² ≈ 1 are
+    // within [-1, 1] (up to the tolerance), so the rounding cannot overflow.
+    let len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if (len2 - 1.0).abs() <= UNIT_TOLERANCE {
+        return Some(v.map(q14_round));
     }
     let big = v.iter().fold(0.0f32, |m, c| m.max(c.abs()));
     if big == 0.0 {
@@ -185,6 +208,17 @@ mod tests {
             assert!((len2 - one).abs() < one / 2000, "{v:?} {u:?}");
         }
         assert_eq!(unit_from_f32([0.0; 3]), None);
+        // The unit fast path agrees with the square-root path to one Q14
+        // unit (scaled copies take the slow path).
+        for v in [[0.6f32, 0.8, 0.0], [0.48, 0.6, 0.64], [-0.36, 0.48, -0.8]] {
+            let (Some(fast), Some(slow)) = (unit_from_f32(v), unit_from_f32(v.map(|c| c * 3.0)))
+            else {
+                panic!("{v:?}")
+            };
+            for k in 0..3 {
+                assert!((fast[k].raw() - slow[k].raw()).abs() <= 1, "{v:?}");
+            }
+        }
         assert_eq!(unit_from_f32([f32::NAN, 1.0, 0.0]), None);
         let u = unit_from_ints([3, 4, 0]).unwrap_or_default();
         assert_eq!(u.map(|c| c.raw()), [9830, 13107, 0]); // 0.6, 0.8 in Q14

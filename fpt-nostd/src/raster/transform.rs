@@ -246,17 +246,29 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
         let ny = (v.y * r).clamp(-lim, lim);
         let sw = 0.5 * (vp.width << vp.sub) as f32;
         let sh = 0.5 * (vp.height << vp.sub) as f32;
-        let x = M::floor((nx + 1.0) * sw + 0.5);
-        let y = M::floor((1.0 - ny) * sh + 0.5);
+        let x = (nx + 1.0) * sw + 0.5;
+        let y = (1.0 - ny) * sh + 0.5;
         if !(x.is_finite() && y.is_finite()) {
             return None;
         }
-        let lim = SCREEN_LIMIT as f32;
+        let lim = SCREEN_LIMIT;
         Some(ScreenPt {
-            x: x.clamp(-lim, lim) as i32,
-            y: y.clamp(-lim, lim) as i32,
+            x: floor_to_i32(x).clamp(-lim, lim),
+            y: floor_to_i32(y).clamp(-lim, lim),
         })
     }
+}
+
+/// `floor(x)` as an integer for finite `x`, saturating outside the i32
+/// range (the caller clamps to far less). Exact: the float → int
+/// conversion truncates toward zero, which is the floor except for
+/// negative non-integers, where the truncated value converts back to
+/// something above `x`. A software `floorf` call per coordinate was a
+/// visible part of the transform cost on a Cortex-M4.
+#[inline]
+fn floor_to_i32(x: f32) -> i32 {
+    let t = x as i32;
+    t.saturating_sub(((t as f32) > x) as i32)
 }
 
 #[cfg(test)]
@@ -387,6 +399,17 @@ mod tests {
             let p = Fix::project(&ClipVert { x, y: x, w }, &vp);
             // Unclipped garbage may be rejected, but never overflows.
             assert!(p.is_none_or(|p| p.x.abs() <= SCREEN_LIMIT && p.y.abs() <= SCREEN_LIMIT));
+        }
+    }
+
+    #[test]
+    fn integer_floor_equals_libm_floor() {
+        for x in [
+            0.0f32, -0.0, 0.5, -0.5, 1.0, -1.0, 1.5, -1.5, 3839.999, -7.25, 8388607.5, -8388607.5,
+            3.0e9, -3.0e9, 1e-30, -1e-30,
+        ] {
+            let want = libm::floorf(x).clamp(i32::MIN as f32, i32::MAX as f32) as i32;
+            assert_eq!(floor_to_i32(x), want, "{x}");
         }
     }
 

@@ -433,7 +433,8 @@ pub fn max_vertex_error<P: Precision>(
             .ok_or_else(|| cli_err!("polygon {id}: vertices do not match the builder's"))?;
         for (i, e) in ex.iter().enumerate() {
             let c = cam.clip(*e);
-            if !(c.w > 0.0) {
+            // Behind the eye (or NaN): not a visible vertex.
+            if c.w.is_nan() || c.w <= 0.0 {
                 continue;
             }
             let x = (c.x / c.w + 1.0) * 0.5 * f64::from(w);
@@ -455,11 +456,26 @@ pub fn max_vertex_error<P: Precision>(
     Ok(worst)
 }
 
+/// Draws `view` of the tree file `tree` as `config` does when timed (the
+/// unit [`host_seconds`] times): rgb565, lambert, no ids. For benchmarks.
+pub fn draw(
+    tree: &Tree<'_>,
+    config: &Config,
+    view: ViewSpec,
+    w: u32,
+    h: u32,
+) -> Result<(), CliError> {
+    let spec = camera_spec(config, tree, view, w, h);
+    render_job(tree, &job(spec, w, h, false), config.precision).map(|_| ())
+}
+
 /// Host seconds per frame of every configuration: `reps` rounds, each
 /// rendering every (case, view) once per configuration, configurations
-/// interleaved within a round so that drift hits all alike; the median
-/// round per configuration, divided by the number of frames. Times the
-/// whole [`render_job`] (frame derivation included), ids off.
+/// interleaved within a round (starting one later each round) so that
+/// drift and position hit all alike; per configuration and frame the
+/// fastest of the rounds (the one least disturbed by other processes),
+/// averaged over the frames. Times the whole [`render_job`] (frame
+/// derivation included), ids off.
 pub fn host_seconds(
     cases: &[Case],
     configs: &[Config],
@@ -482,21 +498,28 @@ pub fn host_seconds(
         }
         work.push(jobs);
     }
-    let mut rounds = vec![Vec::with_capacity(reps); configs.len()];
-    for _ in 0..reps.max(1) {
-        for ((config, jobs), out) in configs.iter().zip(&work).zip(rounds.iter_mut()) {
-            let start = Instant::now();
-            for (tree, j) in jobs {
+    let mut best: Vec<Vec<f64>> = work
+        .iter()
+        .map(|jobs| vec![f64::INFINITY; jobs.len()])
+        .collect();
+    let n = configs.len();
+    for rep in 0..reps.max(1) {
+        for k in 0..n {
+            let i = (k + rep) % n;
+            let (Some(config), Some(jobs), Some(out)) =
+                (configs.get(i), work.get(i), best.get_mut(i))
+            else {
+                continue;
+            };
+            for ((tree, j), t) in jobs.iter().zip(out.iter_mut()) {
+                let start = Instant::now();
                 std::hint::black_box(render_job(tree, j, config.precision)?);
+                *t = t.min(start.elapsed().as_secs_f64());
             }
-            out.push(start.elapsed().as_secs_f64() / jobs.len().max(1) as f64);
         }
     }
-    Ok(rounds
+    Ok(best
         .into_iter()
-        .map(|mut r| {
-            r.sort_by(f64::total_cmp);
-            r.get(r.len() / 2).copied().unwrap_or(f64::NAN)
-        })
+        .map(|t| t.iter().sum::<f64>() / t.len().max(1) as f64)
         .collect())
 }

@@ -14,17 +14,19 @@ use embedded_graphics::mono_font::ascii::FONT_6X10;
 use embedded_graphics::mono_font::MonoTextStyle;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::{DrawTarget, OriginDimensions, Point, RgbColor, Size as EgSize};
+use embedded_graphics::primitives::{Line, Primitive, PrimitiveStyle};
 use embedded_graphics::text::{Alignment, Text};
 use embedded_graphics::{Drawable, Pixel};
 use plotters::prelude::*;
 use std::path::Path;
 
 /// Picture width in pixels.
-pub const WIDTH: u32 = 900;
+pub const WIDTH: u32 = 1140;
 /// Picture height in pixels.
 pub const HEIGHT: u32 = 600;
 const LEFT: u32 = 80;
-const RIGHT: u32 = 40;
+/// Room for the table of exact values right of the chart.
+const RIGHT: u32 = 280;
 const TOP: u32 = 40;
 const BOTTOM: u32 = 60;
 
@@ -73,6 +75,17 @@ impl DrawTarget for Canvas<'_> {
     }
 }
 
+/// A screen rectangle: x, y, width, height.
+type Rect = (i32, i32, i32, i32);
+
+fn overlaps(a: Rect, b: Rect) -> bool {
+    a.0 < b.0 + b.2 && b.0 < a.0 + a.2 && a.1 < b.1 + b.3 && b.1 < a.1 + a.3
+}
+
+fn text(canvas: &mut Canvas<'_>, s: &str, p: Point, a: Alignment, st: MonoTextStyle<'_, Rgb888>) {
+    let _ = Text::with_alignment(s, p, st, a).draw(canvas);
+}
+
 /// `[lo, hi]` widened by 8 % (and made non-empty).
 fn padded(lo: f64, hi: f64) -> (f64, f64) {
     let span = if hi > lo { hi - lo } else { hi.abs().max(1e-3) };
@@ -109,7 +122,9 @@ pub fn plot(
     let (y0, y1) = if finite.is_empty() {
         (0.0, 1.0)
     } else {
-        padded(y_lo.min(0.0), y_hi)
+        // Errors are never negative: the axis starts at 0.
+        let (lo, hi) = padded(y_lo.min(0.0), y_hi);
+        (lo.max(0.0), hi)
     };
     let mut buf = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
     let mut ticks = Vec::new();
@@ -158,16 +173,15 @@ pub fn plot(
     };
     let style = MonoTextStyle::new(&FONT_6X10, Rgb888::BLACK);
     let label_style = MonoTextStyle::new(&FONT_6X10, Rgb888::new(0, 0, 160));
-    let mut text = |s: &str, p: Point, a: Alignment, st: MonoTextStyle<'_, Rgb888>| {
-        let _ = Text::with_alignment(s, p, st, a).draw(&mut canvas);
-    };
     text(
+        &mut canvas,
         title,
-        Point::new((WIDTH / 2) as i32, 20),
+        Point::new((WIDTH / 2) as i32, 12),
         Alignment::Center,
         style,
     );
     text(
+        &mut canvas,
         x_title,
         Point::new(
             (LEFT + (WIDTH - LEFT - RIGHT) / 2) as i32,
@@ -177,34 +191,90 @@ pub fn plot(
         style,
     );
     text(
+        &mut canvas,
         y_title,
-        Point::new(8, (TOP - 12) as i32),
+        Point::new(8, (TOP - 8) as i32),
         Alignment::Left,
         style,
     );
     for ((x, y), s, is_x) in &ticks {
         if *is_x {
-            text(s, Point::new(*x, y + 16), Alignment::Center, style);
+            text(
+                &mut canvas,
+                s,
+                Point::new(*x, y + 16),
+                Alignment::Center,
+                style,
+            );
         } else {
-            text(s, Point::new(x - 6, y + 3), Alignment::Right, style);
+            text(
+                &mut canvas,
+                s,
+                Point::new(x - 6, y + 3),
+                Alignment::Right,
+                style,
+            );
         }
     }
-    // Labels to the right of their point, moved down past labels already
-    // placed so that coinciding points stay readable.
-    let mut placed: Vec<(i32, i32, i32)> = Vec::new();
+    // Labels beside their point; where that would cover another label or
+    // point, the first free place further down (or, failing that, to the
+    // left), tied to its point by a thin line.
+    let dots: Vec<Rect> = marks
+        .iter()
+        .map(|((x, y), _)| (x - 5, y - 5, 10, 10))
+        .collect();
+    let mut placed: Vec<Rect> = Vec::new();
     let mut order: Vec<&((i32, i32), String)> = marks.iter().collect();
     order.sort_by_key(|((x, y), _)| (*y, *x));
     for ((x, y), s) in order {
-        let (lx, mut ly) = (x + 7, y + 3);
         let width = 6 * s.len() as i32;
-        while placed
-            .iter()
-            .any(|&(px, py, pw)| (ly - py).abs() < 10 && lx < px + pw && px < lx + width)
-        {
-            ly += 10;
+        // Inside the chart (off it are the ticks), clear of the others.
+        let inside = |r: Rect| r.0 >= LEFT as i32 && r.1 + r.3 <= (HEIGHT - BOTTOM) as i32;
+        let free = |r: Rect| inside(r) && !placed.iter().chain(&dots).any(|&o| overlaps(r, o));
+        let candidates = (0..12)
+            .map(|k| (x + 7, y + 3 + 10 * k))
+            .chain((0..12).map(|k| (x - 7 - width, y + 3 + 10 * k)));
+        let mut spot = (x + 7, y + 3);
+        for c in candidates {
+            if free((c.0, c.1 - 8, width, 10)) {
+                spot = c;
+                break;
+            }
         }
-        placed.push((lx, ly, width));
-        text(s, Point::new(lx, ly), Alignment::Left, label_style);
+        placed.push((spot.0, spot.1 - 8, width, 10));
+        if (spot.1 - (y + 3)).abs() > 0 || spot.0 < *x {
+            let end = if spot.0 < *x { spot.0 + width } else { spot.0 };
+            let _ = Line::new(Point::new(*x, *y), Point::new(end, spot.1 - 3))
+                .into_styled(PrimitiveStyle::with_stroke(Rgb888::new(150, 150, 200), 1))
+                .draw(&mut canvas);
+        }
+        text(
+            &mut canvas,
+            s,
+            Point::new(spot.0, spot.1),
+            Alignment::Left,
+            label_style,
+        );
+    }
+    // The exact values, since labels of nearby points may be displaced.
+    let tx = (WIDTH - RIGHT + 20) as i32;
+    text(
+        &mut canvas,
+        &format!("{:<16}{:>8}{:>10}", "config", "time", "error %"),
+        Point::new(tx, (TOP + 8) as i32),
+        Alignment::Left,
+        style,
+    );
+    for (k, p) in points.iter().enumerate() {
+        let line = format!("{:<16}{:>8.3}{:>10.4}", p.label, p.x, 100.0 * p.y);
+        let y = (TOP + 22) as i32 + 12 * k as i32;
+        text(
+            &mut canvas,
+            &line,
+            Point::new(tx, y),
+            Alignment::Left,
+            label_style,
+        );
     }
     save_png(&Image::Rgb888(buf), WIDTH, HEIGHT, path)
 }
