@@ -226,8 +226,16 @@ fn clip_inner<'a, S: ClipNum>(
     near: S,
 ) -> Result<(&'a [ClipVert<S>], bool), ClipError> {
     let n = n.min(a.len());
-    // Outcodes: trivially accept (the common case: no plane touched) or
-    // reject (all vertices outside one plane) without any interpolation.
+    // Fast accept (the common case: in front of the near plane and inside
+    // the guard band): one short-circuiting pass, no outcode bookkeeping.
+    if a[..n]
+        .iter()
+        .all(|v| PLANES.iter().all(|p| p.dist(v, near) >= S::ZERO))
+    {
+        return Ok((&a[..n], false));
+    }
+    // Outcodes: trivially reject (all vertices outside one plane) or find
+    // the planes that need a pass, without any interpolation yet.
     let mut any_out = 0u8;
     for v in &a[..n] {
         for (k, p) in PLANES.iter().enumerate() {
