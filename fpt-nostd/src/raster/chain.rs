@@ -18,11 +18,11 @@
 //!   `[min, max)` under both fill rules (see `two_edge_rows` in
 //!   [`super::scan`]).
 //! * Each crossing is computed by the same exact quotient/remainder DDA as
-//!   the general path ([`Edge::new_small`] started at the current row
+//!   the general path (`Edge::new_small` started at the current row
 //!   equals stepping from an earlier row), so pixels are identical,
 //!   shared edges included.
 
-use super::edge::{Dda32, Edge};
+use super::edge::Dda32;
 use super::scan::{SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
@@ -50,16 +50,24 @@ impl Chain {
             let next = (self.at + self.step) % n;
             let to = pts[next];
             self.at = next;
-            if let Some(e) = Edge::new_small(from, to, sub, y, row_hi) {
-                if let Some(dda) = e.dda32() {
-                    if e.y0 == y {
-                        self.y1 = e.y1;
-                        self.dda = dda;
-                        return true;
-                    }
-                }
-                return false;
+            if to.y == from.y {
+                continue; // horizontal: never active
             }
+            if to.y < from.y {
+                return false; // past the bottom vertex
+            }
+            // Both chains run downward: `from` is the edge's top endpoint,
+            // as in the general edge setup's normalisation.
+            let (first, end) = Dda32::rows(from, to, sub);
+            if end <= y {
+                continue; // ended above this row
+            }
+            if first > y {
+                return false; // a gap: not what monotonicity allows
+            }
+            self.y1 = end.min(row_hi);
+            self.dda = Dda32::start(from, to, sub, y);
+            return true;
         }
         false
     }
@@ -120,7 +128,7 @@ pub(crate) fn fill_monotone<K: SpanSink>(
         }
         by = by.max(p.y);
     }
-    let (first, end) = Edge::rows(ScreenPt { x: 0, y: ty }, ScreenPt { x: 0, y: by }, sub);
+    let (first, end) = Dda32::rows(ScreenPt { x: 0, y: ty }, ScreenPt { x: 0, y: by }, sub);
     let mut y = first.max(b.y0);
     let stop = end.min(b.y1);
     if y >= stop {
@@ -170,7 +178,7 @@ pub(crate) fn fill_monotone<K: SpanSink>(
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::super::edge::{build_edges, SMALL};
+    use super::super::edge::{build_edges, Edge, SMALL};
     use super::super::scan::{scan, FillRule, Paint};
     use super::*;
     use std::vec::Vec;

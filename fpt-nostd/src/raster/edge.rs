@@ -276,7 +276,7 @@ impl Edge {
 
 /// An edge's quotient/remainder stepping in 32-bit registers (see
 /// [`Edge::dda32`]): the same sequence of crossings as [`Edge`]'s.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Dda32 {
     q: i32,
     r: i32,
@@ -286,6 +286,39 @@ pub(crate) struct Dda32 {
 }
 
 impl Dda32 {
+    /// The stepping state of the edge from `t` down to `b` (`t.y < b.y`)
+    /// on row `y`, for endpoints within ±[`SMALL`], `sub ≤ 8` and `y` one
+    /// of the edge's active rows (so the ranges of [`Edge::new_small`]
+    /// hold): the state `Edge::new_small(t, b, sub, y, _)` would give.
+    #[inline]
+    pub(crate) fn start(t: ScreenPt, b: ScreenPt, sub: u32, y: i32) -> Dda32 {
+        let half = 1i32 << sub;
+        let (dx, dy) = (b.x - t.x, b.y - t.y);
+        let d = dy << (sub + 1);
+        let n = (2 * t.x - half) * dy + ((2 * y + 1) * half - 2 * t.y) * dx;
+        let (q, r) = div_floor32(n, d);
+        let (qs, rs) = div_floor32(dx, dy);
+        Dda32 {
+            q,
+            r,
+            qs,
+            rs: rs << (sub + 1),
+            d,
+        }
+    }
+
+    /// Row range `[first, end)` of an edge from `t` down to `b` (as
+    /// [`Edge::rows`], in 32 bits: valid for `|y| ≤ 2^28` and `sub ≤ 8`,
+    /// so for every projected point, which is within ±[`SCREEN_LIMIT`]).
+    #[inline]
+    pub(crate) fn rows(t: ScreenPt, b: ScreenPt, sub: u32) -> (i32, i32) {
+        let half = 1i32 << sub;
+        (
+            -((half - 2 * t.y) >> (sub + 1)),
+            -((half - 2 * b.y) >> (sub + 1)),
+        )
+    }
+
     /// The crossing pixel on the current row.
     #[inline]
     pub(crate) fn crossing(&self) -> i32 {
@@ -439,11 +472,15 @@ mod tests {
                     let a = rnd(1 << (13 - sub.min(8)));
                     (a, a + 16)
                 };
-                assert_eq!(
-                    Edge::new_small(p, q, sub, lo, hi),
-                    Edge::new(p, q, sub, lo, hi),
-                    "{p:?} {q:?} {sub} {lo}"
-                );
+                let e = Edge::new_small(p, q, sub, lo, hi);
+                assert_eq!(e, Edge::new(p, q, sub, lo, hi), "{p:?} {q:?} {sub} {lo}");
+                // The chain walk's direct setup agrees on the first row.
+                if let Some(e) = e {
+                    let (t, b) = if p.y < q.y { (p, q) } else { (q, p) };
+                    assert_eq!(Some(Dda32::start(t, b, sub, e.y0)), e.dda32());
+                    let (first, end) = Dda32::rows(t, b, sub);
+                    assert_eq!((first, end), Edge::rows(p, q, sub));
+                }
             }
         }
     }

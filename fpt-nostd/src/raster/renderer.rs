@@ -21,7 +21,7 @@
 
 use super::camera::{Camera, Orbit};
 use super::clip::{clip_polygon, ClipNum, ClipVert};
-use super::edge::Edge;
+use super::edge::{Dda32, Edge};
 use super::precision::Precision;
 use super::scan::{fill_polygon, FillRule, Paint, SpanBounds, SpanSink};
 use super::shade::{shade, Light, ShadeMode};
@@ -320,7 +320,9 @@ impl<P: Precision> Renderer<P> {
             top = top.min(p.y);
             bot = bot.max(p.y);
         }
-        let (first, end) = Edge::rows(
+        // Projected points are within ±SCREEN_LIMIT: the 32-bit row bounds
+        // apply (and a 64-bit variable shift is not cheap on a 32-bit core).
+        let (first, end) = Dda32::rows(
             ScreenPt { x: 0, y: top },
             ScreenPt { x: 0, y: bot },
             self.viewport.sub_bits(),

@@ -173,11 +173,11 @@ pub fn fill_polygon<K: SpanSink>(
         return Ok(0);
     }
     // The bounding box decides the 32-bit edge setup (see Edge::new_small).
-    let small = lo > -SMALL && hi < SMALL && top > -SMALL && bot < SMALL;
+    let small = lo > -SMALL && hi < SMALL && top > -SMALL && bot < SMALL && sub <= 8;
     if edges.len() < pts.len() {
         return Err(FillError::Capacity);
     }
-    if small && sub <= 8 {
+    if small {
         // Convex and other y-monotone polygons: two chains, no edge list.
         if let Some(spans) = fill_monotone(pts, sub, &b, color, sink) {
             return Ok(spans);
@@ -195,9 +195,8 @@ pub fn fill_polygon<K: SpanSink>(
 /// even-odd for equal ones (winding ±2). So the span is `[min, max)` or
 /// nothing for the whole run, whichever crossing comes first.
 #[allow(clippy::too_many_arguments)]
-// Not inlined: inside the caller's (already inlined) pipeline the loop's
-// dozen live values spilled to the stack on every row; on its own it keeps
-// them in registers (about half the instructions per row on a Cortex-M4).
+// Not inlined: a rare path since the chain walk (`super::chain`) takes
+// the common case; kept out of the caller's per-polygon code.
 #[inline(never)]
 fn two_edge_rows<K: SpanSink>(
     edges: &mut [Edge],
