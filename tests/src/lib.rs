@@ -387,6 +387,26 @@ pub fn assert_orders(name: &str, polys: &[Polygon], closed: bool, views: usize, 
     );
 }
 
+/// The third-party models folder, `../shared/models` from the project root.
+pub const SHARED_MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/models");
+
+/// The path of `file` in [`SHARED_MODELS`], or `None` (with a printed
+/// "skipping: ..." line) when the folder or the file is absent, as in a
+/// fresh clone of the project.
+pub fn shared_model(file: &str) -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(SHARED_MODELS);
+    if !dir.is_dir() {
+        println!("skipping: ../shared/models not found");
+        return None;
+    }
+    let p = dir.join(file);
+    if !p.is_file() {
+        println!("skipping: ../shared/models/{file} not found");
+        return None;
+    }
+    Some(p)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

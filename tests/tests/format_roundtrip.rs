@@ -4,7 +4,6 @@
 mod format_common;
 
 use std::collections::HashSet;
-use std::path::Path;
 
 use format_common::*;
 use fpt_nostd::format::VertexFormat;
@@ -205,13 +204,7 @@ fn quantized_formats_are_smaller() {
 
 /// The shared models, when present (a fresh clone has none).
 fn shared_model(name: &str) -> Option<host_sim::mesh::Model> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../shared/models")
-        .join(name);
-    if !path.exists() {
-        eprintln!("skipping {name}: {} not found", path.display());
-        return None;
-    }
+    let path = fpt_tests::shared_model(name)?;
     Some(host_sim::mesh::load(&path).expect("shared model loads"))
 }
 

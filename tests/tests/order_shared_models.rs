@@ -2,28 +2,13 @@
 //! models in `../shared/models` (skipped when that folder is absent, as in a
 //! fresh clone of the project).
 
-use fpt_tests::assert_orders;
-use std::path::{Path, PathBuf};
+use fpt_tests::{assert_orders, shared_model};
 
-const MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/models");
 const VIEWS: usize = 60;
 const SIZE: usize = 96;
 
-fn model(file: &str) -> Option<PathBuf> {
-    if !Path::new(MODELS).is_dir() {
-        println!("skipping: ../shared/models not found");
-        return None;
-    }
-    let p = Path::new(MODELS).join(file);
-    if !p.is_file() {
-        println!("skipping: ../shared/models/{file} not found");
-        return None;
-    }
-    Some(p)
-}
-
 fn check(file: &str) {
-    let Some(path) = model(file) else {
+    let Some(path) = shared_model(file) else {
         return;
     };
     let m = match host_sim::mesh::load(&path) {

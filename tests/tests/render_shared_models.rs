@@ -6,30 +6,15 @@
 
 mod render_common;
 
-use fpt_tests::random_cameras;
+use fpt_tests::{random_cameras, shared_model};
 use render_common::{assert_clean, check_views};
-use std::path::{Path, PathBuf};
 
-const MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/models");
 const VIEWS: usize = 30;
 const W: usize = 96;
 const H: usize = 96;
 
-fn model(file: &str) -> Option<PathBuf> {
-    if !Path::new(MODELS).is_dir() {
-        println!("skipping: ../shared/models not found");
-        return None;
-    }
-    let p = Path::new(MODELS).join(file);
-    if !p.is_file() {
-        println!("skipping: ../shared/models/{file} not found");
-        return None;
-    }
-    Some(p)
-}
-
 fn check(file: &str) {
-    let Some(path) = model(file) else {
+    let Some(path) = shared_model(file) else {
         return;
     };
     let m = match host_sim::mesh::load(&path) {
