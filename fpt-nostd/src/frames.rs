@@ -45,11 +45,11 @@ use embedded_graphics::pixelcolor::Rgb565;
 
 use crate::order::{Order, OrderError};
 use crate::raster::{
-    band_starts, Band, Face, FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, Paint,
-    RenderStats, Rgb565Framebuffer, SpanBounds, SpanSink,
+    band_starts, Band, FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, Paint, RenderStats,
+    Rgb565Framebuffer, SpanBounds, SpanSink,
 };
 use crate::reader::Tree;
-use crate::render::{Frame, TreeRenderer};
+use crate::render::{face_of, scaled_vertices, Frame, TreeRenderer};
 
 /// Frame width in pixels.
 pub const WIDTH: u32 = 240;
@@ -418,23 +418,8 @@ fn draw_tree<K: SpanSink, Pr: Probe>(
         // `Tree` into every class's iterator (a measurable cost per class
         // on the Cortex-M4).
         for p in class.filter_map(|id| tree.polygon(id)) {
-            let plane = p.plane();
-            // As in draw_frame: an open model's back sides are lit as if
-            // they faced the viewer.
-            let normal = if two_sided && !view.is_backward(&plane) {
-                plane.normal.map(|c| -c)
-            } else {
-                plane.normal
-            };
-            let face = Face {
-                normal,
-                color: p.color(),
-                id: p.source(),
-            };
-            let verts = (0..p.vertex_count()).map(|i| {
-                let v = p.vertex(i);
-                [v[0] * scale, v[1] * scale, v[2] * scale]
-            });
+            let face = face_of(&p, &view, two_sided, p.source());
+            let verts = scaled_vertices(&p, scale);
             probe.enter(Phase::Xform);
             r.renderer
                 .draw_polygon(&mut r.scratch, verts, &face, &mut sink);

@@ -47,12 +47,12 @@
 //! except that a tree deeper than the walk's stack `N` is refused
 //! ([`OrderError`]).
 
-use crate::order::{Order, OrderError, View};
+use crate::order::{LocalView, Order, OrderError, View};
 use crate::raster::{
     band_starts, Band, Camera, Face, Framebuffer, FramebufferError, Mat4, PixelFormat, Precision,
     RenderStats, Renderer, Scratch, SpanSink,
 };
-use crate::reader::Tree;
+use crate::reader::{PolygonRef, Tree};
 
 /// Which number a polygon writes into id buffers (as `number + 1`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -403,30 +403,49 @@ pub fn draw_frame<P: Precision, K: SpanSink, const N: usize, const V: usize>(
     let scale = frame.vertex_scale;
     for class in order {
         for p in class.polygons(tree) {
-            let plane = p.plane();
-            // A closed model only emits faces turned to the viewer; an open
-            // one also shows back sides, lit as if they faced the viewer.
-            let normal = if two_sided && !view.is_backward(&plane) {
-                plane.normal.map(|c| -c)
-            } else {
-                plane.normal
+            let id = match ids {
+                FaceIds::Source => p.source(),
+                FaceIds::Polygon => p.id(),
             };
-            let face = Face {
-                normal,
-                color: p.color(),
-                id: match ids {
-                    FaceIds::Source => p.source(),
-                    FaceIds::Polygon => p.id(),
-                },
-            };
-            let verts = (0..p.vertex_count()).map(|i| {
-                let v = p.vertex(i);
-                [v[0] * scale, v[1] * scale, v[2] * scale]
-            });
+            let face = face_of(&p, &view, two_sided, id);
+            let verts = scaled_vertices(&p, scale);
             renderer.draw_polygon(scratch, verts, &face, sink);
         }
     }
     Ok(renderer.stats())
+}
+
+/// The face the rasterizer draws for polygon `p` of the walk: its colour,
+/// `id`, and the normal that lighting uses. A closed model only emits faces
+/// turned to the viewer; an open one (`two_sided`) also shows back sides,
+/// lit as if they faced the viewer. Shared by [`draw_frame`] and the
+/// firmware's measured loop in [`crate::frames`], so both draw alike.
+#[inline]
+pub(crate) fn face_of(p: &PolygonRef<'_>, view: &LocalView, two_sided: bool, id: u32) -> Face {
+    let plane = p.plane();
+    let normal = if two_sided && !view.is_backward(&plane) {
+        plane.normal.map(|c| -c)
+    } else {
+        plane.normal
+    };
+    Face {
+        normal,
+        color: p.color(),
+        id,
+    }
+}
+
+/// The vertices of `p`, relative to the tree's origin, times the frame's
+/// `scale` (see [`Frame`]).
+#[inline]
+pub(crate) fn scaled_vertices<'p>(
+    p: &'p PolygonRef<'_>,
+    scale: f32,
+) -> impl Iterator<Item = [f32; 3]> + 'p {
+    (0..p.vertex_count()).map(move |i| {
+        let v = p.vertex(i);
+        [v[0] * scale, v[1] * scale, v[2] * scale]
+    })
 }
 
 /// The band buffer of [`TreeRenderer::render_banded`]: storage for `rows`
