@@ -162,3 +162,18 @@ fn degenerate_faces_are_counted_in_one_warning() {
     assert_eq!(warnings.len(), 1, "{err}");
     assert!(warnings[0].contains('2'), "{err}");
 }
+
+#[test]
+fn closed_stdout_is_not_a_panic() {
+    // A reader that goes away (`fpt ... | head`) must not make fpt panic.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_fpt"))
+        .args(["bench-build", "--scaling"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("running fpt");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("waiting for fpt");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+}
