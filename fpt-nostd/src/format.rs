@@ -22,11 +22,11 @@
 //! | offset | type | field | meaning |
 //! |---:|---|---|---|
 //! | 0 | `[u8; 4]` | magic | [`MAGIC`], `b"FPTR"` |
-//! | 4 | `u16` | version | [`VERSION`] (1) |
+//! | 4 | `u16` | version | [`VERSION`] (2; version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (96) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
 //! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); other bits must be 0 |
-//! | 16 | `u32` | effects | a scene's effect flags, not interpreted by the reader |
+//! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
 //! | 22 | `u8` | index_size | bytes per vertex index: 2 (`u16`) or 4 (`u32`) |
@@ -64,7 +64,7 @@
 //! | 4 | `u32` | run: the run holding it, whose plane is its plane |
 //! | 8 | `u32` | source: the face of the input mesh it came from |
 //! | 12 | `u8 × 3` | colour, RGB |
-//! | 15 | `u8` | padding, 0 |
+//! | 15 | `u8` | hidden_edges: bit `i` set when edge `i` (vertex `i` → `i + 1`) lies inside the source face (shared with another piece of it, or with a coplanar neighbour of the same colour), so the `outline` effect leaves it out; edges from 8 on are always drawn |
 //!
 //! The polygons tile the index list in order: polygon 0 starts at index 0 and
 //! polygon `p` ends where polygon `p + 1` starts (the last one at
@@ -139,7 +139,7 @@ use core::fmt;
 /// The first four bytes of every tree file.
 pub const MAGIC: [u8; 4] = *b"FPTR";
 /// The format version this crate reads and writes.
-pub const VERSION: u16 = 1;
+pub const VERSION: u16 = 2;
 /// Length of the header in bytes.
 pub const HEADER_LEN: usize = 96;
 /// Length of one polygon record.

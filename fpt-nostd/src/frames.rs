@@ -43,6 +43,7 @@ use core::fmt;
 
 use embedded_graphics::pixelcolor::Rgb565;
 
+use crate::effects::Effects;
 use crate::order::{Order, OrderError};
 use crate::raster::{
     band_starts, Band, FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, Paint, RenderStats,
@@ -408,9 +409,10 @@ fn draw_tree<K: SpanSink, Pr: Probe>(
     probe: &Pr,
 ) -> Result<(), OrderError> {
     probe.enter(Phase::Post);
-    let order = Order::<WALK_DEPTH>::new(tree, frame.view)?;
+    let fx = r.renderer.begin_tree(Effects::from_bits(tree.effects()));
+    let order = Order::<WALK_DEPTH>::with_culling(tree, frame.view, fx.contains(Effects::CULLING))?;
     let view = order.view();
-    let two_sided = !tree.is_closed();
+    let two_sided = fx.contains(Effects::TWO_SIDED);
     let scale = frame.vertex_scale;
     let mut sink = ProbeSink { inner: sink, probe };
     for class in order {

@@ -32,6 +32,7 @@
 #![no_std]
 #![deny(unsafe_code, missing_docs)]
 
+pub mod effects;
 pub mod fixed;
 pub mod format;
 pub mod frames;

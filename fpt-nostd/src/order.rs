@@ -223,6 +223,8 @@ pub struct Order<'a, const N: usize> {
     face: Facing,
     view: LocalView,
     closed: bool,
+    /// Runs still to hand out as the away-facing prelude (0 when none).
+    prelude_runs: u32,
     len: usize,
     stack: [Frame; N],
 }
@@ -231,6 +233,24 @@ impl<'a, const N: usize> Order<'a, N> {
     /// Starts the walk of `tree` for `view`; fails if the tree is deeper
     /// than `N`.
     pub fn new(tree: &Tree<'a>, view: View) -> Result<Self, OrderError> {
+        Self::with_culling(tree, view, tree.is_closed())
+    }
+
+    /// The walk with back-face culling chosen by the caller (the `culling`
+    /// effect, [`crate::effects`]) instead of by the tree's kind:
+    ///
+    /// * culling an **open** tree walks it with the closed-volume rule,
+    ///   which is its open-volume order with the faces turned away left
+    ///   out (the starred terms of the module docs);
+    /// * not culling a **closed** tree first emits one class with all the
+    ///   faces turned away from the viewer, then the usual walk. A closed
+    ///   tree's order says nothing about its back faces, but none is needed:
+    ///   seen from outside every volume, a ray meets a closed volume's front
+    ///   face before its back face, so every back face lies behind some
+    ///   front face and drawing them all first leaves the same picture (it
+    ///   only costs time; what it shows when the near plane cuts a volume
+    ///   open is in no particular order).
+    pub fn with_culling(tree: &Tree<'a>, view: View, cull: bool) -> Result<Self, OrderError> {
         let depth = tree.max_depth();
         if depth as usize > N {
             return Err(OrderError::StackTooSmall { depth, capacity: N });
@@ -240,7 +260,12 @@ impl<'a, const N: usize> Order<'a, N> {
             w: tree.walk_data(),
             face: Facing::of(&view),
             view,
-            closed: tree.is_closed(),
+            closed: tree.is_closed() || cull,
+            prelude_runs: if tree.is_closed() && !cull {
+                tree.run_count()
+            } else {
+                0
+            },
             len: 0,
             stack: [Frame::default(); N],
         };
@@ -341,6 +366,13 @@ impl<'a, const N: usize> Iterator for Order<'a, N> {
     type Item = Class<'a>;
 
     fn next(&mut self) -> Option<Class<'a>> {
+        if self.prelude_runs != 0 {
+            let runs = (0, core::mem::take(&mut self.prelude_runs));
+            let seg = Seg::new(&self.w, runs, Pick::Forward);
+            if let Some(c) = Class::new(&self.w, self.face, [seg, Seg::EMPTY]) {
+                return Some(c);
+            }
+        }
         loop {
             let top = self.len.checked_sub(1)?;
             let mut f = *self.stack.get(top)?;

@@ -389,6 +389,15 @@ impl<'a> PolygonRef<'a> {
         [c[0], c[1], c[2]]
     }
 
+    /// Its outline mask: bit `i` set when edge `i` (vertex `i` to `i + 1`)
+    /// lies inside its source face (see [`crate::format`]).
+    pub fn hidden_edges(&self) -> u8 {
+        rd_u8(
+            self.g.bytes,
+            self.g.polygon_off(self.id).wrapping_add(pg::COLOR + 3),
+        )
+    }
+
     /// Its plane, relative to the origin (the plane of its run).
     pub fn plane(&self) -> Plane {
         self.g.polygon_plane(self.id)

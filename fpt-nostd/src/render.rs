@@ -47,6 +47,7 @@
 //! except that a tree deeper than the walk's stack `N` is refused
 //! ([`OrderError`]).
 
+use crate::effects::{AllEffects, Compiled, Effects};
 use crate::order::{LocalView, Order, OrderError, View};
 use crate::raster::{
     band_starts, Band, Camera, Face, Framebuffer, FramebufferError, Mat4, PixelFormat, Precision,
@@ -344,6 +345,17 @@ impl Frame {
         }
     }
 
+    /// The depth range of `tree`'s bounding sphere in the renderer's clip
+    /// `w` (nearest, farthest): the range to give a
+    /// [`crate::raster::DepthCue`]. Equal ends for a parallel camera.
+    pub fn depth_range(&self, tree: &Tree<'_>) -> (f32, f32) {
+        let m = &self.camera.matrix.0;
+        let row = m[3];
+        let len = libm::sqrtf(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]);
+        let r = tree.bounding_radius() * self.vertex_scale * len;
+        (row[3] - r, row[3] + r)
+    }
+
     /// A light direction for [`crate::raster::Light::new`]: toward the
     /// viewer, raised a little toward the top of the screen and moved to
     /// its left, so that faces turned to the viewer differ in brightness
@@ -372,34 +384,42 @@ impl Frame {
 /// it as `renderer`'s camera, zeroes its counters, walks the classes back
 /// to front (a stack of `N` frames) and draws every polygon; returns the
 /// counters. The renderer's light, shading mode and fill rule are used as
-/// set. Fails only when the tree is deeper than `N`.
-pub fn render_tree<P: Precision, K: SpanSink, const N: usize, const V: usize>(
+/// set, its effects as [`Renderer::begin_tree`] decides (the tree's own
+/// unless overridden). Fails only when the tree is deeper than `N`.
+pub fn render_tree<P: Precision, E: Compiled, K: SpanSink, const N: usize, const V: usize>(
     tree: &Tree<'_>,
     camera: &Camera,
-    renderer: &mut Renderer<P>,
+    renderer: &mut Renderer<P, E>,
     scratch: &mut Scratch<P, V>,
     ids: FaceIds,
     sink: &mut K,
 ) -> Result<RenderStats, OrderError> {
     let frame = Frame::new(tree, camera);
-    draw_frame::<P, K, N, V>(tree, &frame, renderer, scratch, ids, sink)
+    draw_frame::<P, E, K, N, V>(tree, &frame, renderer, scratch, ids, sink)
 }
 
 /// [`render_tree`] for an already derived [`Frame`] (saves deriving it
 /// again per band).
-pub fn draw_frame<P: Precision, K: SpanSink, const N: usize, const V: usize>(
+///
+/// Effects ([`crate::effects`]) handled here: `culling` chooses the walk
+/// ([`Order::with_culling`]); `two-sided` lights a face seen from behind
+/// with its normal flipped toward the viewer (without it, such a face is
+/// lit by its own normal, usually only by the ambient term). The others
+/// are the renderer's.
+pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const V: usize>(
     tree: &Tree<'_>,
     frame: &Frame,
-    renderer: &mut Renderer<P>,
+    renderer: &mut Renderer<P, E>,
     scratch: &mut Scratch<P, V>,
     ids: FaceIds,
     sink: &mut K,
 ) -> Result<RenderStats, OrderError> {
     renderer.set_camera(&frame.camera);
     renderer.reset_stats();
-    let order = Order::<N>::new(tree, frame.view)?;
+    let fx = renderer.begin_tree(Effects::from_bits(tree.effects()));
+    let order = Order::<N>::with_culling(tree, frame.view, fx.contains(Effects::CULLING))?;
     let view = order.view();
-    let two_sided = !tree.is_closed();
+    let two_sided = fx.contains(Effects::TWO_SIDED);
     let scale = frame.vertex_scale;
     for class in order {
         for p in class.polygons(tree) {
@@ -416,10 +436,10 @@ pub fn draw_frame<P: Precision, K: SpanSink, const N: usize, const V: usize>(
 }
 
 /// The face the rasterizer draws for polygon `p` of the walk: its colour,
-/// `id`, and the normal that lighting uses. A closed model only emits faces
-/// turned to the viewer; an open one (`two_sided`) also shows back sides,
-/// lit as if they faced the viewer. Shared by [`draw_frame`] and the
-/// firmware's measured loop in [`crate::frames`], so both draw alike.
+/// `id`, its outline mask, and the normal that lighting uses: with
+/// `two_sided`, a face seen from behind is lit as if it faced the viewer.
+/// Shared by [`draw_frame`] and the firmware's measured loop in
+/// [`crate::frames`], so both draw alike.
 #[inline]
 pub(crate) fn face_of(p: &PolygonRef<'_>, view: &LocalView, two_sided: bool, id: u32) -> Face {
     let plane = p.plane();
@@ -432,6 +452,7 @@ pub(crate) fn face_of(p: &PolygonRef<'_>, view: &LocalView, two_sided: bool, id:
         normal,
         color: p.color(),
         id,
+        hidden_edges: p.hidden_edges(),
     }
 }
 
@@ -464,16 +485,16 @@ pub struct BandBuffer<'b, F: PixelFormat> {
 /// draw trees, in one value (about `V × 106` bytes plus a few dozen with
 /// the fixed path; place it in a `static` on a small stack).
 #[derive(Debug)]
-pub struct TreeRenderer<P: Precision, const V: usize> {
-    /// The polygon renderer (set its light and shading mode here).
-    pub renderer: Renderer<P>,
+pub struct TreeRenderer<P: Precision, const V: usize, E: Compiled = AllEffects> {
+    /// The polygon renderer (set its light, shading mode and effects here).
+    pub renderer: Renderer<P, E>,
     /// Per-polygon buffers for up to `V` vertices.
     pub scratch: Scratch<P, V>,
     /// What id buffers receive.
     pub ids: FaceIds,
 }
 
-impl<P: Precision, const V: usize> TreeRenderer<P, V> {
+impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     /// A renderer for `width × height` frames; `None` when a side is 0 or
     /// too large (see [`Renderer::new`]).
     pub fn new(width: u32, height: u32) -> Option<Self> {
@@ -492,7 +513,7 @@ impl<P: Precision, const V: usize> TreeRenderer<P, V> {
         frame: &Frame,
         sink: &mut K,
     ) -> Result<RenderStats, OrderError> {
-        draw_frame::<P, K, N, V>(
+        draw_frame::<P, E, K, N, V>(
             tree,
             frame,
             &mut self.renderer,
@@ -523,7 +544,7 @@ impl<P: Precision, const V: usize> TreeRenderer<P, V> {
             let mut fb = Framebuffer::<F>::new(&mut *band.buf, w, n).map_err(RenderError::Band)?;
             fb.fill_all(band.background);
             let mut sink = Band::new(&mut fb, y0);
-            let s = draw_frame::<P, _, N, V>(
+            let s = draw_frame::<P, E, _, N, V>(
                 tree,
                 frame,
                 &mut self.renderer,

@@ -12,7 +12,8 @@ use crate::format::{crc32, Counts, Sections, VertexFormat, HEADER_LEN, MAGIC, VE
 #[derive(Clone, Debug)]
 pub struct Raw {
     pub flags: u32,
-    pub effects: u32,
+    /// Declared effects; `None`: the defaults for `flags`.
+    pub effects: Option<u32>,
     pub format: VertexFormat,
     pub shift: u8,
     pub index_size: u8,
@@ -37,7 +38,7 @@ impl Raw {
     pub fn empty() -> Raw {
         Raw {
             flags: 0,
-            effects: 0,
+            effects: None,
             format: VertexFormat::F32,
             shift: 0,
             index_size: 2,
@@ -114,7 +115,10 @@ impl Raw {
             xs.iter()
                 .for_each(|x| o.extend_from_slice(&x.to_le_bytes()))
         };
-        u32s(&mut o, &[s.file_len as u32, self.flags, self.effects]);
+        let effects = self.effects.unwrap_or(
+            crate::effects::Effects::defaults(self.flags & crate::format::FLAG_CLOSED != 0).bits(),
+        );
+        u32s(&mut o, &[s.file_len as u32, self.flags, effects]);
         o.extend_from_slice(&[self.format.code(), self.shift, self.index_size, 0]);
         u32s(
             &mut o,

@@ -4,6 +4,7 @@
 
 pub mod build;
 pub mod cli;
+pub mod edges;
 pub mod geom;
 pub mod mesh;
 pub mod output;

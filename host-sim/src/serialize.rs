@@ -37,6 +37,7 @@ use fpt_nostd::format::{
 };
 use glam::DVec3;
 
+use crate::edges::{hidden_edges, FaceKey};
 use crate::geom::Plane;
 use crate::tree::{Connecting, FpTree};
 
@@ -45,15 +46,17 @@ use crate::tree::{Connecting, FpTree};
 pub struct SerializeOptions {
     /// How vertices are encoded.
     pub vertex_format: VertexFormat,
-    /// The scene's effect flags, stored as they are.
-    pub effects: u32,
+    /// The scene's effects ([`fpt_nostd::effects::Effects`] bits), stored
+    /// as they are; `None` stores the defaults for the tree's kind
+    /// ([`fpt_nostd::effects::Effects::defaults`]).
+    pub effects: Option<u32>,
 }
 
 impl Default for SerializeOptions {
     fn default() -> Self {
         SerializeOptions {
             vertex_format: VertexFormat::F32,
-            effects: 0,
+            effects: None,
         }
     }
 }
@@ -408,6 +411,33 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         node_recs.push([first_bunch, levels, switch]);
     }
 
+    // Outline masks (see `crate::edges`).
+    let hidden = {
+        let ends = first_index
+            .iter()
+            .skip(1)
+            .map(|&f| f as usize)
+            .chain([indices.len()]);
+        let loops: Vec<&[u32]> = first_index
+            .iter()
+            .zip(ends)
+            .map(|(&f, e)| &indices[f as usize..e])
+            .collect();
+        let keys: Vec<FaceKey> = order
+            .iter()
+            .zip(&planes)
+            .map(|(&id, plane)| {
+                let p = &tree.polygons[id as usize];
+                FaceKey {
+                    source: p.source,
+                    plane: plane.map(f32::to_bits),
+                    color: p.color,
+                }
+            })
+            .collect();
+        hidden_edges(&loops, &keys)
+    };
+
     let count = |n: usize| u32::try_from(n).map_err(too_large);
     let counts = Counts {
         vertices: count(vertex_ids.len())?,
@@ -427,7 +457,10 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     out.extend_from_slice(&(HEADER_LEN as u16).to_le_bytes());
     put_u32(&mut out, s.file_len as u32);
     put_u32(&mut out, if tree.closed { FLAG_CLOSED } else { 0 });
-    put_u32(&mut out, opts.effects);
+    let effects = opts
+        .effects
+        .unwrap_or(fpt_nostd::effects::Effects::defaults(tree.closed).bits());
+    put_u32(&mut out, effects);
     out.extend_from_slice(&[opts.vertex_format.code(), enc.shift, index_size as u8, 0]);
     put_u32(&mut out, count(tree.root.depth())?);
     for c in [
@@ -452,13 +485,13 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
 
     out.extend_from_slice(&vertex_bytes);
     out.resize(s.polygons, 0);
-    for ((&id, &first), &run) in order.iter().zip(&first_index).zip(&run_of) {
+    for (((&id, &first), &run), &mask) in order.iter().zip(&first_index).zip(&run_of).zip(&hidden) {
         let p = &tree.polygons[id as usize];
         let start = out.len();
         put_u32(&mut out, first);
         put_u32(&mut out, run);
         put_u32(&mut out, p.source);
-        out.extend_from_slice(&[p.color[0], p.color[1], p.color[2], 0]);
+        out.extend_from_slice(&[p.color[0], p.color[1], p.color[2], mask]);
         debug_assert_eq!(out.len() - start, POLYGON_LEN);
         debug_assert_eq!(pg::COLOR + 4, POLYGON_LEN);
     }
@@ -576,7 +609,7 @@ mod tests {
         for f in VertexFormat::ALL {
             let opts = SerializeOptions {
                 vertex_format: f,
-                effects: 0xABCD,
+                effects: Some(0xABCD),
             };
             let bytes = serialize(&t, &opts).unwrap();
             let r = Tree::from_bytes(&bytes).unwrap();
@@ -619,7 +652,7 @@ mod tests {
             &t,
             &SerializeOptions {
                 vertex_format: VertexFormat::Q32,
-                effects: 0,
+                effects: None,
             },
         )
         .unwrap();

@@ -37,7 +37,7 @@ fn cube_file(name: &str, format: VertexFormat) -> PathBuf {
     let tree = build(cube(), true, Method::Static, 1, &mut NoProgress);
     let opts = SerializeOptions {
         vertex_format: format,
-        effects: 3,
+        effects: Some(3),
     };
     let bytes = serialize(&tree, &opts).unwrap();
     let path =

@@ -16,7 +16,7 @@ use host_sim::tree::{FpTree, Method};
 fn opts(f: VertexFormat) -> SerializeOptions {
     SerializeOptions {
         vertex_format: f,
-        effects: 0x1234_5678,
+        effects: Some(0x1234_5678),
     }
 }
 

@@ -125,7 +125,7 @@ fn full_frame_equals_draw_frame_and_bands_equal_full() {
                 Err(e) => panic!("{e:?}"),
             };
             fb.fill_all(BACKGROUND);
-            let stats = draw_frame::<_, _, WALK_DEPTH, MAX_VERTS>(
+            let stats = draw_frame::<_, _, _, WALK_DEPTH, MAX_VERTS>(
                 &t,
                 &frame,
                 &mut r.renderer,

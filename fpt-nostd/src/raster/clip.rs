@@ -73,6 +73,9 @@ pub trait ClipNum: Copy + PartialOrd + Debug + Default {
     fn scale(w: Self, g: i32) -> Self;
     /// Negation.
     fn neg(a: Self) -> Self;
+    /// The value as `f32`, rounded (for per-face decisions such as depth
+    /// cueing, not for geometry).
+    fn to_f32(self) -> f32;
 }
 
 impl ClipNum for f32 {
@@ -100,6 +103,9 @@ impl ClipNum for f32 {
     }
     fn neg(a: f32) -> f32 {
         -a
+    }
+    fn to_f32(self) -> f32 {
+        self
     }
 }
 
@@ -134,6 +140,10 @@ impl<const F: u32> ClipNum for FxWide<F> {
     }
     fn neg(a: Self) -> Self {
         FxWide::from_raw(a.raw().saturating_neg())
+    }
+    fn to_f32(self) -> f32 {
+        // 2^-F exactly (F < 127), built from its bits.
+        self.raw() as f32 * f32::from_bits((127 - F.min(126)) << 23)
     }
 }
 
@@ -201,6 +211,16 @@ pub struct Clipped<'a, S> {
     pub verts: &'a [ClipVert<S>],
     /// False when the polygon was inside every plane and passed unchanged.
     pub clipped: bool,
+}
+
+/// Whether every one of the first `n` vertices of `a` is in front of the
+/// near plane and inside the guard band, so that clipping would leave the
+/// polygon as it is (the test [`clip_polygon`] starts with). A renderer
+/// without the clipping stage drops the polygons that fail it.
+pub fn all_inside<S: ClipNum>(a: &[ClipVert<S>], n: usize, near: S) -> bool {
+    a.iter()
+        .take(n)
+        .all(|v| PLANES.iter().all(|p| p.dist(v, near) >= S::ZERO))
 }
 
 /// Clips the polygon `a[..n]` (clip space) against the near plane

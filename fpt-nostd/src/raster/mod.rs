@@ -12,7 +12,9 @@
 //! | clipping | [`clip`] | clip polygon → polygon inside near plane and guard band |
 //! | edge setup | [`edge`] | screen polygon → exact stepped edges |
 //! | scan conversion | [`scan`] | edges → spans to a [`SpanSink`] |
-//! | shading | [`shade`] | normal + colour → `Rgb888` |
+//! | shading | [`shade`] | normal + colour (+ depth cue) → `Rgb888` |
+//! | outlines | [`outline`] | screen polygon → one-pixel edge lines |
+//! | dithering | [`dither`] | spans → ordered-dithered grey or mono pixels |
 //! | targets | [`framebuffer`], [`sink`], [`band`] | spans → pixels |
 //! | pipeline | [`renderer`] | one polygon through all of the above |
 //!
@@ -32,7 +34,7 @@
 //! let mut r = Renderer::<DefaultPrecision>::new(w, h, &camera)?;
 //! let mut scratch = Scratch::<DefaultPrecision, 64>::new();
 //! for poly in tree_walk_order {
-//!     r.draw_polygon(&mut scratch, poly.verts(), &Face { normal, color, id }, &mut fb);
+//!     r.draw_polygon(&mut scratch, poly.verts(), &Face { normal, color, id, hidden_edges: 0 }, &mut fb);
 //! }
 //! ```
 
@@ -40,8 +42,10 @@ pub mod band;
 pub mod camera;
 mod chain;
 pub mod clip;
+pub mod dither;
 pub mod edge;
 pub mod framebuffer;
+pub mod outline;
 pub mod precision;
 pub mod renderer;
 pub mod scan;
@@ -56,6 +60,7 @@ mod tests_render;
 
 pub use band::{band_starts, Band};
 pub use camera::{Camera, Mat4, Orbit};
+pub use dither::{Dither, DitherFormat};
 pub use framebuffer::{
     BinaryFramebuffer, Framebuffer, FramebufferError, Gray8Framebuffer, PixelFormat,
     Rgb565Framebuffer, Rgb888Framebuffer,
@@ -66,6 +71,6 @@ pub use precision::{
 };
 pub use renderer::{Face, Outcome, RenderStats, Renderer, Scratch, SkipReason};
 pub use scan::{fill_polygon, FillRule, Paint, SpanBounds, SpanSink};
-pub use shade::{Light, ShadeMode};
+pub use shade::{DepthCue, Light, ShadeMode};
 pub use sink::{DrawTargetSink, IdBuffer};
 pub use transform::{ScreenPt, Viewport};

@@ -18,14 +18,30 @@
 //!
 //! The renderer does not cull back faces or sort: the priority tree decides
 //! which faces to emit and in which order.
+//!
+//! Effects ([`crate::effects`]): the renderer's stages clipping, lighting,
+//! depth cueing and outlines are each tested once per polygon against the
+//! active [`Effects`] and the pipeline type `E` ([`Compiled`]): a stage `E`
+//! leaves out is compiled out. Without clipping, a polygon that would need
+//! it (crossing the near plane or the guard band) is dropped whole
+//! (invisible), so no input can overflow either way. Culling and two-sided
+//! lighting belong to the walk ([`crate::render::draw_frame`]); dithering
+//! is a sink ([`super::dither`]).
+
+use core::marker::PhantomData;
+
+use embedded_graphics::pixelcolor::Rgb888;
 
 use super::camera::{Camera, Orbit};
-use super::clip::{clip_polygon, ClipNum, ClipVert};
+use super::clip::{all_inside, clip_polygon, ClipNum, ClipVert};
 use super::edge::{Dda32, Edge};
+use super::outline::draw_outline;
 use super::precision::Precision;
 use super::scan::{fill_polygon, FillRule, Paint, SpanBounds, SpanSink};
-use super::shade::{shade, Light, ShadeMode};
+use super::shade::{shade, shade_color, DepthCue, Light, ShadeMode};
 use super::transform::{ScreenPt, VertexPath, Viewport};
+use crate::effects::{AllEffects, Compiled, Effects};
+use crate::fixed::Fx14;
 
 type Scalar<P> = <<P as Precision>::Path as VertexPath>::Scalar;
 type PathMatrix<P> = <<P as Precision>::Path as VertexPath>::Matrix;
@@ -81,6 +97,10 @@ pub struct Face {
     pub color: [u8; 3],
     /// Polygon id (id buffers store `id + 1`).
     pub id: u32,
+    /// Bit `i` set: edge `i` (vertex `i` to `i + 1`) is inside the source
+    /// face (a cut), not one of its outlines; edges from 8 on are always
+    /// outlines. Only the `outline` effect reads it.
+    pub hidden_edges: u8,
 }
 
 /// Why a polygon was not drawn.
@@ -124,9 +144,10 @@ pub struct RenderStats {
     pub spans: u64,
 }
 
-/// Frame state and the polygon pipeline (see module docs).
+/// Frame state and the polygon pipeline (see module docs). `E` names the
+/// stages compiled in (default: all).
 #[derive(Debug)]
-pub struct Renderer<P: Precision> {
+pub struct Renderer<P: Precision, E: Compiled = AllEffects> {
     matrix: PathMatrix<P>,
     near: Scalar<P>,
     viewport: Viewport,
@@ -134,9 +155,14 @@ pub struct Renderer<P: Precision> {
     mode: ShadeMode,
     rule: FillRule,
     stats: RenderStats,
+    forced: Option<Effects>,
+    active: Effects,
+    cue: DepthCue,
+    outline: Rgb888,
+    pipeline: PhantomData<E>,
 }
 
-impl<P: Precision> Renderer<P> {
+impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// A renderer for a `width × height` frame; `None` if a side is 0 or
     /// above [`super::transform::MAX_DIM`].
     pub fn new(width: u32, height: u32, camera: &Camera) -> Option<Self> {
@@ -149,7 +175,45 @@ impl<P: Precision> Renderer<P> {
             mode: ShadeMode::default(),
             rule: FillRule::default(),
             stats: RenderStats::default(),
+            forced: None,
+            active: Effects::defaults(true),
+            cue: DepthCue::default(),
+            outline: Rgb888::new(0, 0, 0),
+            pipeline: PhantomData,
         })
+    }
+
+    /// The effects in use: the ones set with [`Renderer::set_effects`], or
+    /// else the tree's (from the last [`Renderer::begin_tree`]), or else
+    /// the defaults of a closed volume. Always within `E`'s compiled set.
+    pub fn effects(&self) -> Effects {
+        self.active.and(E::SET)
+    }
+
+    /// Uses `effects` from now on, whatever the trees declare; `None` goes
+    /// back to each tree's own.
+    pub fn set_effects(&mut self, effects: Option<Effects>) {
+        self.forced = effects;
+        if let Some(e) = effects {
+            self.active = e;
+        }
+    }
+
+    /// Called by the tree walk at the start of each frame with the tree's
+    /// declared effects; returns the effects in use for the frame.
+    pub fn begin_tree(&mut self, declared: Effects) -> Effects {
+        self.active = self.forced.unwrap_or(declared);
+        self.effects()
+    }
+
+    /// Sets the depth cueing parameters (used when `depth-cue` is on).
+    pub fn set_depth_cue(&mut self, cue: DepthCue) {
+        self.cue = cue;
+    }
+
+    /// Sets the outline colour (used when `outline` is on; default black).
+    pub fn set_outline_color(&mut self, c: Rgb888) {
+        self.outline = c;
     }
 
     /// The viewport.
@@ -287,14 +351,30 @@ impl<P: Precision> Renderer<P> {
         if n < 3 {
             return Outcome::Invisible;
         }
-        let Ok(clipped) = clip_polygon(&mut scratch.clip_a, n, &mut scratch.clip_b, self.near)
-        else {
-            return Outcome::Skipped(SkipReason::ClipCapacity);
+        let fx = self.effects();
+        // Mean eye depth, before clipping changes the vertices.
+        let depth = if fx.contains(Effects::DEPTH_CUE) {
+            let sum: f32 = scratch.clip_a[..n.min(N)]
+                .iter()
+                .map(|v| v.w.to_f32())
+                .sum();
+            sum / n as f32
+        } else {
+            0.0
         };
-        if clipped.clipped {
+        let (clipped, was_clipped) = if fx.contains(Effects::CLIPPING) {
+            let Ok(c) = clip_polygon(&mut scratch.clip_a, n, &mut scratch.clip_b, self.near) else {
+                return Outcome::Skipped(SkipReason::ClipCapacity);
+            };
+            (c.verts, c.clipped)
+        } else if all_inside(&scratch.clip_a, n, self.near) {
+            (&scratch.clip_a[..n.min(N)], false)
+        } else {
+            return Outcome::Invisible;
+        };
+        if was_clipped {
             self.stats.clipped += 1;
         }
-        let clipped = clipped.verts;
         if clipped.len() < 3 {
             return Outcome::Invisible;
         }
@@ -322,22 +402,30 @@ impl<P: Precision> Renderer<P> {
         }
         // Projected points are within ±SCREEN_LIMIT: the 32-bit row bounds
         // apply (and a 64-bit variable shift is not cheap on a 32-bit core).
-        let (first, end) = Dda32::rows(
-            ScreenPt { x: 0, y: top },
-            ScreenPt { x: 0, y: bot },
-            self.viewport.sub_bits(),
-        );
+        let sub = self.viewport.sub_bits();
+        let (first, end) = if fx.contains(Effects::OUTLINE) {
+            // Outline pixels are the rows holding the vertices (`y >> sub`),
+            // which may be one above the first row the fill samples.
+            (top >> sub.min(16), (bot >> sub.min(16)).saturating_add(1))
+        } else {
+            Dda32::rows(ScreenPt { x: 0, y: top }, ScreenPt { x: 0, y: bot }, sub)
+        };
         if end <= reach.y0 || first >= reach.y1 {
             return Outcome::Drawn { spans: 0 };
         }
-        let paint = Paint {
-            rgb: shade(self.mode, &self.light, face.normal, face.color),
-            id: face.id,
+        let mut rgb = if fx.contains(Effects::LIGHTING) {
+            shade(self.mode, &self.light, face.normal, face.color)
+        } else {
+            shade_color(self.mode, face.color, Fx14::ONE)
         };
+        if fx.contains(Effects::DEPTH_CUE) {
+            rgb = self.cue.apply(rgb, depth);
+        }
+        let paint = Paint { rgb, id: face.id };
         let color = sink.color(&paint);
-        match fill_polygon(
+        let spans = match fill_polygon(
             pts,
-            self.viewport.sub_bits(),
+            sub,
             self.rule,
             &vp,
             &mut scratch.edges,
@@ -345,9 +433,22 @@ impl<P: Precision> Renderer<P> {
             color,
             sink,
         ) {
-            Ok(spans) => Outcome::Drawn { spans },
-            Err(_) => Outcome::Skipped(SkipReason::ClipCapacity),
+            Ok(spans) => spans,
+            Err(_) => return Outcome::Skipped(SkipReason::ClipCapacity),
+        };
+        if fx.contains(Effects::OUTLINE) {
+            let ink = sink.color(&Paint {
+                rgb: self.outline,
+                id: face.id,
+            });
+            // A clipped polygon's edges no longer match the stored ones.
+            let hidden = if was_clipped { 0 } else { face.hidden_edges };
+            let lines = draw_outline(pts, hidden, sub, &vp, ink, sink);
+            return Outcome::Drawn {
+                spans: spans + lines,
+            };
         }
+        Outcome::Drawn { spans }
     }
 }
 

@@ -18,7 +18,7 @@
 //! (face colour × intensity: the paper's Figure 16), [`ShadeMode::Grey`]
 //! (a grey level × intensity, face colours ignored: Figure 15).
 
-use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use crate::fixed::{isqrt_u64, Fx14};
 
@@ -185,6 +185,69 @@ pub fn shade(mode: ShadeMode, light: &Light, normal: [f32; 3], color: [u8; 3]) -
         _ => light.intensity(normal),
     };
     shade_color(mode, color, i)
+}
+
+/// Depth cueing (the `depth-cue` effect): a face fades toward the fog
+/// colour with its eye depth.
+///
+/// The renderer passes the mean clip `w` of the face's vertices (eye depth
+/// for a perspective camera; a parallel camera has one `w` everywhere and
+/// so no fade). Between `near` and `far` (usually the depth range of the
+/// tree's bounding sphere, [`crate::render::Frame::depth_range`]) the
+/// weight of the fog grows linearly from 0 to `strength / 256`:
+/// `c' = (c · (256 − a) + fog · a + 128) / 256` with
+/// `a = ⌊strength · clamp((w − near) / (far − near), 0, 1)⌋`. One
+/// division and a few integer operations per face; IEEE `f32`, so
+/// identical on every target.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DepthCue {
+    /// Depth at which fading starts.
+    pub near: f32,
+    /// Depth of the strongest fade.
+    pub far: f32,
+    /// The colour faces fade toward (usually the background).
+    pub fog: Rgb888,
+    /// Fog weight at `far`, in 256ths (0..=256).
+    pub strength: u16,
+}
+
+impl Default for DepthCue {
+    /// No range yet (nothing fades until one is set), toward black, 3/4 at
+    /// the far end.
+    fn default() -> DepthCue {
+        DepthCue {
+            near: 0.0,
+            far: 0.0,
+            fog: Rgb888::new(0, 0, 0),
+            strength: 192,
+        }
+    }
+}
+
+impl DepthCue {
+    /// The fog weight (0..=256) at depth `w`.
+    pub fn weight(&self, w: f32) -> u32 {
+        let span = self.far - self.near;
+        if !(span > 0.0 && w.is_finite() && span.is_finite()) {
+            return 0;
+        }
+        let t = ((w - self.near) / span).clamp(0.0, 1.0);
+        (t * f32::from(self.strength.min(256))) as u32
+    }
+
+    /// `c` faded for depth `w`.
+    pub fn apply(&self, c: Rgb888, w: f32) -> Rgb888 {
+        let a = self.weight(w);
+        if a == 0 {
+            return c;
+        }
+        let mix = |c: u8, f: u8| ((u32::from(c) * (256 - a) + u32::from(f) * a + 128) >> 8) as u8;
+        Rgb888::new(
+            mix(c.r(), self.fog.r()),
+            mix(c.g(), self.fog.g()),
+            mix(c.b(), self.fog.b()),
+        )
+    }
 }
 
 #[cfg(test)]

@@ -55,6 +55,7 @@ fn ground(n: usize, extent: f32, rng: &mut Rng) -> Vec<Poly> {
                 normal: [0.0, 1.0, 0.0],
                 color,
                 id,
+                hidden_edges: 0,
             };
             out.push(Poly {
                 verts: vec![a, b, c],
@@ -137,6 +138,7 @@ fn cube(c: [f32; 3], h: f32, first_id: u32) -> Vec<Poly> {
                 normal: *n,
                 color: [200, (40 * k) as u8, 90],
                 id: first_id + k as u32,
+                hidden_edges: 0,
             },
         })
         .collect()
@@ -301,6 +303,7 @@ fn polygon_behind_the_eye_draws_nothing() {
         normal: e,
         color: [255; 3],
         id: 0,
+        hidden_edges: 0,
     };
     assert_eq!(
         r.draw_polygon(&mut scratch, tri, &face, &mut s),
@@ -322,6 +325,7 @@ fn huge_triangle<P: Precision>(scale: f32, fov: f32) -> Vec<u32> {
         normal: [0.0, 0.0, 1.0],
         color: [1, 2, 3],
         id: 0,
+        hidden_edges: 0,
     };
     render::<P, _>(
         &cam,
@@ -557,6 +561,7 @@ fn capacity_and_non_finite_skips() {
         normal: [0.0, 1.0, 0.0],
         color: [9; 3],
         id: 1,
+        hidden_edges: 0,
     };
     let circle = |n: usize| {
         (0..n).map(move |k| {
@@ -742,6 +747,7 @@ mod fuzz {
                 normal: v.first().copied().unwrap_or_default(),
                 color: [1; 3],
                 id: k as u32,
+                hidden_edges: 0,
             };
             r.draw_polygon(&mut scratch, v.iter().copied(), &face, &mut s);
             assert!(

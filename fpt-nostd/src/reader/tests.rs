@@ -18,7 +18,7 @@ fn one_square() -> Raw {
 fn reads_a_minimal_file() {
     let mut r = one_square();
     r.flags = FLAG_CLOSED;
-    r.effects = 0x55;
+    r.effects = Some(0x55);
     r.origin = [1e5, 2.0, -3.0];
     let bytes = r.bytes();
     let t = Tree::from_bytes(&bytes).unwrap();
@@ -149,8 +149,8 @@ fn rejects_bad_headers() {
         Err(FormatError::BadMagic)
     );
     assert_eq!(
-        parse_edited(&r, |b| b[hd::VERSION] = 2),
-        Err(FormatError::UnsupportedVersion(2))
+        parse_edited(&r, |b| b[hd::VERSION] = 1),
+        Err(FormatError::UnsupportedVersion(1))
     );
     assert_eq!(
         parse_edited(&r, |b| b.extend_from_slice(&[0; 4])),

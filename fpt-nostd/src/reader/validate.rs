@@ -3,7 +3,7 @@
 //! [`crate::reader`]). Each is linear in its section and allocates nothing.
 
 use super::{finite3_f32, Tree};
-use crate::format::{polygon as pg, rd_f32x3, rd_u32, rd_u8, FormatError, VertexFormat, NO_SWITCH};
+use crate::format::{polygon as pg, rd_f32x3, rd_u32, FormatError, VertexFormat, NO_SWITCH};
 
 impl Tree<'_> {
     /// `f32` vertices finite; every vertex index below the vertex count.
@@ -23,16 +23,12 @@ impl Tree<'_> {
         Ok(())
     }
 
-    /// The polygons tile the index list with at least 3 indices each; the
-    /// padding byte is 0.
+    /// The polygons tile the index list with at least 3 indices each.
     pub(super) fn check_polygons(&self) -> Result<(), FormatError> {
         let b = self.g.bytes;
         let mut prev = 0u32;
         for p in 0..self.counts.polygons {
             let rec = self.g.polygon_off(p);
-            if rd_u8(b, rec.wrapping_add(pg::COLOR + 3)) != 0 {
-                return Err(FormatError::BadPolygon(p));
-            }
             let first = rd_u32(b, rec.wrapping_add(pg::FIRST_INDEX));
             if p == 0 {
                 if first != 0 {

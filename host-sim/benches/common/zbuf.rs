@@ -304,6 +304,7 @@ impl ZRenderer {
                 normal,
                 color: p.color,
                 id: p.id,
+                hidden_edges: 0,
             };
             self.renderer
                 .draw_polygon(&mut *self.scratch, scaled, &face, &mut *target);

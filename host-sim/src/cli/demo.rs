@@ -138,6 +138,8 @@ fn demo_scene(show: &Show, out: &Path) -> CliResult {
             shade: show.shade,
             background: show.background,
             ids: false,
+            effects: None,
+            gray_levels: None,
         };
         let r = render_job(&t, &job, PRECISION)?;
         let png = out.join(format!("{}_{}.png", s.name, k + 1));

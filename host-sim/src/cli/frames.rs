@@ -69,13 +69,13 @@ fn scene(name: &str) -> Result<Scene, CliError> {
 }
 
 /// The tree file of scene `name`: [`METHOD`], [`DEFAULT_SEED`], `f32`
-/// vertices, no effects. Deterministic.
+/// vertices, the default effects of the scene's kind. Deterministic.
 pub fn scene_tree(name: &str) -> Result<Vec<u8>, CliError> {
     let s = scene(name)?;
     let tree = build(s.polygons, s.closed, METHOD, DEFAULT_SEED, &mut NoProgress);
     let opts = SerializeOptions {
         vertex_format: VertexFormat::F32,
-        effects: 0,
+        effects: None,
     };
     serialize(&tree, &opts).map_err(|e| cli_err!("{name}: {e}"))
 }

@@ -11,6 +11,7 @@ use std::path::PathBuf;
 pub mod accuracy;
 mod build;
 mod demo;
+mod display;
 pub mod frames;
 mod inspect;
 mod render;

@@ -5,6 +5,7 @@
 //!     (--mvp M00,M01,...,M33 | --yaw DEG --pitch DEG [--distance D] [--fov DEG])
 //!     [--ids IDS.bin] [--format rgb565|rgb888|gray8|mono] [--band N]
 //!     [--precision NAME] [--shade lambert|flat|grey] [--up y|z]
+//!     [--effects LIST] [--gray-levels N] [--display PANEL]
 //! ```
 //!
 //! * `--mvp`: 16 numbers, row-major, model → clip (`clip = M·[x, y, z, 1]`;
@@ -22,6 +23,11 @@
 //!   picture is identical; this exercises the firmware's path).
 //! * `--precision`: the compile-time arithmetic configuration
 //!   ([`PRECISIONS`], or a short name of [`ALIASES`]), for accuracy studies.
+//! * `--effects`: overrides the effects the tree declares
+//!   ([`fpt_nostd::effects`]): a comma-separated list of `culling,
+//!   two-sided, clipping, lighting, depth-cue, dither, outline`, or `none`.
+//!   `dither` only changes `gray8` and `mono` pictures.
+//! * `--gray-levels`, `--display`: display simulation, see [`super::display`].
 //!
 //! The picture is drawn into one of our framebuffers, copied into an
 //! `embedded-graphics-simulator` display and saved as PNG by it (to a
@@ -29,6 +35,7 @@
 //! whole or not at all). Bad input is an error (exit status 2); any
 //! finite, invertible camera renders.
 
+use super::display::{Panel, PANELS};
 use super::{CliError, CliResult};
 use crate::cli_err;
 use crate::output::write_atomic;
@@ -38,11 +45,13 @@ use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics::prelude::DrawTarget;
 use embedded_graphics::Pixel;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
+use fpt_nostd::effects::Effects;
 use fpt_nostd::raster::framebuffer::{BinaryFormat, Gray8Format, Rgb565Format, Rgb888Format};
 use fpt_nostd::raster::transform::MAX_DIM;
 use fpt_nostd::raster::{
-    FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Framebuffer, IdBuffer, Light,
-    MathFns, Orbit, PixelFormat, Precision, RenderStats, ShadeMode,
+    band_starts, DepthCue, Dither, DitherFormat, FixedMicromath, FixedPrecision, FloatLibm,
+    FloatMicromath, Framebuffer, IdBuffer, Light, MathFns, Orbit, PixelFormat, Precision,
+    RenderStats, ShadeMode,
 };
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{near_w_for, BandBuffer, FaceIds, Frame, TreeRenderer};
@@ -193,6 +202,18 @@ pub struct RenderArgs {
     /// Shading: lambert (face colours lit), flat (unlit) or grey.
     #[arg(long, default_value = "lambert", value_parser = ["lambert", "flat", "grey"])]
     pub shade: String,
+    /// Effects instead of the tree's: comma-separated culling, two-sided,
+    /// clipping, lighting, depth-cue, dither, outline; or none.
+    #[arg(long)]
+    pub effects: Option<String>,
+    /// Grey levels of a gray8 panel (2..=256; default 256, or 16 when
+    /// dithering).
+    #[arg(long = "gray-levels")]
+    pub gray_levels: Option<u16>,
+    /// How the PNG shows the display: plain, or a panel look (oled-blue,
+    /// oled-white, lcd-green, lcd-white, lcd-blue).
+    #[arg(long, default_value = "plain", value_parser = PANELS)]
+    pub display: String,
 }
 
 /// The camera of a render.
@@ -301,6 +322,10 @@ pub struct Job {
     pub background: Rgb888,
     /// Whether to produce the id buffer too.
     pub ids: bool,
+    /// Effects instead of the tree's.
+    pub effects: Option<Effects>,
+    /// Grey levels of a `Gray8` panel (`None`: 256, or 16 when dithering).
+    pub gray_levels: Option<u16>,
 }
 
 /// A finished picture: the framebuffer storage of its format.
@@ -370,6 +395,16 @@ fn render_with<P: Precision>(tree: &Tree<'_>, job: &Job) -> Result<Rendered, Cli
     tr.renderer.set_shade_mode(job.shade);
     tr.renderer
         .set_light(Light::new(frame.key_light(), 0.25, 0.75));
+    tr.renderer.set_effects(job.effects);
+    let (near, far) = frame.depth_range(tree);
+    tr.renderer.set_depth_cue(DepthCue {
+        near,
+        far,
+        fog: job.background,
+        ..DepthCue::default()
+    });
+    let fx = job.effects.unwrap_or(Effects::from_bits(tree.effects()));
+    let dither = fx.contains(Effects::DITHER);
     let start = Instant::now();
     let bg = job.background;
     let (image, stats) = match job.format {
@@ -381,9 +416,19 @@ fn render_with<P: Precision>(tree: &Tree<'_>, job: &Job) -> Result<Rendered, Cli
             let (v, s) = draw::<P, Rgb888Format>(&mut tr, tree, &frame, job, bg)?;
             (Image::Rgb888(v), s)
         }
+        Format::Gray8 if dither || job.gray_levels.is_some() => {
+            let levels = job.gray_levels.unwrap_or(if dither { 16 } else { 256 });
+            let (v, s) =
+                draw_dithered::<P, Gray8Format>(&mut tr, tree, &frame, job, levels, dither)?;
+            (Image::Gray8(v), s)
+        }
         Format::Gray8 => {
             let (v, s) = draw::<P, Gray8Format>(&mut tr, tree, &frame, job, bg.into())?;
             (Image::Gray8(v), s)
+        }
+        Format::Mono if dither => {
+            let (v, s) = draw_dithered::<P, BinaryFormat>(&mut tr, tree, &frame, job, 2, true)?;
+            (Image::Mono(v), s)
         }
         Format::Mono => {
             let (v, s) = draw::<P, BinaryFormat>(&mut tr, tree, &frame, job, bg.into())?;
@@ -447,6 +492,56 @@ where
     Ok((out, stats))
 }
 
+/// Draws through a [`Dither`] sink to `levels` levels (ordered when
+/// `ordered`, else rounded), full frame or band by band; the background is
+/// dithered like any colour (each band is cleared by drawing it).
+fn draw_dithered<P: Precision, F: DitherFormat>(
+    tr: &mut TreeRenderer<P, MAX_VERTS>,
+    tree: &Tree<'_>,
+    frame: &Frame,
+    job: &Job,
+    levels: u16,
+    ordered: bool,
+) -> Result<(Vec<F::Word>, RenderStats), CliError>
+where
+    F::Word: Default,
+{
+    let stride = F::words_per_row(job.w);
+    let rows = job.band.unwrap_or(job.h).clamp(1, job.h);
+    let mut out = vec![F::Word::default(); Framebuffer::<F>::required_len(job.w, job.h)];
+    let mut buf = vec![F::Word::default(); stride * rows as usize];
+    let mut total = RenderStats::default();
+    for y0 in band_starts(job.h, rows) {
+        let n = rows.min(job.h - y0 as u32);
+        let mut fb = Framebuffer::<F>::new(&mut buf, job.w, n)
+            .map_err(|e| cli_err!("framebuffer: {e:?}"))?;
+        let mut sink = Dither::band(&mut fb, y0, levels);
+        if !ordered {
+            sink = sink.rounding();
+        }
+        let paint = fpt_nostd::raster::Paint {
+            rgb: job.background,
+            id: 0,
+        };
+        let bg = fpt_nostd::raster::SpanSink::color(&sink, &paint);
+        for y in y0..y0 + n as i32 {
+            fpt_nostd::raster::SpanSink::span(&mut sink, y, 0, job.w as i32, bg);
+        }
+        let s = tr.render::<_, WALK_STACK>(tree, frame, &mut sink)?;
+        total.drawn += s.drawn;
+        total.invisible += s.invisible;
+        total.skipped += s.skipped;
+        total.clipped += s.clipped;
+        total.spans += s.spans;
+        let d = fb.data();
+        let at = y0 as usize * stride;
+        if let Some(dst) = out.get_mut(at..at + d.len()) {
+            dst.copy_from_slice(d);
+        }
+    }
+    Ok((out, total))
+}
+
 /// Copies a framebuffer into a simulator display.
 fn to_display<F: PixelFormat>(
     data: &mut [F::Word],
@@ -467,9 +562,21 @@ where
     Ok(d)
 }
 
-/// Saves `image` (`w × h`) as a PNG through the simulator, atomically.
+/// Saves `image` (`w × h`) as a PNG through the simulator, atomically,
+/// one image pixel per display pixel.
 pub fn save_png(image: &Image, w: u32, h: u32, path: &Path) -> CliResult {
-    let settings = OutputSettings::default();
+    save_png_as(image, w, h, path, &OutputSettings::default())
+}
+
+/// [`save_png`] with the simulator's output `settings` (a panel look).
+pub fn save_png_as(
+    image: &Image,
+    w: u32,
+    h: u32,
+    path: &Path,
+    settings: &OutputSettings,
+) -> CliResult {
+    let settings = settings.clone();
     let out = match image.clone() {
         Image::Rgb565(mut v) => {
             to_display::<Rgb565Format>(&mut v, w, h)?.to_rgb_output_image(&settings)
@@ -592,6 +699,16 @@ pub fn run(a: &RenderArgs) -> CliResult {
     let camera = camera_of(a)?;
     let format = Format::parse(&a.format)?;
     let shade = parse_shade(&a.shade)?;
+    let effects = match &a.effects {
+        Some(list) => Some(Effects::parse(list).map_err(|e| cli_err!("--effects: {e}"))?),
+        None => None,
+    };
+    let panel = Panel::parse(&a.display)?;
+    if let Some(n) = a.gray_levels {
+        if !(2..=256).contains(&n) {
+            return Err(cli_err!("--gray-levels must be in 2..=256, got {n}"));
+        }
+    }
     if a.band == Some(0) {
         return Err(cli_err!("--band must be at least 1"));
     }
@@ -607,13 +724,15 @@ pub fn run(a: &RenderArgs) -> CliResult {
         shade,
         background: Rgb888::new(0, 0, 0),
         ids: a.ids.is_some(),
+        effects,
+        gray_levels: a.gray_levels,
     };
     let r = render_job(&tree, &job, &a.precision)?;
     if let Some(path) = &a.ids {
         let raw: Vec<u8> = r.ids.iter().flat_map(|v| v.to_le_bytes()).collect();
         write_atomic(path, &raw).map_err(|e| cli_err!("{}: {e}", path.display()))?;
     }
-    save_png(&r.image, w, h, &a.output)?;
+    save_png_as(&r.image, w, h, &a.output, &panel.settings())?;
     let s = r.stats;
     println!(
         "{}: {w}x{h} {}, {} polygons drawn ({} clipped, {} invisible, {} skipped), {} spans, {:.2} ms",

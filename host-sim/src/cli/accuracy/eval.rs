@@ -357,6 +357,8 @@ pub fn job(camera: CameraSpec, w: u32, h: u32, ids: bool) -> Job {
         shade: ShadeMode::Lambert,
         background: Rgb888::new(0, 0, 0),
         ids,
+        effects: None,
+        gray_levels: None,
     }
 }
 
