@@ -15,6 +15,8 @@
 //! mark_cost_min=N mark_cost_max=N` (see [`probe`]), `stack_peak_startup=
 //! BYTES stack_peak_frames=BYTES` and last `stack_peak=BYTES`, the larger
 //! of the two (see [`stack`]). `README.md` has the measured figures.
+//! With feature `full`, the frames are followed by one line per effect,
+//! `effect name=NAME on=N off=N bare=N` (see [`effects`]).
 //! `crc` is [`fpt_nostd::frames::PixelCrc`] (CRC-32 of the RGB565 pixels as
 //! little-endian `u16`, row-major), `instr` the frame's cost in
 //! instructions (clearing, walking and drawing; not the checksum), and
@@ -36,6 +38,8 @@
 #![no_main]
 
 mod clock;
+#[cfg(feature = "full")]
+mod effects;
 mod probe;
 mod stack;
 
@@ -292,6 +296,10 @@ fn main() -> ! {
         for (k, view) in VIEWS.iter().enumerate() {
             ok &= frame(&clock, r, (name, &tree), (k, view), buf, &mut marks);
         }
+    }
+    #[cfg(feature = "full")]
+    {
+        ok &= effects::measure(&clock, r, &TREES, buf);
     }
     hprintln!("static_ram={}", stack::static_ram());
     hprintln!(

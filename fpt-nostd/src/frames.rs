@@ -283,6 +283,11 @@ impl PixelCrc {
         }
     }
 
+    /// Adds raw bytes (e.g. a packed `BinaryColor` frame).
+    pub fn update_bytes(&mut self, bytes: &[u8]) {
+        self.digest.update(bytes);
+    }
+
     /// The CRC-32.
     pub fn finish(self) -> u32 {
         self.digest.finalize()
@@ -473,5 +478,6 @@ impl<'a> FrameLine<'a> {
     }
 }
 
+pub mod effects;
 #[cfg(test)]
 mod tests;

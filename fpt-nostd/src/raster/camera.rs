@@ -109,6 +109,38 @@ impl Orbit {
         !(self.fov.is_finite() && self.fov > 0.0)
     }
 
+    /// Whether no polygon inside the sphere of `radius` around the target
+    /// can ever need clipping through this orbit's camera at viewport
+    /// aspect `aspect`, from **any** yaw and pitch (they are ignored): the
+    /// proof that lets a scene leave the `clipping` effect out
+    /// ([`crate::effects`]).
+    ///
+    /// Perspective: every point of the sphere has eye depth at least
+    /// `distance − radius`, which must exceed the near plane, and is seen
+    /// within the cone of half-angle `asin(radius / distance)`, so
+    /// `|ndc.x|, |ndc.y| ≤ focal · max(1, 1/aspect) · radius / √(distance² −
+    /// radius²)`, which must stay inside the guard band
+    /// ([`super::clip::GUARD`]). Parallel: `w` is 1, above the near
+    /// threshold, and `|ndc| ≤ radius / (distance/2 · min(aspect, 1))`.
+    /// A 1 % margin covers the rounding of the `f32` camera.
+    pub fn never_clips<M: MathFns>(&self, radius: f32, aspect: f32) -> bool {
+        let (r, d) = (radius, self.distance);
+        if !(r.is_finite() && r >= 0.0 && d.is_finite() && d > 0.0)
+            || !(aspect.is_finite() && aspect > 0.0)
+        {
+            return false;
+        }
+        let limit = super::clip::GUARD as f32 * 0.99;
+        if self.is_parallel() {
+            return r <= limit * 0.5 * d * aspect.min(1.0);
+        }
+        let near_ok = d - r > self.near * 1.01;
+        let focal = M::recip(M::tan(0.5 * self.fov));
+        let spread = focal * aspect.recip().max(1.0) * r;
+        let room = M::sqrt(d * d - r * r);
+        near_ok && room.is_finite() && spread <= limit * room
+    }
+
     /// Unit vector from the target toward the eye (a natural "headlight"
     /// direction for [`super::shade::Light`]).
     pub fn eye_direction<M: MathFns>(&self) -> [f32; 3] {

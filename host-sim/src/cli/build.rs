@@ -5,7 +5,9 @@ use crate::build::{build, Progress};
 use crate::cli_err;
 use crate::output::write_atomic;
 use crate::tree::{FpTree, Method, Stats};
+use fpt_nostd::effects::Effects;
 use fpt_nostd::format::VertexFormat;
+use fpt_nostd::raster::{Libm, Orbit};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -102,6 +104,60 @@ pub fn stats_json(tree: &FpTree, seed: u64) -> serde_json::Value {
     })
 }
 
+/// Parses `--orbit DIST,FOV[,ASPECT]` (distance in bounding radii, field
+/// of view in degrees, aspect ratio).
+pub fn parse_orbit(s: &str) -> Result<(f32, f32, f32), CliError> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let num = |t: &str| -> Result<f32, CliError> {
+        t.parse::<f32>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| cli_err!("--orbit: '{t}' is not a number"))
+    };
+    let (d, fov, aspect) = match parts.as_slice() {
+        [d, f] => (num(d)?, num(f)?, 1.0),
+        [d, f, a] => (num(d)?, num(f)?, num(a)?),
+        _ => return Err(cli_err!("--orbit needs DIST,FOV[,ASPECT], got '{s}'")),
+    };
+    if d <= 0.0 || !(0.0..180.0).contains(&fov) || aspect <= 0.0 {
+        return Err(cli_err!(
+            "--orbit: distance and aspect must be positive and the field of view in [0, 180) degrees"
+        ));
+    }
+    Ok((d, fov, aspect))
+}
+
+/// The effects `fpt build` stores: `--effects` as given, or the defaults
+/// of the tree's kind, without clipping when `--orbit` proves it is never
+/// needed ([`fpt_nostd::raster::Orbit::never_clips`], checked on the
+/// bounding sphere the file will store). Prints what the orbit proves.
+fn scene_effects(a: &BuildArgs, tree: &FpTree) -> Result<Effects, CliError> {
+    let given = match &a.effects {
+        Some(list) => Some(Effects::parse(list).map_err(|e| cli_err!("--effects: {e}"))?),
+        None => None,
+    };
+    let mut effects = given.unwrap_or(Effects::defaults(tree.closed));
+    if let Some(o) = &a.orbit {
+        let (d, fov, aspect) = parse_orbit(o)?;
+        // The radius as stored (rounded up), from a serialization of the
+        // tree: the orbit turns around that sphere's centre.
+        let bytes = crate::serialize::serialize(tree, &Default::default())?;
+        let t = fpt_nostd::reader::Tree::from_bytes(&bytes)
+            .map_err(|e| cli_err!("internal: serialized tree invalid: {e:?}"))?;
+        let r = t.bounding_radius();
+        let orbit = Orbit::new([0.0; 3], 0.0, 0.0, d * r, fov.to_radians());
+        if orbit.never_clips::<Libm>(r, aspect) {
+            println!("orbit {d},{fov},{aspect}: no view needs clipping");
+            if given.is_none() {
+                effects = effects.without(Effects::CLIPPING);
+            }
+        } else {
+            println!("orbit {d},{fov},{aspect}: some views may need clipping");
+        }
+    }
+    Ok(effects)
+}
+
 /// `fpt build`.
 pub fn run(a: &BuildArgs) -> CliResult {
     let method = parse_method(&a.method)?;
@@ -121,9 +177,10 @@ pub fn run(a: &BuildArgs) -> CliResult {
         let mut bar = Bar::new();
         build(model.polygons, closed, method, a.seed, &mut bar)
     };
+    let effects = scene_effects(a, &tree)?;
     let opts = crate::serialize::SerializeOptions {
         vertex_format,
-        ..Default::default()
+        effects: Some(effects.bits()),
     };
     let bytes = crate::serialize::serialize(&tree, &opts)?;
     // Stats first: if it cannot be written, no tree file appears either.
@@ -133,6 +190,7 @@ pub fn run(a: &BuildArgs) -> CliResult {
     }
     write_atomic(&a.output, &bytes).map_err(|e| cli_err!("{}: {e}", a.output.display()))?;
     let s = &tree.stats;
+    println!("effects: {effects}");
     println!(
         "{}: {} {} tree, {} -> {} polygons, {} splittings, {} switch nodes, depth {}, {:.1} ms, {} bytes",
         a.output.display(),

@@ -123,7 +123,11 @@ pub fn info(a: &InfoArgs) -> CliResult {
         "volume:            {}",
         if t.is_closed() { "closed" } else { "open" }
     );
-    println!("effects:           0x{:08x}", t.effects());
+    println!(
+        "effects:           0x{:08x} ({})",
+        t.effects(),
+        fpt_nostd::effects::Effects::from_bits(t.effects())
+    );
     println!(
         "vertex format:     {} ({} bytes a vertex{shift})",
         format.name(),

@@ -96,6 +96,18 @@ pub struct BuildArgs {
     /// Vertex encoding in the tree file: f32, q16 or q32.
     #[arg(long = "vertex-format", default_value = "f32", value_parser = ["f32", "q16", "q32"])]
     pub vertex_format: String,
+    /// The scene's effects, stored in the file: comma-separated culling,
+    /// two-sided, clipping, lighting, depth-cue, dither, outline; or none.
+    /// Default: culling (closed) or two-sided (open), clipping, lighting.
+    #[arg(long)]
+    pub effects: Option<String>,
+    /// The orbit the scene is seen from, DIST,FOV[,ASPECT]: distance from
+    /// the bounding-sphere centre in bounding radii, vertical field of view
+    /// in degrees (0: parallel), viewport width/height (default 1). When no
+    /// view of that orbit can need clipping, the default effects leave
+    /// clipping out.
+    #[arg(long)]
+    pub orbit: Option<String>,
 }
 
 /// Arguments of `fpt polygons`.

@@ -16,7 +16,9 @@
 //!   every pixel that the [`RefFrame`] does not mark as unsure.
 //! - A pixel is unsure when its result could depend on rounding: `near_edge`
 //!   (its sample lies within `edge_px` of the outline of a polygon that is not
-//!   clearly behind the visible surface there) or `tie` (the two nearest
+//!   clearly behind the visible surface there: by more than the depth the two
+//!   planes change over `edge_px` pixels, so that a face touching the visible
+//!   one along that outline counts) or `tie` (the two nearest
 //!   covering polygons are within `tie_rel × scene diagonal` in depth, e.g.
 //!   where faces touch or coincide). With culling, the outlines of culled
 //!   polygons seen almost edge-on (`|n · dir| ≤ edge_on_rel`, or the eye
@@ -157,6 +159,29 @@ impl Rays {
     }
 }
 
+impl Rays {
+    /// How much the depth of `poly`'s plane changes from ray `p` to its
+    /// neighbours (the larger of one column and one row; NaN when a ray
+    /// runs parallel to the plane).
+    fn step(&self, poly: &Polygon, p: usize, w: usize, h: usize) -> f64 {
+        let (i, j) = (p % w.max(1), p / w.max(1));
+        let col = if i + 1 < w {
+            p + 1
+        } else {
+            p.saturating_sub(1)
+        };
+        let row = if j + 1 < h {
+            p + w
+        } else {
+            p.saturating_sub(w)
+        };
+        let z = self.depth(poly, p);
+        (self.depth(poly, col) - z)
+            .abs()
+            .max((self.depth(poly, row) - z).abs())
+    }
+}
+
 /// One polygon that takes part, with its projection.
 struct Candidate<'a> {
     id: u32,
@@ -261,7 +286,15 @@ pub fn zbuffer(polys: &[Polygon], cam: &Camera, w: usize, h: usize, opt: RefOpti
                 if near_edge[p] || s.edge_distance(i as f64 + 0.5, j as f64 + 0.5) > opt.edge_px {
                     continue;
                 }
-                let behind = rays.depth(poly, p) > best[p] + slack;
+                // "Clearly behind" allows for the depth both surfaces
+                // change over the margin: a face touching the visible one
+                // along this outline (a jaw standing on a base) is behind
+                // it at the sample only by that much, and rounding may let
+                // it cover the sample.
+                let visible = ids[p].checked_sub(1).and_then(|k| polys.get(k as usize));
+                let allow = opt.edge_px
+                    * (rays.step(poly, p, w, h) + visible.map_or(0.0, |v| rays.step(v, p, w, h)));
+                let behind = rays.depth(poly, p) > best[p] + slack + allow;
                 near_edge[p] = !behind;
             }
         }
