@@ -184,7 +184,7 @@ fn info_describes_the_file() {
     assert_eq!(field("vertices"), "8");
     // Six faces, six planes: one run each.
     assert_eq!(field("plane runs"), "6");
-    assert_eq!(field("effects"), "0x00000003");
+    assert_eq!(field("effects"), "0x00000003 (culling,two-sided)");
     assert!(field("vertex format").starts_with("q32"));
     let size = std::fs::metadata(&path).unwrap().len();
     assert!(field("format").contains(&format!("{size} bytes")));
