@@ -66,7 +66,11 @@ fn off_and_compiled_out_draw_alike_and_each_visible_effect_shows() {
         let (on_fx, off_fx) = on_off(base, *e);
         let on = crc::<AllEffects>(&tree, on_fx, mono);
         let off = crc::<AllEffects>(&tree, off_fx, mono);
-        assert_eq!(off, bare(i, &tree, off_fx, mono), "{name}: off and bare differ");
+        assert_eq!(
+            off,
+            bare(i, &tree, off_fx, mono),
+            "{name}: off and bare differ"
+        );
         // Culling only saves work on a closed scene seen from outside: the
         // back faces drawn first are all covered. Two-sided lighting has
         // no back face to light when culling. This view needs no clipping.

@@ -7,7 +7,8 @@
 //! * `firmware_matches_host`: runs the firmware under QEMU in both features
 //!   (`cargo run --release` in `firmware/`, once with `full`, once with
 //!   `band`) and compares its `frame scene=… view=… crc=…` lines with the
-//!   host's for the same trees. Skipped, with a message, when
+//!   host's for the same trees, and checks that `full` prints an `effect`
+//!   line with the three costs for every effect. Skipped, with a message, when
 //!   `qemu-system-arm` or the `thumbv7em-none-eabihf` target is missing —
 //!   unless `FPT_REQUIRE_FIRMWARE=1` is set (CI sets it), which turns a
 //!   missing tool into a failure.
@@ -177,6 +178,22 @@ fn firmware_matches_host() {
             out.lines().any(|l| l.starts_with("stack_peak=")),
             "no stack_peak line:\n{out}"
         );
+        // `full` measures every effect on, off and compiled out.
+        if args.is_empty() {
+            for (name, _) in fpt_nostd::effects::Effects::NAMED {
+                let line = out
+                    .lines()
+                    .find(|l| l.starts_with(&format!("effect name={name} ")))
+                    .unwrap_or_else(|| panic!("no effect line for {name}:\n{out}"));
+                for field in ["on", "off", "bare"] {
+                    let v = line
+                        .split_ascii_whitespace()
+                        .find_map(|t| t.strip_prefix(&format!("{field}=")))
+                        .and_then(|v| v.parse::<u64>().ok());
+                    assert!(v.is_some_and(|v| v > 0), "{line}");
+                }
+            }
+        }
         assert!(success, "firmware {args:?} exited with failure:\n{out}");
     }
 }

@@ -125,9 +125,8 @@ impl Orbit {
     /// A 1 % margin covers the rounding of the `f32` camera.
     pub fn never_clips<M: MathFns>(&self, radius: f32, aspect: f32) -> bool {
         let (r, d) = (radius, self.distance);
-        if !(r.is_finite() && r >= 0.0 && d.is_finite() && d > 0.0)
-            || !(aspect.is_finite() && aspect > 0.0)
-        {
+        let valid = r.is_finite() && r >= 0.0 && d.is_finite() && d > 0.0;
+        if !(valid && aspect.is_finite() && aspect > 0.0) {
             return false;
         }
         let limit = super::clip::GUARD as f32 * 0.99;

@@ -217,9 +217,10 @@ pub struct Clipped<'a, S> {
 /// near plane and inside the guard band, so that clipping would leave the
 /// polygon as it is (the test [`clip_polygon`] starts with). A renderer
 /// without the clipping stage drops the polygons that fail it.
+#[inline]
 pub fn all_inside<S: ClipNum>(a: &[ClipVert<S>], n: usize, near: S) -> bool {
-    a.iter()
-        .take(n)
+    a[..n.min(a.len())]
+        .iter()
         .all(|v| PLANES.iter().all(|p| p.dist(v, near) >= S::ZERO))
 }
 
@@ -248,10 +249,7 @@ fn clip_inner<'a, S: ClipNum>(
     let n = n.min(a.len());
     // Fast accept (the common case: in front of the near plane and inside
     // the guard band): one short-circuiting pass, no outcode bookkeeping.
-    if a[..n]
-        .iter()
-        .all(|v| PLANES.iter().all(|p| p.dist(v, near) >= S::ZERO))
-    {
+    if all_inside(a, n, near) {
         return Ok((&a[..n], false));
     }
     // Outcodes: trivially reject (all vertices outside one plane) or find

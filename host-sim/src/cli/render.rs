@@ -576,19 +576,18 @@ pub fn save_png_as(
     path: &Path,
     settings: &OutputSettings,
 ) -> CliResult {
-    let settings = settings.clone();
     let out = match image.clone() {
         Image::Rgb565(mut v) => {
-            to_display::<Rgb565Format>(&mut v, w, h)?.to_rgb_output_image(&settings)
+            to_display::<Rgb565Format>(&mut v, w, h)?.to_rgb_output_image(settings)
         }
         Image::Rgb888(mut v) => {
-            to_display::<Rgb888Format>(&mut v, w, h)?.to_rgb_output_image(&settings)
+            to_display::<Rgb888Format>(&mut v, w, h)?.to_rgb_output_image(settings)
         }
         Image::Gray8(mut v) => {
-            to_display::<Gray8Format>(&mut v, w, h)?.to_rgb_output_image(&settings)
+            to_display::<Gray8Format>(&mut v, w, h)?.to_rgb_output_image(settings)
         }
         Image::Mono(mut v) => {
-            to_display::<BinaryFormat>(&mut v, w, h)?.to_rgb_output_image(&settings)
+            to_display::<BinaryFormat>(&mut v, w, h)?.to_rgb_output_image(settings)
         }
     };
     let name = path
