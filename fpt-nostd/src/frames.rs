@@ -210,6 +210,8 @@ pub enum FrameError {
     /// The caller's buffer is smaller than [`FRAME_WORDS`] (full) or
     /// [`BAND_WORDS`] (band).
     Buffer(FramebufferError),
+    /// Not a configuration of [`accuracy::CONFIGS`].
+    UnknownConfig,
 }
 
 impl From<OrderError> for FrameError {
@@ -229,6 +231,7 @@ impl fmt::Display for FrameError {
         match self {
             FrameError::Order(e) => write!(f, "{e}"),
             FrameError::Buffer(e) => write!(f, "frame buffer: {e:?}"),
+            FrameError::UnknownConfig => f.write_str("unknown accuracy configuration"),
         }
     }
 }
@@ -478,6 +481,7 @@ impl<'a> FrameLine<'a> {
     }
 }
 
+pub mod accuracy;
 pub mod effects;
 #[cfg(test)]
 mod tests;

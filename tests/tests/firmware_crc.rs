@@ -8,7 +8,8 @@
 //!   (`cargo run --release` in `firmware/`, once with `full`, once with
 //!   `band`) and compares its `frame scene=… view=… crc=…` lines with the
 //!   host's for the same trees, and checks that `full` prints an `effect`
-//!   line with the three costs for every effect. Skipped, with a message, when
+//!   line with the three costs for every effect, and runs the `accuracy`
+//!   binary, whose lines must be the host's too. Skipped, with a message, when
 //!   `qemu-system-arm` or the `thumbv7em-none-eabihf` target is missing —
 //!   unless `FPT_REQUIRE_FIRMWARE=1` is set (CI sets it), which turns a
 //!   missing tool into a failure.
@@ -18,8 +19,12 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+use fpt_nostd::frames::accuracy::AccuracyLine;
 use fpt_nostd::frames::{FrameLine, SCENES, VIEWS};
-use host_sim::cli::frames::{expected_text, frame_lines, read_trees, scene_trees, EXPECTED_FILE};
+use host_sim::cli::frames::{
+    accuracy_lines, accuracy_tree_file, accuracy_trees, expected_text, frame_lines,
+    read_accuracy_trees, read_trees, scene_trees, ACCURACY_FILE, EXPECTED_FILE,
+};
 
 const REGENERATE: &str =
     "regenerate with: cargo run --release -p host-sim --bin fpt -- frames --export firmware/trees";
@@ -62,6 +67,28 @@ fn committed_trees_are_fresh() {
     assert!(
         expected == expected_text(&lines),
         "firmware/trees/{EXPECTED_FILE} is stale; {REGENERATE}"
+    );
+    // The accuracy binary's trees (every vertex encoding) and lines.
+    let built = ok(accuracy_trees(), "building the accuracy trees");
+    let committed = ok(
+        read_accuracy_trees(&trees_dir()),
+        "reading the accuracy trees",
+    );
+    for ((f, new), (_, old)) in built.iter().zip(&committed) {
+        assert!(
+            new == old,
+            "firmware/trees/{} is stale; {REGENERATE}",
+            accuracy_tree_file(*f)
+        );
+    }
+    let lines = ok(accuracy_lines(&built), "drawing the accuracy frames");
+    let expected = ok(
+        std::fs::read_to_string(trees_dir().join(ACCURACY_FILE)),
+        "reading accuracy.txt",
+    );
+    assert!(
+        expected == expected_text(&lines),
+        "firmware/trees/{ACCURACY_FILE} is stale; {REGENERATE}"
     );
 }
 
@@ -196,4 +223,21 @@ fn firmware_matches_host() {
         }
         assert!(success, "firmware {args:?} exited with failure:\n{out}");
     }
+    // The accuracy configurations: same checksums as the host, a cost each.
+    let host = ok(
+        accuracy_lines(&ok(read_accuracy_trees(&trees_dir()), "accuracy trees")),
+        "drawing the accuracy frames on the host",
+    );
+    let (success, out) = run_firmware(&["--bin", "accuracy"]);
+    let firmware: Vec<String> = out
+        .lines()
+        .filter_map(AccuracyLine::parse)
+        .map(|l| l.to_string())
+        .collect();
+    assert_eq!(firmware, host, "accuracy frames differ; output:\n{out}");
+    assert!(out
+        .lines()
+        .filter(|l| l.starts_with("accuracy "))
+        .all(|l| AccuracyLine::instr(l).is_some_and(|n| n > 0)));
+    assert!(success, "accuracy firmware exited with failure:\n{out}");
 }

@@ -1,7 +1,7 @@
 //! `fpt bench-accuracy --out DIR`: what accuracy costs in time.
 //!
 //! ```text
-//! fpt bench-accuracy --out DIR [--size WxH] [--views N] [--reps N] [--no-models]
+//! fpt bench-accuracy --out DIR [--size WxH] [--views N] [--reps N] [--no-models] [--mcu FILE]
 //! ```
 //!
 //! Renders the project's scenes (vise, house, bench city) and the shared
@@ -13,8 +13,13 @@
 //!   one row per configuration (definitions in [`eval`]);
 //!   `host_rel_time` is the host time per frame (per frame the fastest of
 //!   `--reps` interleaved rounds) divided by that of the default configuration
-//!   (`fixed`), all measured in this one process; `mcu_instr` is empty: the
-//!   firmware has no way to select a precision yet;
+//!   (`fixed`), all measured in this one process; `mcu_instr` the mean
+//!   Cortex-M4 instructions per frame of the benchmark scene over the
+//!   firmware's views, read from `--mcu FILE`: the output of the
+//!   firmware's `accuracy` binary (`cd firmware && cargo run --release
+//!   --bin accuracy > FILE`, see [`fpt_nostd::frames::accuracy`]), whose
+//!   checksums the firmware has already checked against the host's; empty
+//!   without `--mcu`;
 //! * `DIR/accuracy.png`: `wrong_face_frac` against `host_rel_time`, points
 //!   labelled with the configuration.
 //!
@@ -66,6 +71,10 @@ pub struct AccuracyArgs {
     /// Leave out the shared models (scenes only).
     #[arg(long = "no-models")]
     pub no_models: bool,
+    /// The firmware's accuracy output (`cargo run --release --bin
+    /// accuracy` in firmware/), for the mcu_instr column.
+    #[arg(long)]
+    pub mcu: Option<PathBuf>,
 }
 
 /// One CSV row.
@@ -77,7 +86,7 @@ pub struct Row {
     pub counts: Counts,
     /// Host time per frame relative to the default configuration.
     pub host_rel_time: Option<f64>,
-    /// Cortex-M4 instructions per frame (none measured yet).
+    /// Cortex-M4 instructions per frame (mean over the firmware's views).
     pub mcu_instr: Option<u64>,
 }
 
@@ -167,12 +176,51 @@ pub fn rows_for(
     Ok(rows)
 }
 
+/// The mean `instr` per configuration of the firmware's accuracy output
+/// `text` (lines `accuracy config=NAME view=K crc=XXXXXXXX instr=N`).
+/// Every configuration of [`CONFIGS`] must appear, with the same views.
+pub fn mcu_means(text: &str) -> Result<Vec<(String, u64)>, CliError> {
+    let mut out = Vec::new();
+    for c in &CONFIGS {
+        let costs: Vec<u64> = text
+            .lines()
+            .filter(|l| {
+                fpt_nostd::frames::accuracy::AccuracyLine::parse(l)
+                    .is_some_and(|p| p.config == c.name)
+            })
+            .map(|l| {
+                fpt_nostd::frames::accuracy::AccuracyLine::instr(l)
+                    .ok_or_else(|| cli_err!("--mcu: no instr= in '{l}'"))
+            })
+            .collect::<Result<_, _>>()?;
+        if costs.len() != fpt_nostd::frames::VIEWS.len() {
+            return Err(cli_err!(
+                "--mcu: {} lines for {}, expected one per view ({})",
+                costs.len(),
+                c.name,
+                fpt_nostd::frames::VIEWS.len()
+            ));
+        }
+        let n = costs.len() as u64;
+        out.push((c.name.to_string(), (costs.iter().sum::<u64>() + n / 2) / n));
+    }
+    Ok(out)
+}
+
 /// `fpt bench-accuracy`.
 pub fn run(a: &AccuracyArgs) -> CliResult {
     let (w, h) = parse_size(&a.size)?;
     if a.views == 0 {
         return Err(cli_err!("--views must be at least 1"));
     }
+    let mcu = match &a.mcu {
+        Some(path) => {
+            let text =
+                std::fs::read_to_string(path).map_err(|e| cli_err!("{}: {e}", path.display()))?;
+            Some(mcu_means(&text)?)
+        }
+        None => None,
+    };
     std::fs::create_dir_all(&a.out).map_err(|e| cli_err!("{}: {e}", a.out.display()))?;
     let cases = default_cases(!a.no_models)?;
     let vs = views(a.views);
@@ -185,6 +233,11 @@ pub fn run(a: &AccuracyArgs) -> CliResult {
         .ok_or_else(|| cli_err!("no default configuration"))?;
     for (row, s) in rows.iter_mut().zip(&secs) {
         row.host_rel_time = Some(s / base);
+        row.mcu_instr = mcu
+            .iter()
+            .flatten()
+            .find(|(n, _)| *n == row.config)
+            .map(|m| m.1);
     }
     let mut csv = String::new();
     let _ = writeln!(csv, "{CSV_HEADER}");

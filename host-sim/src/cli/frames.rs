@@ -20,12 +20,21 @@
 //! Every frame is drawn twice, into a full framebuffer and through a band
 //! buffer; the two checksums must agree (the firmware's two features rely
 //! on it), otherwise the command fails.
+//!
+//! The accuracy configurations ([`fpt_nostd::frames::accuracy`], the
+//! firmware's feature `accuracy`) draw the benchmark scene from trees in
+//! every vertex encoding: `--export` also writes
+//! `bench_city.q16.fpt`, `bench_city.q32.fpt` and their lines,
+//! `accuracy.txt`; `fpt frames --accuracy` prints those lines.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
 use fpt_nostd::format::VertexFormat;
+use fpt_nostd::frames::accuracy::{
+    render_config, vertex_format, AccuracyLine, ACCURACY_SCENE, CONFIGS,
+};
 use fpt_nostd::frames::{
     render_banded, render_full, FrameLine, FrameRenderer, NoProbe, BAND_WORDS, FRAME_WORDS, HEIGHT,
     SCENES, VIEWS, WIDTH,
@@ -43,6 +52,9 @@ use crate::tree::Method;
 /// The file of expected lines next to the trees.
 pub const EXPECTED_FILE: &str = "frames.txt";
 
+/// The file of expected accuracy lines next to the trees.
+pub const ACCURACY_FILE: &str = "accuracy.txt";
+
 /// The builder the committed trees come from.
 pub const METHOD: Method = Method::Static;
 
@@ -52,10 +64,13 @@ pub struct FramesArgs {
     /// Draw the trees DIR/NAME.fpt instead of building them.
     #[arg(long, value_name = "DIR", conflicts_with = "export")]
     pub trees: Option<PathBuf>,
-    /// Also write the trees and the expected lines (frames.txt) into DIR,
-    /// e.g. firmware/trees.
+    /// Also write the trees and the expected lines (frames.txt,
+    /// accuracy.txt) into DIR, e.g. firmware/trees.
     #[arg(long, value_name = "DIR")]
     pub export: Option<PathBuf>,
+    /// Print the accuracy configurations' lines instead of the frames'.
+    #[arg(long)]
+    pub accuracy: bool,
 }
 
 /// The procedural scene of one of [`SCENES`].
@@ -71,13 +86,75 @@ fn scene(name: &str) -> Result<Scene, CliError> {
 /// The tree file of scene `name`: [`METHOD`], [`DEFAULT_SEED`], `f32`
 /// vertices, the default effects of the scene's kind. Deterministic.
 pub fn scene_tree(name: &str) -> Result<Vec<u8>, CliError> {
+    scene_tree_as(name, VertexFormat::F32)
+}
+
+/// [`scene_tree`] with vertices in `vertex_format`.
+pub fn scene_tree_as(name: &str, vertex_format: VertexFormat) -> Result<Vec<u8>, CliError> {
     let s = scene(name)?;
     let tree = build(s.polygons, s.closed, METHOD, DEFAULT_SEED, &mut NoProgress);
     let opts = SerializeOptions {
-        vertex_format: VertexFormat::F32,
+        vertex_format,
         effects: None,
     };
     serialize(&tree, &opts).map_err(|e| cli_err!("{name}: {e}"))
+}
+
+/// The file name of the accuracy scene's tree in `f`
+/// (`bench_city.fpt` for `f32`, which is the frame set's).
+pub fn accuracy_tree_file(f: VertexFormat) -> String {
+    match f {
+        VertexFormat::F32 => format!("{ACCURACY_SCENE}.fpt"),
+        _ => format!("{ACCURACY_SCENE}.{}.fpt", f.name()),
+    }
+}
+
+/// The accuracy scene's trees in every vertex encoding, built now.
+pub fn accuracy_trees() -> Result<Vec<(VertexFormat, Vec<u8>)>, CliError> {
+    VertexFormat::ALL
+        .into_iter()
+        .map(|f| Ok((f, scene_tree_as(ACCURACY_SCENE, f)?)))
+        .collect()
+}
+
+/// Reads the accuracy scene's trees from `dir`.
+pub fn read_accuracy_trees(dir: &Path) -> Result<Vec<(VertexFormat, Vec<u8>)>, CliError> {
+    VertexFormat::ALL
+        .into_iter()
+        .map(|f| {
+            let path = dir.join(accuracy_tree_file(f));
+            let bytes = std::fs::read(&path)
+                .map_err(|e| cli_err!("cannot read {}: {e}", path.display()))?;
+            Ok((f, bytes))
+        })
+        .collect()
+}
+
+/// The lines of every accuracy configuration and view
+/// ([`AccuracyLine`]), configurations in [`CONFIGS`] order.
+pub fn accuracy_lines(trees: &[(VertexFormat, Vec<u8>)]) -> Result<Vec<String>, CliError> {
+    let mut buf = vec![0u16; FRAME_WORDS];
+    let mut lines = Vec::new();
+    for config in CONFIGS {
+        let want = vertex_format(config);
+        let bytes = trees
+            .iter()
+            .find(|(f, _)| *f == want)
+            .map(|t| &t.1)
+            .ok_or_else(|| cli_err!("no {} tree for {config}", want.name()))?;
+        let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{config}: {e}"))?;
+        for (k, v) in VIEWS.iter().enumerate() {
+            let crc = render_config(config, &tree, v, &mut buf, &NoProbe)
+                .map_err(|e| cli_err!("{config} view {k}: {e}"))?;
+            let line = AccuracyLine {
+                config,
+                view: k as u32,
+                crc,
+            };
+            lines.push(line.to_string());
+        }
+    }
+    Ok(lines)
 }
 
 /// The tree files of all [`SCENES`], in order.
@@ -153,7 +230,12 @@ pub fn run(a: &FramesArgs) -> CliResult {
         Some(dir) => read_trees(dir)?,
         None => scene_trees()?,
     };
-    let lines = frame_lines(&trees)?;
+    let frame_lines = frame_lines(&trees)?;
+    let acc_trees = match &a.trees {
+        Some(dir) => read_accuracy_trees(dir)?,
+        None => accuracy_trees()?,
+    };
+    let acc_lines = accuracy_lines(&acc_trees)?;
     if let Some(dir) = &a.export {
         std::fs::create_dir_all(dir)
             .map_err(|e| cli_err!("cannot create {}: {e}", dir.display()))?;
@@ -161,7 +243,17 @@ pub fn run(a: &FramesArgs) -> CliResult {
             .iter()
             .map(|(n, b)| (dir.join(format!("{n}.fpt")), b.clone()))
             .collect();
-        files.push((dir.join(EXPECTED_FILE), expected_text(&lines).into_bytes()));
+        files.push((
+            dir.join(EXPECTED_FILE),
+            expected_text(&frame_lines).into_bytes(),
+        ));
+        for (f, b) in acc_trees.iter().filter(|(f, _)| *f != VertexFormat::F32) {
+            files.push((dir.join(accuracy_tree_file(*f)), b.clone()));
+        }
+        files.push((
+            dir.join(ACCURACY_FILE),
+            expected_text(&acc_lines).into_bytes(),
+        ));
         for (path, bytes) in files {
             write_atomic(&path, &bytes)
                 .map_err(|e| cli_err!("cannot write {}: {e}", path.display()))?;
@@ -169,6 +261,7 @@ pub fn run(a: &FramesArgs) -> CliResult {
     }
     // Written by hand rather than with println!, so that a closed pipe
     // (`fpt frames | head`) ends the output quietly instead of panicking.
+    let lines = if a.accuracy { acc_lines } else { frame_lines };
     let mut out = std::io::stdout().lock();
     for l in &lines {
         match writeln!(out, "{l}") {

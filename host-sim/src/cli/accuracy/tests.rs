@@ -163,3 +163,41 @@ fn more_sub_pixel_bits_give_fewer_wrong_pixels_on_the_house() {
     assert_eq!(line.split(',').count(), CSV_HEADER.split(',').count());
     assert!(line.starts_with("fixed,"));
 }
+
+#[test]
+fn the_firmware_measures_exactly_the_csv_rows() {
+    let names: Vec<&str> = CONFIGS.iter().map(|c| c.name).collect();
+    assert_eq!(names, fpt_nostd::frames::accuracy::CONFIGS.to_vec());
+    for c in &CONFIGS {
+        assert_eq!(fpt_nostd::frames::accuracy::vertex_format(c.name), c.vertex);
+    }
+}
+
+#[test]
+fn mcu_means_average_the_views_and_need_every_row() {
+    let views = fpt_nostd::frames::VIEWS.len() as u64;
+    let mut text = String::from("calib whatever\n");
+    for (i, c) in CONFIGS.iter().enumerate() {
+        for k in 0..views {
+            text.push_str(&format!(
+                "accuracy config={} view={k} crc=0000abcd instr={}\n",
+                c.name,
+                1000 * (i as u64 + 1) + 10 * k
+            ));
+        }
+    }
+    let m = super::mcu_means(&text).expect("means");
+    assert_eq!(m.len(), CONFIGS.len());
+    let avg_k = 10 * (views - 1) / 2;
+    assert_eq!(m[0], (CONFIGS[0].name.to_string(), 1000 + avg_k));
+    assert_eq!(m[12].1, 13_000 + avg_k);
+    // A missing row, or a line without its cost, is an error.
+    let short: String = text
+        .lines()
+        .filter(|l| !l.contains("config=subpx-8 "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(super::mcu_means(&short).is_err());
+    let bare = text.replacen(" instr=1000", "", 1);
+    assert!(super::mcu_means(&bare).is_err());
+}

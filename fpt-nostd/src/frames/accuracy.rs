@@ -1,0 +1,216 @@
+//! The accuracy study's configurations on the MCU: the cost half of
+//! `fpt bench-accuracy`'s rows (its `mcu_instr` column), measured by the
+//! firmware's feature `accuracy` and checked against the host bit for bit.
+//!
+//! * **Configurations**: [`CONFIGS`], the rows of `fpt bench-accuracy`,
+//!   each one arithmetic ([`crate::raster::Precision`]) and, for
+//!   `vertex-q16`/`vertex-q32`, the benchmark tree stored in that encoding
+//!   ([`vertex_format`]). `trig-*` build the orbit camera with the
+//!   configuration's own trigonometry; the others with `libm`.
+//! * **Frames**: [`ACCURACY_SCENE`] from every view of [`super::VIEWS`],
+//!   240×240 RGB565, cleared to [`super::BACKGROUND`], key light, the
+//!   tree's declared effects. [`AccuracyLine`] is the line both sides print
+//!   (the firmware appends `instr=N`).
+//! * Each configuration renders with its own [`Renderer`] and [`Scratch`]
+//!   on the stack (a few KiB: the largest, fixed point, is 106 bytes a
+//!   vertex), so nothing stays allocated between configurations.
+
+use core::fmt;
+
+use super::{clear, FrameError, PixelCrc, Probe, ViewSpec, AMBIENT, DIFFUSE, Z_UP};
+use super::{Phase, HEIGHT, MAX_VERTS, WALK_DEPTH, WIDTH};
+use crate::effects::AllEffects;
+use crate::format::VertexFormat;
+use crate::raster::{
+    Camera, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Libm, Light, Mat4, MathFns,
+    Precision, Renderer, Rgb565Framebuffer, Scratch,
+};
+use crate::reader::Tree;
+use crate::render::{draw_frame, FaceIds, Frame};
+
+/// The scene of the measurement.
+pub const ACCURACY_SCENE: &str = "bench_city";
+
+/// The configurations, in `fpt bench-accuracy`'s row order.
+pub const CONFIGS: [&str; 13] = [
+    "vertex-f32",
+    "vertex-q16",
+    "vertex-q32",
+    "fixed",
+    "f32-libm",
+    "f32-micromath",
+    "subpx-0",
+    "subpx-2",
+    "subpx-4",
+    "subpx-6",
+    "subpx-8",
+    "trig-libm",
+    "trig-micromath",
+];
+
+/// The vertex encoding of the tree configuration `name` draws.
+pub fn vertex_format(name: &str) -> VertexFormat {
+    match name {
+        "vertex-q16" => VertexFormat::Q16,
+        "vertex-q32" => VertexFormat::Q32,
+        _ => VertexFormat::F32,
+    }
+}
+
+/// Draws view `view` of `tree` (in the configuration's
+/// [`vertex_format`]) with configuration `name` into the full frame `buf`;
+/// returns the checksum ([`PixelCrc`]). `probe` sees one start (before the
+/// camera set-up) and one stop (before the checksum).
+pub fn render_config<Pr: Probe>(
+    name: &str,
+    tree: &Tree<'_>,
+    view: &ViewSpec,
+    buf: &mut [u16],
+    probe: &Pr,
+) -> Result<u32, FrameError> {
+    match name {
+        "vertex-f32" | "vertex-q16" | "vertex-q32" | "fixed" | "subpx-4" => {
+            render_with::<FixedPrecision<4>, Libm, Pr>(tree, view, buf, probe)
+        }
+        "f32-libm" => render_with::<FloatLibm<4>, Libm, Pr>(tree, view, buf, probe),
+        "f32-micromath" => render_with::<FloatMicromath<4>, Libm, Pr>(tree, view, buf, probe),
+        "subpx-0" => render_with::<FixedPrecision<0>, Libm, Pr>(tree, view, buf, probe),
+        "subpx-2" => render_with::<FixedPrecision<2>, Libm, Pr>(tree, view, buf, probe),
+        "subpx-6" => render_with::<FixedPrecision<6>, Libm, Pr>(tree, view, buf, probe),
+        "subpx-8" => render_with::<FixedPrecision<8>, Libm, Pr>(tree, view, buf, probe),
+        "trig-libm" => render_with::<FixedPrecision<4>, Libm, Pr>(tree, view, buf, probe),
+        "trig-micromath" => {
+            render_with::<FixedMicromath<4>, <FixedMicromath<4> as Precision>::Math, Pr>(
+                tree, view, buf, probe,
+            )
+        }
+        _ => Err(FrameError::UnknownConfig),
+    }
+}
+
+/// One frame with arithmetic `P` and orbit trigonometry `T`.
+#[inline(never)]
+fn render_with<P: Precision, T: MathFns, Pr: Probe>(
+    tree: &Tree<'_>,
+    view: &ViewSpec,
+    buf: &mut [u16],
+    probe: &Pr,
+) -> Result<u32, FrameError> {
+    let identity = Camera::from_matrix(Mat4::IDENTITY, 1.0);
+    let Some(mut renderer) = Renderer::<P, AllEffects>::new(WIDTH, HEIGHT, &identity) else {
+        return Err(FrameError::UnknownConfig);
+    };
+    let mut scratch = Scratch::<P, MAX_VERTS>::new();
+    probe.start(Phase::Xform);
+    let aspect = WIDTH as f32 / HEIGHT as f32;
+    let camera = view.orbit(tree).camera::<T>(aspect).with_model(&Z_UP);
+    let frame = Frame::relative(tree, &camera);
+    renderer.set_light(Light::new(frame.key_light(), AMBIENT, DIFFUSE));
+    let mut fb = match Rgb565Framebuffer::new(buf, WIDTH, HEIGHT) {
+        Ok(fb) => fb,
+        Err(e) => {
+            probe.stop();
+            return Err(e.into());
+        }
+    };
+    clear(&mut fb);
+    let drawn = draw_frame::<P, AllEffects, _, WALK_DEPTH, MAX_VERTS>(
+        tree,
+        &frame,
+        &mut renderer,
+        &mut scratch,
+        FaceIds::Source,
+        &mut fb,
+    );
+    probe.stop();
+    drawn?;
+    let mut crc = PixelCrc::new();
+    crc.update(fb.data());
+    Ok(crc.finish())
+}
+
+/// `accuracy config=NAME view=K crc=XXXXXXXX`: one configuration's frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AccuracyLine<'a> {
+    /// The configuration.
+    pub config: &'a str,
+    /// The view.
+    pub view: u32,
+    /// The frame's checksum.
+    pub crc: u32,
+}
+
+impl fmt::Display for AccuracyLine<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "accuracy config={} view={} crc={:08x}",
+            self.config, self.view, self.crc
+        )
+    }
+}
+
+impl<'a> AccuracyLine<'a> {
+    /// Parses the start of a line (trailing fields, such as the firmware's
+    /// `instr=N`, are ignored); `None` if it is not one.
+    pub fn parse(line: &'a str) -> Option<AccuracyLine<'a>> {
+        let mut it = line.split_ascii_whitespace();
+        if it.next()? != "accuracy" {
+            return None;
+        }
+        let config = it.next()?.strip_prefix("config=")?;
+        let view = it.next()?.strip_prefix("view=")?.parse().ok()?;
+        let crc = it.next()?.strip_prefix("crc=")?;
+        if crc.len() != 8 || config.is_empty() {
+            return None;
+        }
+        let crc = u32::from_str_radix(crc, 16).ok()?;
+        Some(AccuracyLine { config, view, crc })
+    }
+
+    /// The `instr=N` field of a firmware line, if any.
+    pub fn instr(line: &str) -> Option<u64> {
+        line.split_ascii_whitespace()
+            .find_map(|t| t.strip_prefix("instr="))
+            .and_then(|v| v.parse().ok())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::string::ToString;
+
+    #[test]
+    fn lines_round_trip_and_carry_the_firmware_cost() {
+        let l = AccuracyLine {
+            config: "subpx-2",
+            view: 3,
+            crc: 0xdead_beef,
+        };
+        let text = l.to_string() + " instr=1234";
+        assert_eq!(AccuracyLine::parse(&text), Some(l));
+        assert_eq!(AccuracyLine::instr(&text), Some(1234));
+        assert_eq!(
+            AccuracyLine::parse("frame scene=x view=0 crc=00000000"),
+            None
+        );
+        assert_eq!(AccuracyLine::parse("accuracy config=x view=0 crc=0"), None);
+    }
+
+    #[test]
+    fn every_configuration_is_known_and_others_are_not() {
+        let mut buf = [0u16; 4];
+        let bytes = crate::test_util::Raw::empty().bytes();
+        let tree = Tree::from_bytes(&bytes).unwrap_or_else(|e| panic!("{e:?}"));
+        let view = &super::super::VIEWS[0];
+        for c in CONFIGS {
+            // The buffer is too small: every known name gets that far.
+            let r = render_config(c, &tree, view, &mut buf, &super::super::NoProbe);
+            assert!(matches!(r, Err(FrameError::Buffer(_))), "{c}: {r:?}");
+        }
+        let r = render_config("nope", &tree, view, &mut buf, &super::super::NoProbe);
+        assert_eq!(r, Err(FrameError::UnknownConfig));
+    }
+}
