@@ -261,4 +261,46 @@ fn bench_accuracy_writes_the_csv_and_the_plot() {
     assert!(fixed.ends_with(",1.000,"), "{fixed}");
     let png = std::fs::read(out_dir.join("accuracy.png")).expect("png");
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+
+    // With the firmware's output, mcu_instr is the mean over its views.
+    let mcu = out_dir.join("mcu.txt");
+    let mut text = String::new();
+    for c in CONFIGS {
+        for k in 0..fpt_nostd::frames::VIEWS.len() {
+            text.push_str(&format!(
+                "accuracy config={} view={k} crc=00000000 instr={}\n",
+                c.name,
+                if c.name == "fixed" { 100 + 10 * k } else { 7 }
+            ));
+        }
+    }
+    std::fs::write(&mcu, &text).expect("mcu file");
+    let args = |m: &Path| -> Vec<String> {
+        [
+            "bench-accuracy",
+            "--out",
+            &s(&out_dir),
+            "--size",
+            "48x36",
+            "--views",
+            "1",
+            "--reps",
+            "1",
+            "--no-models",
+            "--mcu",
+            &s(m),
+        ]
+        .map(String::from)
+        .to_vec()
+    };
+    let out = fpt(&args(&mcu));
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(out_dir.join("accuracy.csv")).expect("csv");
+    let fixed = csv.lines().find(|l| l.starts_with("fixed,")).expect("fixed");
+    assert!(fixed.ends_with(",1.000,120"), "{fixed}");
+    // A firmware output missing a configuration is an error (exit 2).
+    std::fs::write(&mcu, text.replace("config=subpx-8", "config=other")).expect("mcu");
+    let out = fpt(&args(&mcu));
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("subpx-8"));
 }
