@@ -294,9 +294,16 @@ fn bench_accuracy_writes_the_csv_and_the_plot() {
         .to_vec()
     };
     let out = fpt(&args(&mcu));
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let csv = std::fs::read_to_string(out_dir.join("accuracy.csv")).expect("csv");
-    let fixed = csv.lines().find(|l| l.starts_with("fixed,")).expect("fixed");
+    let fixed = csv
+        .lines()
+        .find(|l| l.starts_with("fixed,"))
+        .expect("fixed");
     assert!(fixed.ends_with(",1.000,120"), "{fixed}");
     // A firmware output missing a configuration is an error (exit 2).
     std::fs::write(&mcu, text.replace("config=subpx-8", "config=other")).expect("mcu");

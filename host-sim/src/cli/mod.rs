@@ -106,7 +106,7 @@ pub struct BuildArgs {
     /// in degrees (0: parallel), viewport width/height (default 1). When no
     /// view of that orbit can need clipping, the default effects leave
     /// clipping out.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub orbit: Option<String>,
 }
 

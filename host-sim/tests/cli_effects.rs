@@ -1,0 +1,184 @@
+//! Scene effects through the real binary: `fpt build --effects/--orbit`
+//! stores them, `fpt info` shows them, `fpt render --effects` overrides
+//! them and simulates displays only when asked; bad names are errors with
+//! exit status 2 and no output file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn fpt(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fpt"))
+        .args(args)
+        .output()
+        .expect("running fpt")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fpt-cli-effects-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+const CUBE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+
+fn stdout(o: &Output) -> String {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn effects_line(tree: &Path) -> String {
+    let info = stdout(&fpt(&["info", s(tree)]));
+    info.lines()
+        .find(|l| l.starts_with("effects:"))
+        .expect("effects line")
+        .to_string()
+}
+
+/// Exit status 2, one `error: ` line naming `what`, and no `file`.
+fn assert_refused(out: &Output, what: &str, file: &Path) {
+    assert_eq!(out.status.code(), Some(2), "{what}");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(what), "{err}");
+    assert!(!file.exists(), "{} was written", file.display());
+}
+
+#[test]
+fn build_stores_the_declared_effects_and_what_the_orbit_proves() {
+    let mesh = tmp("cube.obj");
+    std::fs::write(&mesh, CUBE_OBJ).unwrap();
+    let tree = tmp("cube.fpt");
+    stdout(&fpt(&["build", s(&mesh), "-o", s(&tree)]));
+    assert!(effects_line(&tree).ends_with("(culling,clipping,lighting)"));
+    // A far orbit never needs clipping: it is left out of the defaults.
+    let out = stdout(&fpt(&[
+        "build",
+        s(&mesh),
+        "-o",
+        s(&tree),
+        "--orbit",
+        "3,40",
+    ]));
+    assert!(out.contains("no view needs clipping"), "{out}");
+    assert!(effects_line(&tree).ends_with("(culling,lighting)"));
+    // Inside the bounding sphere it does.
+    let out = stdout(&fpt(&[
+        "build",
+        s(&mesh),
+        "-o",
+        s(&tree),
+        "--orbit",
+        "0.5,40",
+    ]));
+    assert!(out.contains("may need clipping"), "{out}");
+    assert!(effects_line(&tree).ends_with("(culling,clipping,lighting)"));
+    // An explicit list is stored as given.
+    stdout(&fpt(&[
+        "build",
+        s(&mesh),
+        "-o",
+        s(&tree),
+        "--effects",
+        "outline, dither",
+    ]));
+    assert!(effects_line(&tree).ends_with("(dither,outline)"));
+    stdout(&fpt(&[
+        "build",
+        s(&mesh),
+        "-o",
+        s(&tree),
+        "--effects",
+        "none",
+    ]));
+    assert!(effects_line(&tree).ends_with("(none)"));
+    // Unknown names and bad orbits: exit 2, no file.
+    let fresh = tmp("never.fpt");
+    let out = fpt(&[
+        "build",
+        s(&mesh),
+        "-o",
+        s(&fresh),
+        "--effects",
+        "lighting,fog",
+    ]);
+    assert_refused(&out, "unknown effect `fog`", &fresh);
+    let out = fpt(&["build", s(&mesh), "-o", s(&fresh), "--orbit", "3"]);
+    assert_refused(&out, "--orbit", &fresh);
+    let out = fpt(&["build", s(&mesh), "-o", s(&fresh), "--orbit", "-1,40"]);
+    assert_refused(&out, "--orbit", &fresh);
+}
+
+#[test]
+fn render_overrides_effects_and_simulates_displays_when_asked() {
+    let mesh = tmp("cube2.obj");
+    std::fs::write(&mesh, CUBE_OBJ).unwrap();
+    let tree = tmp("cube2.fpt");
+    stdout(&fpt(&["build", s(&mesh), "-o", s(&tree)]));
+    let view = ["--yaw", "30", "--pitch", "20", "--size", "40x30"];
+    let render = |out: &Path, extra: &[&str]| {
+        let mut a = vec!["render", s(&tree), "-o", s(out)];
+        a.extend_from_slice(&view);
+        a.extend_from_slice(extra);
+        fpt(&a)
+    };
+    let plain = tmp("plain.png");
+    stdout(&render(&plain, &[]));
+    let outlined = tmp("outlined.png");
+    stdout(&render(
+        &outlined,
+        &["--effects", "culling,clipping,lighting,outline"],
+    ));
+    assert_ne!(
+        std::fs::read(&plain).unwrap(),
+        std::fs::read(&outlined).unwrap()
+    );
+    let unlit = tmp("unlit.png");
+    stdout(&render(&unlit, &["--effects", "none"]));
+    assert_ne!(
+        std::fs::read(&plain).unwrap(),
+        std::fs::read(&unlit).unwrap()
+    );
+    // A panel look: 3× pixels with a 1-pixel gap, 40×30 → 159×119.
+    let oled = tmp("oled.png");
+    stdout(&render(
+        &oled,
+        &[
+            "--format",
+            "mono",
+            "--effects",
+            "culling,lighting,dither",
+            "--display",
+            "oled-blue",
+        ],
+    ));
+    let png = std::fs::read(&oled).unwrap();
+    let (w, h) = (
+        u32::from_be_bytes(png[16..20].try_into().unwrap()),
+        u32::from_be_bytes(png[20..24].try_into().unwrap()),
+    );
+    assert_eq!((w, h), (40 * 3 + 39, 30 * 3 + 29));
+    let grey = tmp("grey.png");
+    stdout(&render(&grey, &["--format", "gray8", "--gray-levels", "4"]));
+    // Bad names and values: exit 2, no file.
+    let never = tmp("never.png");
+    assert_refused(
+        &render(&never, &["--effects", "shadows"]),
+        "unknown effect",
+        &never,
+    );
+    assert_refused(
+        &render(&never, &["--effects", ""]),
+        "unknown effect",
+        &never,
+    );
+    assert_refused(
+        &render(&never, &["--gray-levels", "1"]),
+        "--gray-levels",
+        &never,
+    );
+    assert_refused(&render(&never, &["--display", "crt"]), "crt", &never);
+}
