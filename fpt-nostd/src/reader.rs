@@ -121,6 +121,68 @@ pub enum RawVertex {
     Q32([i32; 3]),
 }
 
+/// The vertices of one polygon ([`PolygonRef::vertices`]).
+#[derive(Clone, Debug)]
+pub struct Vertices<'a> {
+    indices: &'a [u8],
+    wide: bool,
+    section: &'a [u8],
+    format: VertexFormat,
+    q16_scale: [f32; 3],
+    q32_scale: f32,
+}
+
+impl Iterator for Vertices<'_> {
+    type Item = [f32; 3];
+
+    #[inline]
+    fn next(&mut self) -> Option<[f32; 3]> {
+        let v = if self.wide {
+            let (&[a, b, c, d], rest) = self.indices.split_first_chunk::<4>()?;
+            self.indices = rest;
+            u32::from_le_bytes([a, b, c, d]) as usize
+        } else {
+            let (&[a, b], rest) = self.indices.split_first_chunk::<2>()?;
+            self.indices = rest;
+            usize::from(u16::from_le_bytes([a, b]))
+        };
+        let at = v.wrapping_mul(self.format.vertex_len());
+        let f = |r: &[u8], k: usize| -> [u8; 4] {
+            let mut o = [0; 4];
+            if let Some(s) = r.get(k..k + 4) {
+                o.copy_from_slice(s);
+            }
+            o
+        };
+        Some(match self.format {
+            VertexFormat::F32 => match self.section.get(at..at.wrapping_add(12)) {
+                Some(r) => [0, 4, 8].map(|k| f32::from_le_bytes(f(r, k))),
+                None => [0.0; 3],
+            },
+            VertexFormat::Q32 => match self.section.get(at..at.wrapping_add(12)) {
+                Some(r) => [0, 4, 8].map(|k| i32::from_le_bytes(f(r, k)) as f32 * self.q32_scale),
+                None => [0.0; 3],
+            },
+            VertexFormat::Q16 => match self.section.get(at..at.wrapping_add(6)) {
+                Some(r) => {
+                    let q = |k: usize| f32::from(i16::from_le_bytes([r[k], r[k + 1]]));
+                    [
+                        q(0) * self.q16_scale[0],
+                        q(2) * self.q16_scale[1],
+                        q(4) * self.q16_scale[2],
+                    ]
+                }
+                None => [0.0; 3],
+            },
+        })
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = self.indices.len() / if self.wide { 4 } else { 2 };
+        (n, Some(n))
+    }
+}
+
 /// What decoding a vertex needs; copied into every [`PolygonRef`].
 #[derive(Clone, Copy, Debug)]
 struct Geometry<'a> {
@@ -433,16 +495,32 @@ impl<'a> PolygonRef<'a> {
         self.g.raw(self.vertex_index(i))
     }
 
+    /// Its vertices in order, relative to the origin, decoded like
+    /// [`PolygonRef::vertex`]: the fast path for drawing. The polygon's index range and the vertex section
+    /// are sliced once; each vertex then costs one range check on its
+    /// index and one on its record (both always pass on a validated tree;
+    /// a failing one yields the origin, as [`PolygonRef::vertex`] does).
+    pub fn vertices(&self) -> Vertices<'a> {
+        let g = &self.g;
+        let size = usize::from(g.index_size);
+        let lo = g
+            .indices
+            .wrapping_add((self.first as usize).wrapping_mul(size));
+        let hi = lo.wrapping_add((self.count as usize).wrapping_mul(size));
+        Vertices {
+            indices: g.bytes.get(lo..hi).unwrap_or(&[]),
+            wide: size == 4,
+            section: g.bytes.get(g.vertices..).unwrap_or(&[]),
+            format: g.format,
+            q16_scale: g.q16_scale,
+            q32_scale: g.q32_scale,
+        }
+    }
+
     /// Vertex `i` in model coordinates (origin + offset, in `f64`, exact for
     /// every format); the origin when `i ≥ vertex_count()`.
     pub fn vertex_model(&self, i: usize) -> [f64; 3] {
         self.g.decode_model(self.vertex_raw(i))
-    }
-
-    /// The vertices in order, relative to the origin.
-    pub fn vertices(&self) -> impl Iterator<Item = [f32; 3]> + 'a {
-        let p = *self;
-        (0..p.vertex_count()).map(move |i| p.vertex(i))
     }
 }
 

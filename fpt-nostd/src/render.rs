@@ -466,10 +466,8 @@ pub(crate) fn scaled_vertices<'p>(
     p: &'p PolygonRef<'_>,
     scale: f32,
 ) -> impl Iterator<Item = [f32; 3]> + 'p {
-    (0..p.vertex_count()).map(move |i| {
-        let v = p.vertex(i);
-        [v[0] * scale, v[1] * scale, v[2] * scale]
-    })
+    p.vertices()
+        .map(move |v| [v[0] * scale, v[1] * scale, v[2] * scale])
 }
 
 /// The band buffer of [`TreeRenderer::render_banded`]: storage for `rows`

@@ -10,12 +10,22 @@
 //! gives a tree whose every accessor and walk completes without panicking,
 //! emits only ids below the polygon count, never an empty class, each id at
 //! most once per view (exactly once for an open volume), within the bounds
-//! of the class's `size_hint`.
+//! of the class's `size_hint`. The walk with the other culling choice
+//! (`Order::with_culling`: an open tree culled, a closed one not) keeps the
+//! same promises (a closed tree not culled emits every id exactly once),
+//! and drawing the tree through every effect (outlines, depth cue,
+//! clipping off, dithering) completes.
 #![no_main]
 
 use fpt_nostd::format::{crc32, header};
+use fpt_nostd::effects::Effects;
 use fpt_nostd::order::{Class, Order, View};
+use fpt_nostd::raster::{
+    BinaryFramebuffer, DepthCue, Dither, FixedPrecision, FloatLibm, Libm, Orbit,
+    Rgb565Framebuffer,
+};
 use fpt_nostd::reader::Tree;
+use fpt_nostd::render::{Frame, TreeRenderer};
 use libfuzzer_sys::fuzz_target;
 
 const VIEWS: [View; 5] = [
@@ -81,8 +91,11 @@ fuzz_target!(|data: &[u8]| {
     }
     assert!(tree.polygon(count).is_none());
     let mut seen = vec![false; count as usize];
-    for view in VIEWS {
-        let Ok(order) = Order::<64>::new(&tree, view) else {
+    for (view, cull) in VIEWS
+        .into_iter()
+        .flat_map(|v| [(v, tree.is_closed()), (v, !tree.is_closed())])
+    {
+        let Ok(order) = Order::<64>::with_culling(&tree, view, cull) else {
             continue;
         };
         seen.iter_mut().for_each(|s| *s = false);
@@ -95,11 +108,50 @@ fuzz_target!(|data: &[u8]| {
                 *slot = true;
             }
         }
-        if !tree.is_closed() {
+        if !cull {
             assert!(
                 seen.iter().all(|&s| s),
-                "open volume: a polygon was not emitted"
+                "without culling: a polygon was not emitted"
             );
         }
     }
+    draw(&tree, control);
 });
+
+/// Draws the tree with every effect (and with its own), in fixed point and
+/// in f32, into a colour and a dithered 1-bit frame: must not panic.
+fn draw(tree: &Tree<'_>, control: u8) {
+    const W: u32 = 24;
+    const H: u32 = 16;
+    let r = tree.bounding_radius();
+    let distance = if control & 8 != 0 { 0.5 * r } else { 2.5 * r };
+    let orbit = Orbit::new([0.0; 3], 0.7, 0.4, distance, 0.9);
+    let effects = [Effects::ALL, Effects::from_bits(tree.effects()), Effects::NONE];
+    let mut words = vec![0u16; (W * H) as usize];
+    let mut bits = vec![0u8; BinaryFramebuffer::required_len(W, H)];
+    macro_rules! with {
+        ($p:ty) => {{
+            let Some(mut tr) = TreeRenderer::<$p, 12>::new(W, H) else {
+                return;
+            };
+            let frame = Frame::relative(tree, &orbit.camera::<Libm>(W as f32 / H as f32));
+            let (near, far) = frame.depth_range(tree);
+            tr.renderer.set_depth_cue(DepthCue {
+                near,
+                far,
+                ..DepthCue::default()
+            });
+            for fx in effects {
+                tr.renderer.set_effects(Some(fx));
+                if let Ok(mut fb) = Rgb565Framebuffer::new(&mut words, W, H) {
+                    let _ = tr.render::<_, 64>(tree, &frame, &mut fb);
+                }
+                if let Ok(mut fb) = BinaryFramebuffer::new(&mut bits, W, H) {
+                    let _ = tr.render::<_, 64>(tree, &frame, &mut Dither::new(&mut fb, 2));
+                }
+            }
+        }};
+    }
+    with!(FixedPrecision<4>);
+    with!(FloatLibm<4>);
+}

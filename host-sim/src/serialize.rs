@@ -693,6 +693,8 @@ mod tests {
         assert_eq!((r.index_size(), r.vertex_count()), (4, 66_000));
         let p = r.polygon(21_999).unwrap();
         assert_eq!(p.vertex_model(1), [1.0, 0.0, 21_999.0]);
+        let fast: Vec<[f32; 3]> = p.vertices().collect();
+        assert_eq!(fast, (0..3).map(|i| p.vertex(i)).collect::<Vec<_>>());
     }
 
     #[test]

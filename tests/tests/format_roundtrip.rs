@@ -84,6 +84,10 @@ fn check_round_trip(t: &FpTree, bytes: &[u8], f: VertexFormat) -> Vec<u32> {
             assert!((rel + origin - got).abs().max_element() <= tol32);
             radius = radius.max(rel.length()).max((*v - origin).length());
         }
+        // The drawing fast path decodes exactly what `vertex` does.
+        let fast: Vec<[f32; 3]> = p.vertices().collect();
+        let slow: Vec<[f32; 3]> = (0..p.vertex_count()).map(|i| p.vertex(i)).collect();
+        assert_eq!(fast, slow, "{f:?} polygon {tid}");
         let pl = p.plane();
         let n = DVec3::from_array(pl.normal.map(f64::from));
         assert!((n - src.plane.normal).length() < 1e-6);

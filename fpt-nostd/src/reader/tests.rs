@@ -120,7 +120,8 @@ fn decodes_q16_and_q32() {
     // The largest shift keeps 2^-shift a normal f32.
     r.shift = MAX_SHIFT;
     let bytes = r.bytes();
-    let p = Tree::from_bytes(&bytes).unwrap().polygon(0).unwrap();
+    let t = Tree::from_bytes(&bytes).unwrap();
+    let p = t.polygon(0).unwrap();
     assert!(p.vertex(2)[0] > 0.0 && p.vertex(2)[0].is_normal());
 }
 
