@@ -76,6 +76,13 @@ pub trait ClipNum: Copy + PartialOrd + Debug + Default {
     /// The value as `f32`, rounded (for per-face decisions such as depth
     /// cueing, not for geometry).
     fn to_f32(self) -> f32;
+    /// Whether `v` is inside every plane (`dist ≥ 0` for all of them): the
+    /// test of every vertex of every polygon, so a type may answer it more
+    /// directly, with the same result.
+    #[inline]
+    fn inside(v: &ClipVert<Self>, near: Self) -> bool {
+        PLANES.iter().all(|p| p.dist(v, near) >= Self::ZERO)
+    }
 }
 
 impl ClipNum for f32 {
@@ -106,6 +113,16 @@ impl ClipNum for f32 {
     }
     fn to_f32(self) -> f32 {
         self
+    }
+    /// `w − near ≥ 0` is `w ≥ near`, and the two guard planes of an axis,
+    /// `4w − x ≥ 0` and `4w + x ≥ 0`, are `4w − |x| ≥ 0` (an IEEE
+    /// difference of finite values is zero only for equal operands and has
+    /// the right sign, and `4w` is exact); infinities and NaN give the same
+    /// NaN or sign in both forms.
+    #[inline]
+    fn inside(v: &ClipVert<f32>, near: f32) -> bool {
+        let g = GUARD as f32 * v.w;
+        v.w - near >= 0.0 && g - v.x.abs() >= 0.0 && g - v.y.abs() >= 0.0
     }
 }
 
@@ -219,9 +236,7 @@ pub struct Clipped<'a, S> {
 /// without the clipping stage drops the polygons that fail it.
 #[inline]
 pub fn all_inside<S: ClipNum>(a: &[ClipVert<S>], n: usize, near: S) -> bool {
-    a[..n.min(a.len())]
-        .iter()
-        .all(|v| PLANES.iter().all(|p| p.dist(v, near) >= S::ZERO))
+    a[..n.min(a.len())].iter().all(|v| S::inside(v, near))
 }
 
 /// Clips the polygon `a[..n]` (clip space) against the near plane
@@ -470,5 +485,47 @@ mod tests {
         let mut b = [ClipVert::default(); 40];
         a[..poly.len()].copy_from_slice(&poly);
         assert!(clip_polygon(&mut a, poly.len(), &mut b, 1.0).is_ok_and(|s| s.verts.len() > 18));
+    }
+
+    #[test]
+    fn the_f32_inside_test_agrees_with_the_planes() {
+        let near = 0.25f32;
+        let vals = [
+            0.0,
+            -0.0,
+            0.25,
+            0.2499999,
+            1.0,
+            -1.0,
+            4.0,
+            -4.0,
+            4.000001,
+            -4.000001,
+            1e-30,
+            3.9999998,
+            1e30,
+            -1e30,
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+        ];
+        for &x in &vals {
+            for &y in &vals {
+                for &w in &[
+                    0.25f32,
+                    0.2499999,
+                    1.0,
+                    0.0,
+                    -1.0,
+                    1e30,
+                    f32::NAN,
+                    f32::INFINITY,
+                ] {
+                    let v = ClipVert { x, y, w };
+                    let planes = PLANES.iter().all(|p| p.dist(&v, near) >= 0.0);
+                    assert_eq!(<f32 as ClipNum>::inside(&v, near), planes, "{v:?}");
+                }
+            }
+        }
     }
 }

@@ -205,16 +205,14 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
     }
 
     fn transform(m: &Mat4, v: [f32; 3]) -> Option<ClipVert<f32>> {
-        if !v.iter().all(|c| c.is_finite()) {
-            return None;
-        }
-        let c = m.transform_point(v);
+        // Rows x, y and w only (clip z is never used). A non-finite input
+        // needs no test of its own: it makes every row non-finite (∞ times
+        // an entry is ±∞ or, for a zero entry, NaN), which the output test
+        // rejects.
+        let row = |r: &[f32; 4]| r[0] * v[0] + r[1] * v[1] + r[2] * v[2] + r[3];
+        let (x, y, w) = (row(&m.0[0]), row(&m.0[1]), row(&m.0[3]));
         let ok = |s: f32| s.is_finite() && s.abs() <= FLOAT_CLIP_LIMIT;
-        (ok(c[0]) && ok(c[1]) && ok(c[3])).then_some(ClipVert {
-            x: c[0],
-            y: c[1],
-            w: c[3],
-        })
+        (ok(x) && ok(y) && ok(w)).then_some(ClipVert { x, y, w })
     }
 
     fn transform_q(m: &Mat4, v: [i32; 3], frac: u32) -> Option<ClipVert<f32>> {
