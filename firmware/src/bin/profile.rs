@@ -1,5 +1,9 @@
-//! One `bench_city` frame (view 0, feature-independent, full frame) and
-//! nothing else: the target for an instruction profile under QEMU.
+//! One `bench_city` frame (view 0, full frame) and nothing else, drawn the
+//! way a product would: through a pipeline compiled with only the stages
+//! the scene declares (culling, clipping, lighting), no probes. The target
+//! for an instruction profile under QEMU and for measuring the renderer's
+//! code size (`.text` attributed to `fpt-nostd`). It checks its checksum
+//! against the frame set's (`trees/frames.txt`).
 //!
 //! ```text
 //! cargo build --release --bin profile
@@ -18,10 +22,20 @@
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 
-use fpt_nostd::frames::{render_full, FrameRenderer, NoProbe, FRAME_WORDS, HEIGHT, VIEWS, WIDTH};
+use fpt_nostd::effects::{Effects, Pipeline};
+use fpt_nostd::frames::{
+    FrameLine, FramePrecision, PixelCrc, BACKGROUND, FRAME_WORDS, HEIGHT, MAX_VERTS, VIEWS,
+    WALK_DEPTH, WIDTH,
+};
+use fpt_nostd::raster::{Light, Rgb565Framebuffer};
 use fpt_nostd::reader::Tree;
+use fpt_nostd::render::TreeRenderer;
+
+/// The scene's declared effects, and nothing else, compiled in.
+type Product = Pipeline<{ Effects::defaults(true).bits() }>;
 
 static TREE: &[u8] = include_bytes!("../../trees/bench_city.fpt");
+static EXPECTED: &str = include_str!("../../trees/frames.txt");
 static mut FRAME: [u16; FRAME_WORDS] = [0; FRAME_WORDS];
 
 #[panic_handler]
@@ -36,10 +50,29 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
 fn main() -> ! {
     // SAFETY: the only reference to FRAME, taken once here.
     let buf: &mut [u16] = unsafe { &mut *core::ptr::addr_of_mut!(FRAME) };
-    let ok = match (Tree::from_bytes(TREE), FrameRenderer::new(WIDTH, HEIGHT)) {
-        (Ok(tree), Some(mut r)) => render_full(&mut r, &tree, &VIEWS[0], buf, &NoProbe)
-            .map(|o| hprintln!("crc={:08x}", o.crc))
-            .is_ok(),
+    let ok = match (
+        Tree::from_bytes(TREE),
+        TreeRenderer::<FramePrecision, MAX_VERTS, Product>::new(WIDTH, HEIGHT),
+        Rgb565Framebuffer::new(buf, WIDTH, HEIGHT),
+    ) {
+        (Ok(tree), Some(mut r), Ok(mut fb)) => {
+            let frame = VIEWS[0].frame(&tree);
+            // The frame set's light (`fpt_nostd::frames`).
+            r.renderer
+                .set_light(Light::new(frame.key_light(), 0.25, 0.75));
+            fb.fill_all(BACKGROUND);
+            let drawn = r.render::<_, WALK_DEPTH>(&tree, &frame, &mut fb).is_ok();
+            let mut crc = PixelCrc::new();
+            crc.update(fb.data());
+            let crc = crc.finish();
+            hprintln!("crc={:08x}", crc);
+            let want = EXPECTED
+                .lines()
+                .filter_map(FrameLine::parse)
+                .find(|l| l.scene == "bench_city" && l.view == 0)
+                .map(|l| l.crc);
+            drawn && want == Some(crc)
+        }
         _ => false,
     };
     debug::exit(if ok {
