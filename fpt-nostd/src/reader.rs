@@ -44,8 +44,10 @@
 //! the crate docs): its first input byte rewrites the length field and the
 //! CRC of the rest on request, so that mutated files reach the structural
 //! checks; every accepted file has all its accessors read and is walked for
-//! five views (one with a NaN direction), by ids and by ranges, checking ids
-//! in range, no empty class, no id twice, every id for an open volume.
+//! five views (one with a NaN direction), by ids and by ranges, with and
+//! without back-face culling, checking ids in range, no empty class, no id
+//! twice, every id when nothing is culled, and then drawn with every effect
+//! (outlines, depth cue, clipping off, dithering) in fixed point and f32.
 //! cargo-fuzz builds it with debug assertions, overflow checks and
 //! AddressSanitizer by default, so an arithmetic overflow is a crash too.
 //! (`mesh_import`, in the same table, fuzzes the host's mesh parsers.)
@@ -58,6 +60,11 @@
 //! | `tree_walk` (walk before its last change) | `seeds/tree_walk`: 7 trees | 20 880 460 | 738 | 2 187 | 213 | nothing |
 //! | `mesh_import` | `seeds/mesh_import`: 4 meshes | 4 209 803 | 3 581 | 15 633 | 2 660 | nothing |
 //! | `tree_walk` (final code, from the corpus above) | same | 21 259 243 | 742 | 2 206 | 181 | nothing |
+//! | `tree_walk` with effects (format v2; both culling choices and a frame drawn with every effect, fixed and f32), session 2 | same, moved to v2 | 9 350 942 | 2 053 | 9 543 | 902 | nothing |
+//! | the same after the vertex iterator and clip-test changes, 300 s, from that corpus | same | 5 093 905 | 2 060 | — | — | nothing |
+//!
+//! (The target now also draws, so its edge and feature counts cover the
+//! rasterizer and are not comparable with the first rows.)
 //!
 //! No crash, timeout or out-of-memory in any run. The seed trees are small
 //! static, dynamic and BSP trees, open and closed, in all three vertex
