@@ -61,7 +61,7 @@
 //! | `mesh_import` | `seeds/mesh_import`: 4 meshes | 4 209 803 | 3 581 | 15 633 | 2 660 | nothing |
 //! | `tree_walk` (final code, from the corpus above) | same | 21 259 243 | 742 | 2 206 | 181 | nothing |
 //! | `tree_walk` with effects (format v2; both culling choices and a frame drawn with every effect, fixed and f32), session 2 | same, moved to v2 | 9 350 942 | 2 053 | 9 543 | 902 | nothing |
-//! | the same after the vertex iterator and clip-test changes, 300 s, from that corpus | same | 5 093 905 | 2 060 | — | — | nothing |
+//! | the same after the vertex iterator and clip-test changes, 300 s, from that corpus | same | 5 093 905 | 2 061 | 9 461 | 539 | nothing |
 //!
 //! (The target now also draws, so its edge and feature counts cover the
 //! rasterizer and are not comparable with the first rows.)
