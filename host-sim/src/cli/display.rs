@@ -1,7 +1,8 @@
 //! What `fpt render` simulates of a display, only when asked.
 //!
-//! The framebuffer format (`--format`) is the panel's storage: `rgb565`
-//! quantises to 16-bit colour, `gray8` to grey (to `--gray-levels N` levels
+//! The framebuffer format (`--format`) is the panel's storage: the default
+//! `rgb888` keeps the renderer's exact colours, `rgb565` quantises to 16-bit
+//! colour, `gray8` to grey (to `--gray-levels N` levels
 //! when given: a 4-bit OLED has 16), `mono` to one bit per pixel, by a
 //! threshold, or by ordered dithering when the scene's `dither` effect is on
 //! (see `fpt_nostd::raster::dither`). `--display` then chooses how the PNG

@@ -3,7 +3,7 @@
 //! ```text
 //! fpt render TREE -o OUT.png [--size WxH]
 //!     (--mvp M00,M01,...,M33 | --yaw DEG --pitch DEG [--distance D] [--fov DEG])
-//!     [--ids IDS.bin] [--format rgb565|rgb888|gray8|mono] [--band N]
+//!     [--ids IDS.bin] [--format rgb888|rgb565|gray8|mono] [--band N]
 //!     [--precision NAME] [--shade lambert|flat|grey] [--up y|z]
 //!     [--effects LIST] [--gray-levels N] [--display PANEL]
 //! ```
@@ -190,8 +190,9 @@ pub struct RenderArgs {
     /// Also write the source face id + 1 of every pixel (u32 LE, 0 = none).
     #[arg(long)]
     pub ids: Option<PathBuf>,
-    /// Framebuffer format.
-    #[arg(long, default_value = "rgb565", value_parser = ["rgb565", "rgb888", "gray8", "mono"])]
+    /// Framebuffer format: exact colour (rgb888) unless a display's storage
+    /// is asked for (rgb565 quantises, gray8 and mono as the panels do).
+    #[arg(long, default_value = "rgb888", value_parser = ["rgb565", "rgb888", "gray8", "mono"])]
     pub format: String,
     /// Draw in bands of N rows through one band buffer.
     #[arg(long)]
