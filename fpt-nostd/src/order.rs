@@ -207,6 +207,7 @@ const FAR_IS_BACK: u8 = 0x80;
 
 /// One connecting node being visited, its record copied in when pushed.
 #[derive(Clone, Copy, Debug, Default)]
+#[repr(C)]
 struct Frame {
     first_bunch: u32,
     levels: u32,
@@ -214,6 +215,17 @@ struct Frame {
     /// Next level (DOWN: counting up; UP: counting down).
     j: u32,
     phase: u8,
+}
+
+impl Frame {
+    /// All zero: a constant, so that a fresh stack is one block clear.
+    const EMPTY: Frame = Frame {
+        first_bunch: 0,
+        levels: 0,
+        switch: 0,
+        j: 0,
+        phase: 0,
+    };
 }
 
 /// The walk of one view: an iterator over the classes, back to front.
@@ -267,7 +279,7 @@ impl<'a, const N: usize> Order<'a, N> {
                 0
             },
             len: 0,
-            stack: [Frame::default(); N],
+            stack: [Frame::EMPTY; N],
         };
         o.push(0);
         Ok(o)

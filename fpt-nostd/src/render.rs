@@ -109,6 +109,11 @@ pub fn rows_f64(m: &Mat4) -> [[f64; 4]; 4] {
     m.0.map(|r| r.map(f64::from))
 }
 
+// The `f64` helpers below run a few dozen times per frame (camera set-up),
+// in software floating point on a Cortex-M: they stay out of line, one copy
+// each, because every inlined copy of a soft-float expression costs code
+// (about a kilobyte of `.text` for these) and saves nothing measurable.
+#[inline(never)]
 fn det3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
     a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
         + a[2] * (b[0] * c[1] - b[1] * c[0])
@@ -150,6 +155,7 @@ fn log2_floor(x: f64) -> Option<i32> {
     Some(if e == 0 { -1023 } else { e - 1023 })
 }
 
+#[inline(never)]
 fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
@@ -159,11 +165,13 @@ fn xyz(r: [f64; 4]) -> [f64; 3] {
 }
 
 /// `row · [p, 1]`.
+#[inline(never)]
 fn eval_row(r: [f64; 4], p: [f64; 3]) -> f64 {
     dot3(xyz(r), p) + r[3]
 }
 
 /// `v / |v|`, or `None` for a zero or non-finite vector.
+#[inline(never)]
 fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
     let l = libm::sqrt(dot3(v, v));
     (l.is_finite() && l > 0.0).then(|| v.map(|c| c / l))
