@@ -163,6 +163,24 @@ fn render_overrides_effects_and_simulates_displays_when_asked() {
     assert_eq!((w, h), (40 * 3 + 39, 30 * 3 + 29));
     let grey = tmp("grey.png");
     stdout(&render(&grey, &["--format", "gray8", "--gray-levels", "4"]));
+    // Dithering and outlines through a band buffer: the same picture.
+    for (format, effects) in [
+        ("mono", "culling,lighting,dither"),
+        ("gray8", "culling,lighting,dither,outline"),
+        ("rgb565", "culling,lighting,depth-cue,outline"),
+    ] {
+        let (full, banded) = (tmp("full.png"), tmp("banded.png"));
+        let args = ["--format", format, "--effects", effects];
+        stdout(&render(&full, &args));
+        let mut with_band = args.to_vec();
+        with_band.extend_from_slice(&["--band", "7"]);
+        stdout(&render(&banded, &with_band));
+        assert_eq!(
+            std::fs::read(&full).unwrap(),
+            std::fs::read(&banded).unwrap(),
+            "{format} {effects}"
+        );
+    }
     // Bad names and values: exit 2, no file.
     let never = tmp("never.png");
     assert_refused(

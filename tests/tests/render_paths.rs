@@ -9,9 +9,10 @@ use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::geometry::{OriginDimensions, Size};
 use embedded_graphics::pixelcolor::{BinaryColor, Gray8, PixelColor, Rgb565, Rgb888};
 use embedded_graphics::Pixel;
+use fpt_nostd::effects::Effects;
 use fpt_nostd::raster::framebuffer::{BinaryFormat, Gray8Format, Rgb565Format, Rgb888Format};
 use fpt_nostd::raster::{
-    DefaultPrecision, DrawTargetSink, Framebuffer, Light, PixelFormat, ShadeMode,
+    DefaultPrecision, DepthCue, DrawTargetSink, Framebuffer, Light, PixelFormat, ShadeMode,
 };
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{BandBuffer, Frame, TreeRenderer};
@@ -50,22 +51,39 @@ impl<C: PixelColor> DrawTarget for PixelDisplay<C> {
     }
 }
 
-fn renderer() -> Box<TreeRenderer<DefaultPrecision, VERTS>> {
+fn renderer(
+    tree: &Tree<'_>,
+    f: &Frame,
+    fx: Option<Effects>,
+) -> Box<TreeRenderer<DefaultPrecision, VERTS>> {
     let mut r = Box::new(TreeRenderer::new(W, H).expect("renderer"));
     r.renderer.set_shade_mode(ShadeMode::Lambert);
     r.renderer
         .set_light(Light::new([0.3, 0.5, 0.8], 0.25, 0.75));
+    r.renderer.set_effects(fx);
+    let (near, far) = f.depth_range(tree);
+    r.renderer.set_depth_cue(DepthCue {
+        near,
+        far,
+        ..DepthCue::default()
+    });
     r
 }
 
 /// The three paths in format `F`; panics on the first difference.
 /// Returns whether anything but the background was drawn.
-fn paths<F: PixelFormat>(tree: &Tree<'_>, f: &Frame, bg: F::Color, label: &str) -> bool
+fn paths<F: PixelFormat>(
+    tree: &Tree<'_>,
+    f: &Frame,
+    fx: Option<Effects>,
+    bg: F::Color,
+    label: &str,
+) -> bool
 where
     F::Word: Default + PartialEq + core::fmt::Debug,
     F::Color: PartialEq + core::fmt::Debug,
 {
-    let mut r = renderer();
+    let mut r = renderer(tree, f, fx);
     let mut fast = vec![F::Word::default(); Framebuffer::<F>::required_len(W, H)];
     let mut fb = Framebuffer::<F>::new(&mut fast, W, H).expect("fb");
     fb.fill_all(bg);
@@ -110,15 +128,19 @@ fn framebuffer_draw_target_and_bands_agree() {
         let tree = Tree::from_bytes(&built.bytes).expect("tree");
         for (k, cam) in random_cameras(&s.polygons, 8, 5).iter().enumerate() {
             let f = frame(&tree, cam);
-            let label = format!("{} view {k}", s.name);
-            paths::<Rgb565Format>(&tree, &f, Rgb565::new(3, 7, 9), &label);
-            // (The shaded picture may be all dark, i.e. all Off in mono.)
-            assert!(
-                paths::<Rgb888Format>(&tree, &f, Rgb888::new(10, 20, 30), &label),
-                "{label}: empty"
-            );
-            paths::<Gray8Format>(&tree, &f, Gray8::new(17), &label);
-            paths::<BinaryFormat>(&tree, &f, BinaryColor::Off, &label);
+            // The tree's own effects, and every effect at once (outlines
+            // cross band boundaries; clipping off drops polygons alike).
+            for fx in [None, Some(Effects::ALL), Some(Effects::NONE)] {
+                let label = format!("{} view {k} {fx:?}", s.name);
+                paths::<Rgb565Format>(&tree, &f, fx, Rgb565::new(3, 7, 9), &label);
+                // (The shaded picture may be all dark, i.e. all Off in mono.)
+                assert!(
+                    paths::<Rgb888Format>(&tree, &f, fx, Rgb888::new(10, 20, 30), &label),
+                    "{label}: empty"
+                );
+                paths::<Gray8Format>(&tree, &f, fx, Gray8::new(17), &label);
+                paths::<BinaryFormat>(&tree, &f, fx, BinaryColor::Off, &label);
+            }
         }
     }
 }
