@@ -7,10 +7,13 @@
 //! scene it serializes the tree, validates the bytes with the no_std
 //! reader, renders several views through the no_std pipeline (fixed point,
 //! 4 sub-pixel bits: the firmware's configuration) into the framebuffer
-//! format a small display would use, and saves them as PNG. It prints the
+//! format a small display would use, and saves them as PNG; then draws the
+//! vise again with optional effects (outlines, depth cue) and on simulated
+//! monochrome and 4-level grey panels (ordered dithering). It prints the
 //! build statistics and where every file is.
 
-use super::render::{render_job, save_png, CameraSpec, Format, Job};
+use super::display::Panel;
+use super::render::{render_job, save_png, save_png_as, CameraSpec, Format, Job};
 use super::CliResult;
 use crate::build::{build, NoProgress, DEFAULT_SEED};
 use crate::cli_err;
@@ -20,6 +23,7 @@ use crate::serialize::{serialize, SerializeOptions};
 use crate::tree::Method;
 use clap::Args;
 use embedded_graphics::pixelcolor::Rgb888;
+use fpt_nostd::effects::Effects;
 use fpt_nostd::raster::ShadeMode;
 use fpt_nostd::reader::Tree;
 use std::path::{Path, PathBuf};
@@ -155,6 +159,75 @@ fn demo_scene(show: &Show, out: &Path) -> CliResult {
     Ok(())
 }
 
+/// The vise again with the optional stages a scene can declare (see
+/// `fpt_nostd::effects`), and on simulated small panels.
+fn demo_effects(out: &Path) -> CliResult {
+    let path = out.join("vise.fpt");
+    let bytes = std::fs::read(&path).map_err(|e| cli_err!("{}: {e}", path.display()))?;
+    let t = Tree::from_bytes(&bytes).map_err(|e| cli_err!("{}: {e:?}", path.display()))?;
+    let base = Effects::from_bits(t.effects());
+    println!("effects (the vise declares {base}):");
+    let shots: [(&str, Effects, Format, Option<u16>, Panel, (u32, u32)); 4] = [
+        (
+            "outline",
+            base.with(Effects::OUTLINE),
+            Format::Rgb888,
+            None,
+            Panel::Plain,
+            (W, H),
+        ),
+        (
+            "depth_cue",
+            base.with(Effects::DEPTH_CUE),
+            Format::Rgb888,
+            None,
+            Panel::Plain,
+            (W, H),
+        ),
+        (
+            "oled_dither",
+            base.with(Effects::DITHER),
+            Format::Mono,
+            None,
+            Panel::OledBlue,
+            (128, 64),
+        ),
+        (
+            "lcd_gray4",
+            base.with(Effects::DITHER),
+            Format::Gray8,
+            Some(4),
+            Panel::LcdWhite,
+            (128, 96),
+        ),
+    ];
+    for (name, effects, format, gray_levels, panel, (w, h)) in shots {
+        let job = Job {
+            w,
+            h,
+            camera: CameraSpec::Orbit {
+                yaw: 35.0,
+                pitch: 25.0,
+                distance: Some(2.2 * f64::from(t.bounding_radius())),
+                fov: 40.0,
+                z_up: true,
+            },
+            format,
+            band: None,
+            shade: ShadeMode::Lambert,
+            background: Rgb888::new(0, 0, 0),
+            ids: false,
+            effects: Some(effects),
+            gray_levels,
+        };
+        let r = render_job(&t, &job, PRECISION)?;
+        let png = out.join(format!("vise_{name}.png"));
+        save_png_as(&r.image, w, h, &png, &panel.settings())?;
+        println!("  {}  {w}x{h} {effects}", png.display());
+    }
+    Ok(())
+}
+
 /// `fpt demo`.
 pub fn run(a: &DemoArgs) -> CliResult {
     std::fs::create_dir_all(&a.out).map_err(|e| cli_err!("{}: {e}", a.out.display()))?;
@@ -165,6 +238,7 @@ pub fn run(a: &DemoArgs) -> CliResult {
     for show in shows() {
         demo_scene(&show, &a.out)?;
     }
+    demo_effects(&a.out)?;
     println!(
         "render a tree yourself: fpt render {} -o view.png --yaw 30 --pitch 20 --up z",
         a.out.join("house.fpt").display()
