@@ -10,7 +10,11 @@ fn demo_writes_every_file_it_lists() {
         .args(["demo", "--out", dir.to_str().unwrap()])
         .output()
         .expect("running fpt demo");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8_lossy(&out.stdout);
     let mut pngs = 0;
     for word in text.split_whitespace() {
@@ -23,12 +27,20 @@ fn demo_writes_every_file_it_lists() {
             assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"), "{word}");
             pngs += 1;
         } else if word.ends_with(".fpt") {
-            assert!(fpt_nostd::reader::Tree::from_bytes(&bytes).is_ok(), "{word}");
+            assert!(
+                fpt_nostd::reader::Tree::from_bytes(&bytes).is_ok(),
+                "{word}"
+            );
         }
     }
     // Four vise, four house and three city views, four effect pictures.
     assert_eq!(pngs, 15, "{text}");
-    for name in ["vise_outline", "vise_depth_cue", "vise_oled_dither", "vise_lcd_gray4"] {
+    for name in [
+        "vise_outline",
+        "vise_depth_cue",
+        "vise_oled_dither",
+        "vise_lcd_gray4",
+    ] {
         assert!(dir.join(format!("{name}.png")).exists(), "{name}");
     }
     let _ = std::fs::remove_dir_all(&dir);

@@ -159,6 +159,17 @@ fn demo_scene(show: &Show, out: &Path) -> CliResult {
     Ok(())
 }
 
+/// One effect picture: name, effects, storage, grey levels, panel look,
+/// size.
+type Shot = (
+    &'static str,
+    Effects,
+    Format,
+    Option<u16>,
+    Panel,
+    (u32, u32),
+);
+
 /// The vise again with the optional stages a scene can declare (see
 /// `fpt_nostd::effects`), and on simulated small panels.
 fn demo_effects(out: &Path) -> CliResult {
@@ -167,7 +178,7 @@ fn demo_effects(out: &Path) -> CliResult {
     let t = Tree::from_bytes(&bytes).map_err(|e| cli_err!("{}: {e:?}", path.display()))?;
     let base = Effects::from_bits(t.effects());
     println!("effects (the vise declares {base}):");
-    let shots: [(&str, Effects, Format, Option<u16>, Panel, (u32, u32)); 4] = [
+    let shots: [Shot; 4] = [
         (
             "outline",
             base.with(Effects::OUTLINE),
