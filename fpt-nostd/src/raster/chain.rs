@@ -76,7 +76,6 @@ impl Chain {
 /// Number of changes of vertical direction around the closed polygon,
 /// horizontal edges skipped (2 for a y-monotone polygon; 0 when all
 /// vertices share one y).
-#[cfg(test)]
 fn direction_changes(pts: &[ScreenPt]) -> u32 {
     let mut first = 0i32;
     let mut last = 0i32;
@@ -108,7 +107,6 @@ fn direction_changes(pts: &[ScreenPt]) -> u32 {
 /// emitted) when the polygon is not y-monotone. The caller guarantees
 /// `|x|, |y| < edge::SMALL` for every vertex, `sub ≤ 8` and
 /// `pts.len() ≥ 3`.
-#[cfg(test)]
 pub(crate) fn fill_monotone<K: SpanSink>(
     pts: &[ScreenPt],
     sub: u32,
@@ -116,87 +114,20 @@ pub(crate) fn fill_monotone<K: SpanSink>(
     color: K::Color,
     sink: &mut K,
 ) -> Option<usize> {
-    fill_monotone_of(pts, &Outline::of(pts), sub, b, color, sink)
-}
-
-/// What the fill needs to know of a polygon's outline before any edge
-/// set-up, gathered in one pass over the vertices (the renderer computes it
-/// once and hands it on: see [`super::scan::fill_polygon`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Outline {
-    /// Smallest and largest x.
-    pub lo: i32,
-    pub hi: i32,
-    /// Smallest and largest y.
-    pub top: i32,
-    pub bot: i32,
-    /// The first vertex with the smallest y.
-    pub top_at: usize,
-    /// [`direction_changes`] of the outline.
-    pub turns: u32,
-}
-
-impl Outline {
-    /// The outline of `pts` (any length; empty gives the identity bounds).
-    #[inline]
-    pub(crate) fn of(pts: &[ScreenPt]) -> Outline {
-        let mut o = Outline {
-            lo: i32::MAX,
-            hi: i32::MIN,
-            top: i32::MAX,
-            bot: i32::MIN,
-            top_at: 0,
-            turns: 0,
-        };
-        let Some(&end) = pts.last() else {
-            return o;
-        };
-        // The same count as `direction_changes`, in the same pass.
-        let (mut first, mut last) = (0i32, 0i32);
-        let mut prev = end;
-        for (i, &p) in pts.iter().enumerate() {
-            o.lo = o.lo.min(p.x);
-            o.hi = o.hi.max(p.x);
-            if p.y < o.top {
-                o.top = p.y;
-                o.top_at = i;
-            }
-            o.bot = o.bot.max(p.y);
-            let s = (p.y - prev.y).signum();
-            if s != 0 {
-                if first == 0 {
-                    first = s;
-                } else if s != last {
-                    o.turns += 1;
-                }
-                last = s;
-            }
-            prev = p;
-        }
-        if first != 0 && first != last {
-            o.turns += 1;
-        }
-        o
-    }
-}
-
-/// [`fill_monotone`] with the outline already known (`o` must be
-/// `Outline::of(pts)`).
-pub(crate) fn fill_monotone_of<K: SpanSink>(
-    pts: &[ScreenPt],
-    o: &Outline,
-    sub: u32,
-    b: &SpanBounds,
-    color: K::Color,
-    sink: &mut K,
-) -> Option<usize> {
     let n = pts.len();
-    match o.turns {
+    match direction_changes(pts) {
         0 => return Some(0), // all on one row line: no active row
         2 => {}
         _ => return None,
     }
-    let (top, ty, by) = (o.top_at, o.top, o.bot);
+    let (mut top, mut ty, mut by) = (0usize, i32::MAX, i32::MIN);
+    for (i, p) in pts.iter().enumerate() {
+        if p.y < ty {
+            ty = p.y;
+            top = i;
+        }
+        by = by.max(p.y);
+    }
     let (first, end) = Dda32::rows(ScreenPt { x: 0, y: ty }, ScreenPt { x: 0, y: by }, sub);
     let mut y = first.max(b.y0);
     let stop = end.min(b.y1);
@@ -315,27 +246,6 @@ mod tests {
 
     fn pt(x: i32, y: i32) -> ScreenPt {
         ScreenPt { x, y }
-    }
-
-    #[test]
-    fn the_outline_pass_agrees_with_the_separate_ones() {
-        let shapes: [&[ScreenPt]; 5] = [
-            &[pt(0, 0), pt(9, 2), pt(3, 8)],
-            &[pt(0, 3), pt(5, 3), pt(9, 3)],
-            &[pt(0, 0), pt(2, 6), pt(4, 1), pt(6, 7), pt(8, 0), pt(4, 9)],
-            &[pt(5, 5), pt(5, 5), pt(1, 2), pt(1, 2), pt(7, 2)],
-            &[pt(-3, 4), pt(8, -6), pt(8, -6), pt(2, 11), pt(-9, 0)],
-        ];
-        for pts in shapes {
-            let o = Outline::of(pts);
-            assert_eq!(o.turns, direction_changes(pts), "{pts:?}");
-            assert_eq!(o.lo, pts.iter().map(|p| p.x).min().unwrap());
-            assert_eq!(o.hi, pts.iter().map(|p| p.x).max().unwrap());
-            assert_eq!(o.top, pts.iter().map(|p| p.y).min().unwrap());
-            assert_eq!(o.bot, pts.iter().map(|p| p.y).max().unwrap());
-            assert_eq!(pts[o.top_at].y, o.top);
-            assert!(pts[..o.top_at].iter().all(|p| p.y > o.top));
-        }
     }
 
     #[test]

@@ -33,12 +33,11 @@ use core::marker::PhantomData;
 use embedded_graphics::pixelcolor::Rgb888;
 
 use super::camera::{Camera, Orbit};
-use super::chain::Outline;
 use super::clip::{all_inside, clip_polygon, ClipNum, ClipVert};
 use super::edge::{Dda32, Edge};
 use super::outline::draw_outline;
 use super::precision::Precision;
-use super::scan::{fill_polygon_outlined, FillRule, Paint, SpanBounds, SpanSink};
+use super::scan::{fill_polygon, FillRule, Paint, SpanBounds, SpanSink};
 use super::shade::{shade, shade_color, DepthCue, Light, ShadeMode};
 use super::transform::{ScreenPt, VertexPath, Viewport};
 use crate::effects::{AllEffects, Compiled, Effects};
@@ -396,10 +395,11 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         // the band's rows (the fill would find no active row, the same
         // outcome) skips shading and edge setup for one pass over its
         // vertices.
-        // One pass over the points for everything the fill asks of the
-        // outline (bounds, top vertex, direction changes).
-        let outline = Outline::of(pts);
-        let (top, bot) = (outline.top, outline.bot);
+        let (mut top, mut bot) = (i32::MAX, i32::MIN);
+        for p in pts {
+            top = top.min(p.y);
+            bot = bot.max(p.y);
+        }
         // Projected points are within ±SCREEN_LIMIT: the 32-bit row bounds
         // apply (and a 64-bit variable shift is not cheap on a 32-bit core).
         let sub = self.viewport.sub_bits();
@@ -423,9 +423,8 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         }
         let paint = Paint { rgb, id: face.id };
         let color = sink.color(&paint);
-        let spans = match fill_polygon_outlined(
+        let spans = match fill_polygon(
             pts,
-            &outline,
             sub,
             self.rule,
             &vp,

@@ -15,7 +15,7 @@
 //!   nothing (edges start directly at the first row in bounds), so a band
 //!   renderer pays per band only for the polygons that reach it.
 
-use super::chain::{fill_monotone_of, Outline};
+use super::chain::fill_monotone;
 use super::edge::{build_edges_with, Edge, SMALL};
 use super::transform::ScreenPt;
 use embedded_graphics::pixelcolor::Rgb888;
@@ -141,34 +141,6 @@ pub fn fill_polygon<K: SpanSink>(
     color: K::Color,
     sink: &mut K,
 ) -> Result<usize, FillError> {
-    fill_polygon_outlined(
-        pts,
-        &Outline::of(pts),
-        sub,
-        rule,
-        clip,
-        edges,
-        active,
-        color,
-        sink,
-    )
-}
-
-/// [`fill_polygon`] with the outline summary already computed
-/// (`o == Outline::of(pts)`): the renderer gathers it in its own pass
-/// over the projected points, so the vertices are read once for both.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn fill_polygon_outlined<K: SpanSink>(
-    pts: &[ScreenPt],
-    o: &Outline,
-    sub: u32,
-    rule: FillRule,
-    clip: &SpanBounds,
-    edges: &mut [Edge],
-    active: &mut [u16],
-    color: K::Color,
-    sink: &mut K,
-) -> Result<usize, FillError> {
     if pts.len() > u16::MAX as usize || active.len() < pts.len() {
         return Err(FillError::Capacity);
     }
@@ -178,7 +150,14 @@ pub(crate) fn fill_polygon_outlined<K: SpanSink>(
     }
     // Cheap reject on the horizontal extent (rows are handled by the edge
     // setup): crossing columns are ceil(x − ½), monotone in x.
-    let (lo, hi, top, bot) = (o.lo, o.hi, o.top, o.bot);
+    let (mut lo, mut hi) = (i32::MAX, i32::MIN);
+    let (mut top, mut bot) = (i32::MAX, i32::MIN);
+    for p in pts {
+        lo = lo.min(p.x);
+        hi = hi.max(p.x);
+        top = top.min(p.y);
+        bot = bot.max(p.y);
+    }
     // col(x) = floor((x − ½ pixel) in pixels) (an arithmetic shift is a
     // floor division by 2^(sub+1)); every crossing lies in
     // [col(lo), col(hi) + 1].
@@ -200,7 +179,7 @@ pub(crate) fn fill_polygon_outlined<K: SpanSink>(
     }
     if small {
         // Convex and other y-monotone polygons: two chains, no edge list.
-        if let Some(spans) = fill_monotone_of(pts, o, sub, &b, color, sink) {
+        if let Some(spans) = fill_monotone(pts, sub, &b, color, sink) {
             return Ok(spans);
         }
     }
