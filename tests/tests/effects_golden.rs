@@ -47,7 +47,7 @@ use host_sim::reference::{zbuffer, Camera, Projection, RefOptions};
 use host_sim::scenes::Scene;
 use host_sim::serialize::{serialize, SerializeOptions};
 use host_sim::tree::Method;
-use render_common::{edge_px, frame, rows, STACK, VERTS};
+use render_common::{edge_px, frame, rows, seg_dist, STACK, VERTS};
 
 const W: usize = 128;
 const H: usize = 128;
@@ -217,17 +217,6 @@ fn to_pixel(cam: &Camera, p: DVec3) -> Option<(f64, f64)> {
     })
 }
 
-fn seg_dist(a: (f64, f64), b: (f64, f64), x: f64, y: f64) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((x - a.0) * dx + (y - a.1) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    ((a.0 + t * dx - x).powi(2) + (a.1 + t * dy - y).powi(2)).sqrt()
-}
-
 /// Per pixel: within `px` of an edge of a polygon visible in `ids`.
 fn near_visible_edges(polys: &[Polygon], cam: &Camera, ids: &[u32], px: f64) -> Vec<bool> {
     let mut visible = vec![false; polys.len()];
@@ -245,7 +234,7 @@ fn near_visible_edges(polys: &[Polygon], cam: &Camera, ids: &[u32], px: f64) -> 
             let (y0, y1) = (a.1.min(b.1) - px, a.1.max(b.1) + px);
             for y in (y0.max(0.0) as usize)..(y1.min(H as f64).max(0.0) as usize + 1).min(H) {
                 for x in (x0.max(0.0) as usize)..(x1.min(W as f64).max(0.0) as usize + 1).min(W) {
-                    if seg_dist(a, b, x as f64 + 0.5, y as f64 + 0.5) <= px {
+                    if seg_dist(a, b, x as f64 + 0.5, y as f64 + 0.5).0 <= px {
                         near[y * W + x] = true;
                     }
                 }

@@ -134,7 +134,7 @@ fn inside(pts: &[(f64, f64)], x: f64, y: f64) -> bool {
 
 /// Distance from `(x, y)` to segment `a b`, and the parameter of the
 /// nearest point.
-fn seg_dist(a: (f64, f64), b: (f64, f64), x: f64, y: f64) -> (f64, f64) {
+pub fn seg_dist(a: (f64, f64), b: (f64, f64), x: f64, y: f64) -> (f64, f64) {
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
     let l2 = dx * dx + dy * dy;
     let t = if l2 > 0.0 {
