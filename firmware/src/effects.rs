@@ -15,7 +15,7 @@ use fpt_nostd::raster::{Camera, Mat4, Renderer};
 use fpt_nostd::reader::Tree;
 
 use crate::clock::Clock;
-use crate::fail;
+use crate::fail::fail;
 use crate::probe::TotalProbe;
 
 /// One measured run: instructions and checksum.

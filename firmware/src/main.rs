@@ -40,6 +40,7 @@
 mod clock;
 #[cfg(feature = "full")]
 mod effects;
+mod fail;
 mod probe;
 mod stack;
 
@@ -59,6 +60,7 @@ use fpt_nostd::reader::Tree;
 use fpt_nostd::render::FaceIds;
 
 use clock::Clock;
+use fail::fail;
 use probe::{PhaseProbe, TotalProbe};
 
 /// The scenes' tree files, in the order of [`SCENES`].
@@ -146,20 +148,6 @@ fn renderer() -> &'static mut FrameRenderer {
         core::ptr::addr_of_mut!((*p).ids).write(FaceIds::Source);
         &mut *p
     }
-}
-
-/// Prints `msg` and exits with failure.
-fn fail(msg: core::fmt::Arguments<'_>) -> ! {
-    hprintln!("error: {}", msg);
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[panic_handler]
-fn panic(info: &core::panic::PanicInfo) -> ! {
-    fail(format_args!("panic: {}", info))
 }
 
 /// The expected checksum of a frame, from [`EXPECTED`].

@@ -22,6 +22,8 @@
 #[allow(dead_code)] // the calibration report belongs to the frame set
 #[path = "../clock.rs"]
 mod clock;
+#[path = "../fail.rs"]
+mod fail;
 #[allow(dead_code)] // the phase probe belongs to the frame set
 #[path = "../probe.rs"]
 mod probe;
@@ -38,6 +40,7 @@ use fpt_nostd::frames::{FRAME_WORDS, VIEWS};
 use fpt_nostd::reader::Tree;
 
 use clock::Clock;
+use fail::fail;
 use probe::TotalProbe;
 
 /// The benchmark scene's trees, by vertex encoding.
@@ -60,19 +63,6 @@ static TREES: [(VertexFormat, &[u8]); 3] = [
 static EXPECTED: &str = include_str!("../../trees/accuracy.txt");
 
 static mut FRAME: [u16; FRAME_WORDS] = [0; FRAME_WORDS];
-
-fn fail(msg: core::fmt::Arguments<'_>) -> ! {
-    hprintln!("error: {}", msg);
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[panic_handler]
-fn panic(info: &core::panic::PanicInfo) -> ! {
-    fail(format_args!("panic: {}", info))
-}
 
 fn expected_crc(config: &str, view: u32) -> Option<u32> {
     EXPECTED

@@ -19,6 +19,9 @@
 #![no_std]
 #![no_main]
 
+#[path = "../fail.rs"]
+mod fail;
+
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 
@@ -37,14 +40,6 @@ type Product = Pipeline<{ Effects::defaults(true).bits() }>;
 static TREE: &[u8] = include_bytes!("../../trees/bench_city.fpt");
 static EXPECTED: &str = include_str!("../../trees/frames.txt");
 static mut FRAME: [u16; FRAME_WORDS] = [0; FRAME_WORDS];
-
-#[panic_handler]
-fn panic(_: &core::panic::PanicInfo) -> ! {
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
 
 #[entry]
 fn main() -> ! {
