@@ -106,13 +106,8 @@ fn render_with<P: Precision, T: MathFns, Pr: Probe>(
     let camera = view.orbit(tree).camera::<T>(aspect).with_model(&Z_UP);
     let frame = Frame::relative(tree, &camera);
     renderer.set_light(Light::new(frame.key_light(), AMBIENT, DIFFUSE));
-    let mut fb = match Rgb565Framebuffer::new(buf, WIDTH, HEIGHT) {
-        Ok(fb) => fb,
-        Err(e) => {
-            probe.stop();
-            return Err(e.into());
-        }
-    };
+    // A failure ends the measurement as well.
+    let mut fb = Rgb565Framebuffer::new(buf, WIDTH, HEIGHT).inspect_err(|_| probe.stop())?;
     clear(&mut fb);
     let drawn = draw_frame::<P, AllEffects, _, WALK_DEPTH, MAX_VERTS>(
         tree,

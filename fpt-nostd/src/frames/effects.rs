@@ -90,13 +90,9 @@ pub fn render_effect<E: Compiled, Pr: Probe>(
     let mut crc = PixelCrc::new();
     match target {
         EffectTarget::Rgb565(buf) => {
-            let mut fb = match Rgb565Framebuffer::new(buf, WIDTH, HEIGHT) {
-                Ok(fb) => fb,
-                Err(e) => {
-                    probe.stop();
-                    return Err(e.into());
-                }
-            };
+            // A failure ends the measurement as well.
+            let mut fb =
+                Rgb565Framebuffer::new(buf, WIDTH, HEIGHT).inspect_err(|_| probe.stop())?;
             clear(&mut fb);
             let drawn = draw(renderer, scratch, tree, &frame, &mut fb);
             probe.stop();
@@ -104,13 +100,8 @@ pub fn render_effect<E: Compiled, Pr: Probe>(
             crc.update(fb.data());
         }
         EffectTarget::Mono { buf, dither } => {
-            let mut fb = match BinaryFramebuffer::new(buf, WIDTH, HEIGHT) {
-                Ok(fb) => fb,
-                Err(e) => {
-                    probe.stop();
-                    return Err(e.into());
-                }
-            };
+            let mut fb =
+                BinaryFramebuffer::new(buf, WIDTH, HEIGHT).inspect_err(|_| probe.stop())?;
             fb.fill_all(BinaryColor::Off);
             let drawn = if dither {
                 draw(
