@@ -561,11 +561,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
                 self.ids,
                 &mut sink,
             )?;
-            total.drawn += s.drawn;
-            total.invisible += s.invisible;
-            total.skipped += s.skipped;
-            total.clipped += s.clipped;
-            total.spans += s.spans;
+            total += s;
             emit(y0, &fb);
         }
         Ok(total)

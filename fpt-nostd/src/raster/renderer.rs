@@ -144,6 +144,17 @@ pub struct RenderStats {
     pub spans: u64,
 }
 
+impl core::ops::AddAssign for RenderStats {
+    /// Adds every counter (e.g. the bands of one frame).
+    fn add_assign(&mut self, o: RenderStats) {
+        self.drawn += o.drawn;
+        self.invisible += o.invisible;
+        self.skipped += o.skipped;
+        self.clipped += o.clipped;
+        self.spans += o.spans;
+    }
+}
+
 /// Frame state and the polygon pipeline (see module docs). `E` names the
 /// stages compiled in (default: all).
 #[derive(Debug)]
@@ -456,6 +467,29 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
 mod tests {
     use super::super::precision::{FixedPrecision, FloatLibm};
     use super::*;
+
+    #[test]
+    fn stats_add_every_counter() {
+        let a = RenderStats {
+            drawn: 1,
+            invisible: 2,
+            skipped: 3,
+            clipped: 4,
+            spans: 5,
+        };
+        let mut t = a;
+        t += a;
+        assert_eq!(
+            t,
+            RenderStats {
+                drawn: 2,
+                invisible: 4,
+                skipped: 6,
+                clipped: 8,
+                spans: 10
+            }
+        );
+    }
 
     #[test]
     fn scratch_sizes_match_the_documentation() {

@@ -529,11 +529,7 @@ where
             fpt_nostd::raster::SpanSink::span(&mut sink, y, 0, job.w as i32, bg);
         }
         let s = tr.render::<_, WALK_STACK>(tree, frame, &mut sink)?;
-        total.drawn += s.drawn;
-        total.invisible += s.invisible;
-        total.skipped += s.skipped;
-        total.clipped += s.clipped;
-        total.spans += s.spans;
+        total += s;
         let d = fb.data();
         let at = y0 as usize * stride;
         if let Some(dst) = out.get_mut(at..at + d.len()) {
