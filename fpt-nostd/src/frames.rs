@@ -43,14 +43,13 @@ use core::fmt;
 
 use embedded_graphics::pixelcolor::Rgb565;
 
-use crate::effects::Effects;
 use crate::order::{Order, OrderError};
 use crate::raster::{
     band_starts, Band, FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, Paint, RenderStats,
     Rgb565Framebuffer, SpanBounds, SpanSink,
 };
 use crate::reader::Tree;
-use crate::render::{face_of, scaled_vertices, Frame, TreeRenderer};
+use crate::render::{face_of, scaled_vertices, walk_effects, Frame, TreeRenderer};
 
 /// Frame width in pixels.
 pub const WIDTH: u32 = 240;
@@ -417,10 +416,9 @@ fn draw_tree<K: SpanSink, Pr: Probe>(
     probe: &Pr,
 ) -> Result<(), OrderError> {
     probe.enter(Phase::Post);
-    let fx = r.renderer.begin_tree(Effects::from_bits(tree.effects()));
-    let order = Order::<WALK_DEPTH>::with_culling(tree, frame.view, fx.contains(Effects::CULLING))?;
+    let (cull, two_sided) = walk_effects(tree, &mut r.renderer);
+    let order = Order::<WALK_DEPTH>::with_culling(tree, frame.view, cull)?;
     let view = order.view();
-    let two_sided = fx.contains(Effects::TWO_SIDED);
     let scale = frame.vertex_scale;
     let mut sink = ProbeSink { inner: sink, probe };
     for class in order {

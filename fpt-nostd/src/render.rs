@@ -424,10 +424,9 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
 ) -> Result<RenderStats, OrderError> {
     renderer.set_camera(&frame.camera);
     renderer.reset_stats();
-    let fx = renderer.begin_tree(Effects::from_bits(tree.effects()));
-    let order = Order::<N>::with_culling(tree, frame.view, fx.contains(Effects::CULLING))?;
+    let (cull, two_sided) = walk_effects(tree, renderer);
+    let order = Order::<N>::with_culling(tree, frame.view, cull)?;
     let view = order.view();
-    let two_sided = fx.contains(Effects::TWO_SIDED);
     let scale = frame.vertex_scale;
     for class in order {
         // Ids rather than `class.polygons(tree)`, which copies the whole
@@ -444,6 +443,24 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
         }
     }
     Ok(renderer.stats())
+}
+
+/// What the walk of a frame needs from the effects: settles the renderer's
+/// effects for `tree` ([`Renderer::begin_tree`]) and returns whether to cull
+/// back faces and whether back sides are lit two-sided. Shared by
+/// [`draw_frame`] and the firmware's measured loop in [`crate::frames`].
+/// (The walk itself is built by each caller: handing a walk back by value
+/// would copy its whole stack every frame.)
+#[inline]
+pub(crate) fn walk_effects<P: Precision, E: Compiled>(
+    tree: &Tree<'_>,
+    renderer: &mut Renderer<P, E>,
+) -> (bool, bool) {
+    let fx = renderer.begin_tree(Effects::from_bits(tree.effects()));
+    (
+        fx.contains(Effects::CULLING),
+        fx.contains(Effects::TWO_SIDED),
+    )
 }
 
 /// The face the rasterizer draws for polygon `p` of the walk: its colour,
