@@ -14,10 +14,13 @@
 //! many, never a missing silhouette.
 //!
 //! Only 8 bits are stored per polygon: edges from the 9th on are always
-//! outlines (pieces that long are rare: [`hidden_edges`] callers can count
-//! them with [`lost_inner_edges`]). Rotating such loops would fit more, but
-//! would break the one-to-one order of the builder's and the file's
-//! vertices that the accuracy study relies on.
+//! outlines. That is not rare once seams are repaired (T-junction vertices
+//! lengthen loops): counted with [`lost_inner_edges`] on the procedural
+//! scenes, 62 of 2,276 inner edges of the vise are drawn (2.7 %), 135 of
+//! 3,928 of the house (3.4 %), 213 of 2,788 of `bench_city` (7.6 %).
+//! Rotating such loops would fit more, but would break the one-to-one order
+//! of the builder's and the file's vertices that the accuracy study relies
+//! on; a wider mask would change the format.
 
 use std::collections::HashMap;
 
