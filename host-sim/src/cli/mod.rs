@@ -101,7 +101,7 @@ pub struct BuildArgs {
     /// Default: culling (closed) or two-sided (open), clipping, lighting.
     #[arg(long)]
     pub effects: Option<String>,
-    /// The orbit the scene is seen from, DIST,FOV[,ASPECT]: distance from
+    /// The orbit the scene is seen from, DIST,FOV or DIST,FOV,ASPECT: distance from
     /// the bounding-sphere centre in bounding radii, vertical field of view
     /// in degrees (0: parallel), viewport width/height (default 1). When no
     /// view of that orbit can need clipping, the default effects leave

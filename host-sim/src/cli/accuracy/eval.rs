@@ -476,7 +476,7 @@ pub fn draw(
 /// interleaved within a round (starting one later each round) so that
 /// drift and position hit all alike; per configuration and frame the
 /// fastest of the rounds (the one least disturbed by other processes),
-/// averaged over the frames. Times the whole [`render_job`] (frame
+/// averaged over the frames. Times the whole `render::render_job` (frame
 /// derivation included), ids off.
 pub fn host_seconds(
     cases: &[Case],
