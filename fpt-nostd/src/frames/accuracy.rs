@@ -22,8 +22,8 @@ use super::{Phase, HEIGHT, MAX_VERTS, WALK_DEPTH, WIDTH};
 use crate::effects::AllEffects;
 use crate::format::VertexFormat;
 use crate::raster::{
-    Camera, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Libm, Light, Mat4, MathFns,
-    Precision, Renderer, Rgb565Framebuffer, Scratch,
+    Camera, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, FramebufferError, Libm,
+    Light, Mat4, MathFns, Precision, Renderer, Rgb565Framebuffer, Scratch,
 };
 use crate::reader::Tree;
 use crate::render::{draw_frame, FaceIds, Frame};
@@ -97,8 +97,10 @@ fn render_with<P: Precision, T: MathFns, Pr: Probe>(
     probe: &Pr,
 ) -> Result<u32, FrameError> {
     let identity = Camera::from_matrix(Mat4::IDENTITY, 1.0);
+    // `Renderer::new` refuses only a side that is 0 or too large: the
+    // frame's size, reported as such.
     let Some(mut renderer) = Renderer::<P, AllEffects>::new(WIDTH, HEIGHT, &identity) else {
-        return Err(FrameError::UnknownConfig);
+        return Err(FrameError::Buffer(FramebufferError::BadSize));
     };
     let mut scratch = Scratch::<P, MAX_VERTS>::new();
     probe.start(Phase::Xform);
