@@ -417,15 +417,14 @@ fn draw_tree<K: SpanSink, Pr: Probe>(
 ) -> Result<(), OrderError> {
     probe.enter(Phase::Post);
     let (cull, two_sided) = walk_effects(tree, &mut r.renderer);
-    let order = Order::<WALK_DEPTH>::with_culling(tree, frame.view, cull)?;
+    let mut order = Order::<WALK_DEPTH>::with_culling(tree, frame.view, cull)?;
     let view = order.view();
     let scale = frame.vertex_scale;
     let mut sink = ProbeSink { inner: sink, probe };
-    for class in order {
-        // Ids rather than `class.polygons(tree)`, which copies the whole
-        // `Tree` into every class's iterator (a measurable cost per class
-        // on the Cortex-M4).
-        for p in class.filter_map(|id| tree.polygon(id)) {
+    // Ranges of ids straight from the walk: no class is built or copied,
+    // and no `Tree` is copied into an iterator per class.
+    while let Some(ids) = order.next_range() {
+        for p in ids.filter_map(|id| tree.polygon(id)) {
             let face = face_of(&p, &view, two_sided, p.source());
             let verts = scaled_vertices(&p, scale);
             probe.enter(Phase::Xform);

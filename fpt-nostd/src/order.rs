@@ -70,6 +70,12 @@
 //!         draw(polygon); // any order within a class
 //!     }
 //! }
+//! // A renderer needs no class boundaries: ranges of ids straight from the
+//! // walk, in the same order, with no class built or copied.
+//! let mut order = Order::<32>::new(&tree, view)?;
+//! while let Some(ids) = order.next_range() {
+//!     ids.filter_map(|id| tree.polygon(id)).for_each(draw);
+//! }
 //! ```
 
 use core::fmt;
@@ -79,7 +85,7 @@ mod class;
 use crate::format::NO_SWITCH;
 use crate::reader::{Plane, PolygonRef, Tree, WalkData};
 pub use class::Class;
-use class::{Facing, Pick, Seg};
+use class::{Cursor, Facing, Pick, Seg};
 
 /// A view, in the model's coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -237,6 +243,8 @@ pub struct Order<'a, const N: usize> {
     closed: bool,
     /// Runs still to hand out as the away-facing prelude (0 when none).
     prelude_runs: u32,
+    /// The current class's hand-out (see [`Order::next_range`]).
+    at: Cursor,
     len: usize,
     stack: [Frame; N],
 }
@@ -278,6 +286,7 @@ impl<'a, const N: usize> Order<'a, N> {
             } else {
                 0
             },
+            at: Cursor::EMPTY,
             len: 0,
             stack: [Frame::EMPTY; N],
         };
@@ -322,11 +331,11 @@ impl<'a, const N: usize> Order<'a, N> {
         }
     }
 
-    /// The class of level `j` of `f` on the way down (`down`) or up:
-    /// backward faces of `B_j` (down) or `F_j` (up), with the forward faces
-    /// of the other bunch for an open volume; `None` if nothing passes.
+    /// Starts the class of level `j` of `f` on the way down (`down`) or
+    /// up: backward faces of `B_j` (down) or `F_j` (up), with the forward
+    /// faces of the other bunch for an open volume; false if nothing passes.
     #[inline]
-    fn level_class(&self, f: &Frame, j: u32, down: bool) -> Option<Class<'a>> {
+    fn start_level(&mut self, f: &Frame, j: u32, down: bool) -> bool {
         // F_j and B_j of level j (0-based) are bunches fb + 2j and fb + 2j + 1.
         let fj = f.first_bunch.wrapping_add(j.wrapping_mul(2));
         let bj = fj.wrapping_add(1);
@@ -338,64 +347,77 @@ impl<'a, const N: usize> Order<'a, N> {
             self.w.bunch(far)
         };
         if a.0 >= a.1 && b.0 >= b.1 {
-            return None; // both bunches empty: the common case, made cheap
+            return false; // both bunches empty: the common case, made cheap
         }
         let segs = [
             Seg::new(&self.w, a, Pick::Backward),
             Seg::new(&self.w, b, Pick::Forward),
         ];
-        Class::new(&self.w, self.face, segs)
+        self.at.start(self.w.runs, &self.face, segs)
     }
 
-    /// The class of the on-plane bunch of `f`'s switch.
+    /// Starts the class of the on-plane bunch of `f`'s switch; false if
+    /// nothing passes.
     #[inline]
-    fn on_class(&self, f: &Frame) -> Option<Class<'a>> {
+    fn start_on(&mut self, f: &Frame) -> bool {
         let on = f.first_bunch.wrapping_add(f.levels.wrapping_mul(2));
         let runs = self.w.bunch(on);
         if runs.0 >= runs.1 {
-            return None;
+            return false;
         }
         let pick = if self.closed {
             Pick::Backward
         } else {
             Pick::All
         };
-        Class::new(
-            &self.w,
-            self.face,
-            [Seg::new(&self.w, runs, pick), Seg::EMPTY],
-        )
+        let segs = [Seg::new(&self.w, runs, pick), Seg::EMPTY];
+        self.at.start(self.w.runs, &self.face, segs)
     }
-}
 
-/// The children of switch `k`: `G_f` is node `2k + 1`, `G_b` node `2k + 2`.
-#[inline(always)]
-fn child(k: u32, back: bool) -> u32 {
-    k.wrapping_mul(2).wrapping_add(1 + u32::from(back))
-}
+    /// The next range of polygon ids back to front, whole runs where it
+    /// can, ignoring class boundaries: what a renderer needs, without a
+    /// [`Class`] built and copied per class. Every id comes exactly as
+    /// iterating the classes and their ids would give it, in the same
+    /// order. Mixing both is allowed: after `next_range` stopped inside a
+    /// class, [`Iterator::next`] returns the rest of that class.
+    #[inline]
+    pub fn next_range(&mut self) -> Option<core::ops::Range<u32>> {
+        loop {
+            if let Some(r) = self.at.next_range(self.w.runs, &self.face) {
+                return Some(r);
+            }
+            if !self.advance() {
+                return None;
+            }
+        }
+    }
 
-impl<'a, const N: usize> Iterator for Order<'a, N> {
-    type Item = Class<'a>;
-
-    fn next(&mut self) -> Option<Class<'a>> {
+    /// Moves to the next class that has a passing run (its hand-out in
+    /// `self.at`); false at the end of the walk.
+    fn advance(&mut self) -> bool {
         if self.prelude_runs != 0 {
             let runs = (0, core::mem::take(&mut self.prelude_runs));
             let seg = Seg::new(&self.w, runs, Pick::Forward);
-            if let Some(c) = Class::new(&self.w, self.face, [seg, Seg::EMPTY]) {
-                return Some(c);
+            if self.at.start(self.w.runs, &self.face, [seg, Seg::EMPTY]) {
+                return true;
             }
         }
         loop {
-            let top = self.len.checked_sub(1)?;
-            let mut f = *self.stack.get(top)?;
+            let Some(top) = self.len.checked_sub(1) else {
+                return false;
+            };
+            let Some(&frame) = self.stack.get(top) else {
+                return false;
+            };
+            let mut f = frame;
             match f.phase & !FAR_IS_BACK {
                 DOWN => {
                     while f.j < f.levels {
                         let j = f.j;
                         f.j += 1;
-                        if let Some(c) = self.level_class(&f, j, true) {
+                        if self.start_level(&f, j, true) {
                             self.put(top, f);
-                            return Some(c);
+                            return true;
                         }
                     }
                     if f.switch == NO_SWITCH {
@@ -423,22 +445,42 @@ impl<'a, const N: usize> Iterator for Order<'a, N> {
                     }
                     // The near group is walked after this class is drawn.
                     self.push(child(f.switch, !back_is_far));
-                    if let Some(c) = self.on_class(&f) {
-                        return Some(c);
+                    if self.start_on(&f) {
+                        return true;
                     }
                 }
                 _ => {
                     while f.j > 0 {
                         f.j -= 1;
-                        if let Some(c) = self.level_class(&f, f.j, false) {
+                        if self.start_level(&f, f.j, false) {
                             self.put(top, f);
-                            return Some(c);
+                            return true;
                         }
                     }
                     self.len = top;
                 }
             }
         }
+    }
+}
+
+/// The children of switch `k`: `G_f` is node `2k + 1`, `G_b` node `2k + 2`.
+#[inline(always)]
+fn child(k: u32, back: bool) -> u32 {
+    k.wrapping_mul(2).wrapping_add(1 + u32::from(back))
+}
+
+impl<'a, const N: usize> Iterator for Order<'a, N> {
+    type Item = Class<'a>;
+
+    fn next(&mut self) -> Option<Class<'a>> {
+        // What is left of the current class first (nothing, unless
+        // `next_range` stopped inside it).
+        if !self.at.pending(self.w.runs, &self.face) && !self.advance() {
+            return None;
+        }
+        let at = core::mem::replace(&mut self.at, Cursor::EMPTY);
+        Some(Class::resume(&self.w, self.face, at))
     }
 }
 

@@ -425,14 +425,13 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
     renderer.set_camera(&frame.camera);
     renderer.reset_stats();
     let (cull, two_sided) = walk_effects(tree, renderer);
-    let order = Order::<N>::with_culling(tree, frame.view, cull)?;
+    let mut order = Order::<N>::with_culling(tree, frame.view, cull)?;
     let view = order.view();
     let scale = frame.vertex_scale;
-    for class in order {
-        // Ids rather than `class.polygons(tree)`, which copies the whole
-        // `Tree` into every class's iterator (measurable per class on a
-        // Cortex-M4).
-        for p in class.filter_map(|id| tree.polygon(id)) {
+    // Ranges of ids straight from the walk: no class is built or copied,
+    // and no `Tree` is copied into an iterator per class.
+    while let Some(range) = order.next_range() {
+        for p in range.filter_map(|id| tree.polygon(id)) {
             let id = match ids {
                 FaceIds::Source => p.source(),
                 FaceIds::Polygon => p.id(),

@@ -149,43 +149,45 @@ impl Seg {
     }
 }
 
-/// One class: polygons of equal priority, already culled, as polygon ids.
-///
-/// Within a class no polygon can hide another, so they may be drawn in any
-/// order; the ids come run by run in the order of the file. Iterate the ids
-/// one by one, or take whole ranges with [`Class::next_range`].
+/// Where a class's hand-out stands: the ids `next..end` of a passing run
+/// are left, then the runs of `segs[cur..]`. Kept by value inside the walk
+/// ([`super::Order::next_range`] advances it in place) and inside a
+/// [`Class`]: 40 bytes, where a whole class is 68 (copying classes out of
+/// the walk was a measurable part of a frame on a Cortex-M4).
 #[derive(Clone, Copy, Debug)]
-pub struct Class<'a> {
-    runs: &'a [u8],
-    face: Facing,
-    /// The ids `next..end` of a passing run are left to hand out.
+pub(super) struct Cursor {
     next: u32,
     end: u32,
     segs: [Seg; 2],
     cur: usize,
 }
 
-impl<'a> Class<'a> {
-    /// The class of `segs`, or `None` if nothing in them passes.
+impl Cursor {
+    /// Nothing left.
+    pub(super) const EMPTY: Cursor = Cursor {
+        next: 0,
+        end: 0,
+        segs: [Seg::EMPTY, Seg::EMPTY],
+        cur: 2,
+    };
+
+    /// Starts on `segs`; false (and nothing to hand out) when nothing in
+    /// them passes.
     #[inline]
-    pub(super) fn new(w: &WalkData<'a>, face: Facing, segs: [Seg; 2]) -> Option<Class<'a>> {
-        let mut c = Class {
-            runs: w.runs,
-            face,
-            next: 0,
-            end: 0,
-            segs,
-            cur: 0,
-        };
-        c.settle().then_some(c)
+    pub(super) fn start(&mut self, runs: &[u8], face: &Facing, segs: [Seg; 2]) -> bool {
+        self.next = 0;
+        self.end = 0;
+        self.segs = segs;
+        self.cur = 0;
+        self.settle(runs, face)
     }
 
     /// Makes `next..end` the next passing run; false when there is none.
     /// Each run is tested once.
     #[inline]
-    fn settle(&mut self) -> bool {
+    fn settle(&mut self, runs: &[u8], face: &Facing) -> bool {
         while let Some(seg) = self.segs.get_mut(self.cur) {
-            if let Some((start, end)) = seg.take(self.runs, &self.face) {
+            if let Some((start, end)) = seg.take(runs, face) {
                 self.next = start;
                 self.end = end;
                 return true;
@@ -195,17 +197,81 @@ impl<'a> Class<'a> {
         false
     }
 
-    /// The next range of polygon ids of this class (a whole run, or what is
-    /// left of it after [`Iterator::next`]); `None` at the end. Every id of
-    /// the range belongs to the class.
+    /// The next range of ids (a whole run, or what is left of it).
     #[inline]
-    pub fn next_range(&mut self) -> Option<Range<u32>> {
-        if self.next >= self.end && !self.settle() {
+    pub(super) fn next_range(&mut self, runs: &[u8], face: &Facing) -> Option<Range<u32>> {
+        if self.next >= self.end && !self.settle(runs, face) {
             return None;
         }
         let r = self.next..self.end;
         self.next = self.end;
         Some(r)
+    }
+
+    /// Whether an id is left to hand out (settling on the next passing run
+    /// if the current one is used up).
+    #[inline]
+    pub(super) fn pending(&mut self, runs: &[u8], face: &Facing) -> bool {
+        self.next < self.end || self.settle(runs, face)
+    }
+
+    /// The next id.
+    #[inline]
+    fn next_id(&mut self, runs: &[u8], face: &Facing) -> Option<u32> {
+        if self.next >= self.end && !self.settle(runs, face) {
+            return None;
+        }
+        let id = self.next;
+        // next < end, so this cannot overflow.
+        self.next += 1;
+        Some(id)
+    }
+
+    /// Ids left (an upper bound on what passes) and ids surely left.
+    fn bounds(&self, runs: &[u8]) -> (u32, u32) {
+        let current = self.end.saturating_sub(self.next);
+        let rest = self
+            .segs
+            .iter()
+            .skip(self.cur)
+            .map(|s| s.left(runs))
+            .fold(current, u32::saturating_add);
+        (current, rest)
+    }
+}
+
+/// One class: polygons of equal priority, already culled, as polygon ids.
+///
+/// Within a class no polygon can hide another, so they may be drawn in any
+/// order; the ids come run by run in the order of the file. Iterate the ids
+/// one by one, or take whole ranges with [`Class::next_range`]. (A renderer
+/// that needs no class boundaries takes ranges straight from the walk:
+/// [`super::Order::next_range`].)
+#[derive(Clone, Copy, Debug)]
+pub struct Class<'a> {
+    runs: &'a [u8],
+    face: Facing,
+    at: Cursor,
+}
+
+impl<'a> Class<'a> {
+    /// The class whose hand-out stands at `at` (already settled on a
+    /// passing run).
+    #[inline]
+    pub(super) fn resume(w: &WalkData<'a>, face: Facing, at: Cursor) -> Class<'a> {
+        Class {
+            runs: w.runs,
+            face,
+            at,
+        }
+    }
+
+    /// The next range of polygon ids of this class (a whole run, or what is
+    /// left of it after [`Iterator::next`]); `None` at the end. Every id of
+    /// the range belongs to the class.
+    #[inline]
+    pub fn next_range(&mut self) -> Option<Range<u32>> {
+        self.at.next_range(self.runs, &self.face)
     }
 
     /// The polygons of this class.
@@ -220,23 +286,11 @@ impl Iterator for Class<'_> {
 
     #[inline]
     fn next(&mut self) -> Option<u32> {
-        if self.next >= self.end && !self.settle() {
-            return None;
-        }
-        let id = self.next;
-        // next < end, so this cannot overflow.
-        self.next += 1;
-        Some(id)
+        self.at.next_id(self.runs, &self.face)
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
-        let current = self.end.saturating_sub(self.next);
-        let rest: u32 = self
-            .segs
-            .iter()
-            .skip(self.cur)
-            .map(|s| s.left(self.runs))
-            .fold(current, u32::saturating_add);
+        let (current, rest) = self.at.bounds(self.runs);
         (current as usize, Some(rest as usize))
     }
 }

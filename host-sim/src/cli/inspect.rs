@@ -2,6 +2,7 @@
 //! read the serialized tree through `fpt-nostd` ([`Tree::from_bytes`]) and
 //! walk it with its [`Order`]: the host has no traversal of its own.
 
+use std::ops::Range;
 use std::path::Path;
 use std::time::Instant;
 
@@ -22,31 +23,57 @@ fn parse<'a>(path: &Path, bytes: &'a [u8]) -> Result<Tree<'a>, CliError> {
     Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e}", path.display()))
 }
 
-/// Walks `tree` for `view` with a stack of `N` frames, handing over each class.
+/// What a walk hands over: its classes ([`Classes`]: `fpt order`, the
+/// counts) or only its ranges of ids ([`Ranges`]: the timed loop, which
+/// takes them as a renderer does, through [`Order::next_range`]).
+trait Visitor {
+    /// Takes the whole walk.
+    fn visit<const N: usize>(&mut self, order: Order<'_, N>);
+}
+
+/// Calls the closure with each class.
+struct Classes<F>(F);
+
+impl<F: FnMut(Class<'_>)> Visitor for Classes<F> {
+    fn visit<const N: usize>(&mut self, order: Order<'_, N>) {
+        order.for_each(&mut self.0);
+    }
+}
+
+/// Calls the closure with each range of ids.
+struct Ranges<F>(F);
+
+impl<F: FnMut(Range<u32>)> Visitor for Ranges<F> {
+    fn visit<const N: usize>(&mut self, mut order: Order<'_, N>) {
+        while let Some(r) = order.next_range() {
+            (self.0)(r);
+        }
+    }
+}
+
+/// Walks `tree` for `view` with a stack of `N` frames.
 ///
 /// Not inlined: each stack size gets its own function, so a walk only
 /// reserves (and probes) the stack frame of the size it uses.
 #[inline(never)]
-fn walk_with<const N: usize, F: FnMut(Class<'_>)>(
+fn walk_with<const N: usize, V: Visitor>(
     tree: &Tree<'_>,
     view: View,
-    f: &mut F,
+    v: &mut V,
 ) -> Result<(), CliError> {
-    for class in Order::<N>::new(tree, view)? {
-        f(class);
-    }
+    v.visit(Order::<N>::new(tree, view)?);
     Ok(())
 }
 
 /// Walks `tree` for `view` with the smallest stack that holds its depth
 /// (a small stack is cheaper to set up for every view).
-fn walk<F: FnMut(Class<'_>)>(tree: &Tree<'_>, view: View, mut f: F) -> Result<(), CliError> {
+fn walk<V: Visitor>(tree: &Tree<'_>, view: View, mut v: V) -> Result<(), CliError> {
     match tree.max_depth() {
-        0..=16 => walk_with::<16, F>(tree, view, &mut f),
-        17..=64 => walk_with::<64, F>(tree, view, &mut f),
-        65..=256 => walk_with::<256, F>(tree, view, &mut f),
-        257..=2048 => walk_with::<2048, F>(tree, view, &mut f),
-        _ => walk_with::<16384, F>(tree, view, &mut f),
+        0..=16 => walk_with::<16, V>(tree, view, &mut v),
+        17..=64 => walk_with::<64, V>(tree, view, &mut v),
+        65..=256 => walk_with::<256, V>(tree, view, &mut v),
+        257..=2048 => walk_with::<2048, V>(tree, view, &mut v),
+        _ => walk_with::<16384, V>(tree, view, &mut v),
     }
 }
 
@@ -90,7 +117,11 @@ pub fn order(a: &OrderArgs) -> CliResult {
     let tree = parse(&a.tree, &bytes)?;
     let view = view_of(a, &tree)?;
     let mut classes: Vec<Vec<u32>> = Vec::new();
-    walk(&tree, view, |c| classes.push(c.collect()))?;
+    walk(
+        &tree,
+        view,
+        Classes(|c: Class<'_>| classes.push(c.collect())),
+    )?;
     println!("{}", serde_json::to_string(&json!({ "classes": classes }))?);
     Ok(())
 }
@@ -164,9 +195,10 @@ pub fn fibonacci_sphere(n: u32) -> Vec<[f32; 3]> {
 }
 
 /// `fpt bench-order`: times the whole postprocessing of a view, the same
-/// way for every tree (feudal or BSP): [`Order`] yields the classes and the
-/// timed loop takes every polygon id of every class, so the facing tests of
-/// the culling are included. Besides the timings, the JSON gives the tree's
+/// way for every tree (feudal or BSP): the timed loop takes every polygon id
+/// the walk emits, in ranges as a renderer takes them
+/// ([`Order::next_range`]), so the facing tests of the culling are
+/// included. Besides the timings, the JSON gives the tree's
 /// counts that the cost is made of (see the `Cost` section of
 /// `fpt_nostd::order`).
 pub fn bench_order(a: &BenchOrderArgs) -> CliResult {
@@ -186,10 +218,14 @@ pub fn bench_order(a: &BenchOrderArgs) -> CliResult {
     // One untimed pass for the counts (and to warm the caches).
     let (mut emitted, mut classes) = (0u64, 0u64);
     for &v in &views {
-        walk(&tree, v, |c| {
-            classes += 1;
-            emitted += c.count() as u64;
-        })?;
+        walk(
+            &tree,
+            v,
+            Classes(|c: Class<'_>| {
+                classes += 1;
+                emitted += c.count() as u64;
+            }),
+        )?;
     }
 
     let start = Instant::now();
@@ -197,9 +233,13 @@ pub fn bench_order(a: &BenchOrderArgs) -> CliResult {
     let mut sink = 0u64;
     while passes == 0 || start.elapsed().as_secs_f64() < a.min_seconds {
         for &v in &views {
-            walk(&tree, std::hint::black_box(v), |c| {
-                sink = c.fold(sink, |s, id| s.wrapping_add(u64::from(id)));
-            })?;
+            walk(
+                &tree,
+                std::hint::black_box(v),
+                Ranges(|r: Range<u32>| {
+                    sink = r.fold(sink, |s, id| s.wrapping_add(u64::from(id)));
+                }),
+            )?;
         }
         passes += 1;
     }

@@ -302,7 +302,33 @@ pub fn check_walk(tree: &Tree<'_>, view: View) -> usize {
     if !tree.is_closed() {
         assert_eq!(emitted, n, "open volume: every polygon exactly once");
     }
+    check_ranges(tree, view);
     emitted
+}
+
+/// The walk's ranges ([`Order::next_range`]) give the ids of its classes in
+/// the same order, and so does any mix of ranges and classes.
+fn check_ranges(tree: &Tree<'_>, view: View) {
+    let walk = || Order::<1024>::new(tree, view).expect("walked above");
+    let by_class: Vec<u32> = walk().flatten().collect();
+    let mut order = walk();
+    let mut by_range = Vec::new();
+    while let Some(r) = order.next_range() {
+        assert!(!r.is_empty(), "empty range");
+        by_range.extend(r);
+    }
+    assert_eq!(by_range, by_class, "ranges against classes");
+    // Alternate: one range, then the rest of its class as a class.
+    let mut order = walk();
+    let mut mixed = Vec::new();
+    while let Some(r) = order.next_range() {
+        mixed.extend(r);
+        match order.next() {
+            Some(rest) => mixed.extend(rest),
+            None => break,
+        }
+    }
+    assert_eq!(mixed, by_class, "ranges mixed with classes");
 }
 
 /// Touches every accessor of every polygon.
