@@ -373,13 +373,16 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         } else {
             0.0
         };
-        let (clipped, was_clipped) = if fx.contains(Effects::CLIPPING) {
+        // Inside every plane (the common case): no clipping, and the
+        // projection's unchecked form applies.
+        let inside = all_inside(&scratch.clip_a, n, self.near);
+        let (clipped, was_clipped) = if inside {
+            (&scratch.clip_a[..n.min(N)], false)
+        } else if fx.contains(Effects::CLIPPING) {
             let Ok(c) = clip_polygon(&mut scratch.clip_a, n, &mut scratch.clip_b, self.near) else {
                 return Outcome::Skipped(SkipReason::ClipCapacity);
             };
             (c.verts, c.clipped)
-        } else if all_inside(&scratch.clip_a, n, self.near) {
-            (&scratch.clip_a[..n.min(N)], false)
         } else {
             return Outcome::Invisible;
         };
@@ -390,7 +393,12 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             return Outcome::Invisible;
         }
         for (dst, v) in scratch.screen.iter_mut().zip(clipped.iter()) {
-            match P::Path::project(v, &self.viewport) {
+            let p = if inside {
+                P::Path::project_inside(v, &self.viewport)
+            } else {
+                P::Path::project(v, &self.viewport)
+            };
+            match p {
                 Some(p) => *dst = p,
                 None => return Outcome::Skipped(SkipReason::NonFinite),
             }

@@ -105,6 +105,15 @@ pub trait VertexPath {
     /// Perspective divide and viewport mapping; `None` if `w ≤ 0` or the
     /// vertex is not finite.
     fn project(v: &ClipVert<Self::Scalar>, vp: &Viewport) -> Option<ScreenPt>;
+    /// [`VertexPath::project`] of a vertex straight from
+    /// [`VertexPath::transform`] that is inside every clip plane
+    /// ([`ClipNum::inside`]), the common case: the same result, with the
+    /// checks that such a vertex cannot fail left out where that is
+    /// cheaper.
+    #[inline]
+    fn project_inside(v: &ClipVert<Self::Scalar>, vp: &Viewport) -> Option<ScreenPt> {
+        Self::project(v, vp)
+    }
 }
 
 /// Fixed-point vertex path with `F` fraction bits (see module docs).
@@ -211,7 +220,8 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
         // rejects.
         let row = |r: &[f32; 4]| r[0] * v[0] + r[1] * v[1] + r[2] * v[2] + r[3];
         let (x, y, w) = (row(&m.0[0]), row(&m.0[1]), row(&m.0[3]));
-        let ok = |s: f32| s.is_finite() && s.abs() <= FLOAT_CLIP_LIMIT;
+        // `|s| ≤ LIMIT` is false for NaN and ±∞: it is the finiteness test.
+        let ok = |s: f32| s.abs() <= FLOAT_CLIP_LIMIT;
         (ok(x) && ok(y) && ok(w)).then_some(ClipVert { x, y, w })
     }
 
@@ -253,6 +263,28 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
         Some(ScreenPt {
             x: floor_to_i32(x).clamp(-lim, lim),
             y: floor_to_i32(y).clamp(-lim, lim),
+        })
+    }
+
+    /// The same arithmetic as [`VertexPath::project`], without the checks
+    /// an inside vertex from [`VertexPath::transform`] passes anyway: it is
+    /// finite (the transform rejects anything else) with
+    /// `w ≥ near > 0`, so `x`, `y`, `w` need no test; the NDC clamp stays
+    /// (it bounds what follows even for an inexact reciprocal, and is what
+    /// `project` computes), and after it `|x|, |y| ≤ 5.5 · 2^21 <
+    /// SCREEN_LIMIT` (largest viewport, 8 sub-pixel bits), so the results
+    /// are finite and the screen clamp changes nothing.
+    #[inline]
+    fn project_inside(v: &ClipVert<f32>, vp: &Viewport) -> Option<ScreenPt> {
+        let r = M::recip(v.w);
+        let lim = GUARD as f32 + 0.5;
+        let nx = (v.x * r).clamp(-lim, lim);
+        let ny = (v.y * r).clamp(-lim, lim);
+        let sw = 0.5 * (vp.width << vp.sub) as f32;
+        let sh = 0.5 * (vp.height << vp.sub) as f32;
+        Some(ScreenPt {
+            x: floor_to_i32((nx + 1.0) * sw + 0.5),
+            y: floor_to_i32((1.0 - ny) * sh + 0.5),
         })
     }
 }
@@ -417,5 +449,44 @@ mod tests {
         assert!(Viewport::new(10, MAX_DIM + 1, 0).is_none());
         assert!(Viewport::new(10, 10, 9).is_none());
         assert!(Viewport::new(MAX_DIM, MAX_DIM, 8).is_some());
+    }
+
+    /// The unchecked projection of inside vertices is the checked one, for
+    /// both reciprocals, every sub-pixel count and extreme viewports,
+    /// vertices on the guard planes and the near plane included.
+    #[test]
+    fn projecting_inside_vertices_skips_only_checks() {
+        fn check<M: MathFns>(rng: &mut crate::raster::tests::Rng) {
+            for &(w, h) in &[(240, 240), (1, 1), (MAX_DIM, 3), (MAX_DIM, MAX_DIM)] {
+                for sub in 0..=8 {
+                    let vp = Viewport::new(w, h, sub).unwrap();
+                    for k in 0..400 {
+                        let near = FloatPath::<M>::near(0.01);
+                        let cw = match k % 4 {
+                            0 => near,
+                            1 => rng.float(near, 2.0),
+                            2 => rng.float(1.0, 1e6),
+                            _ => rng.float(1e-6, 1e-3).max(near),
+                        };
+                        let g = GUARD as f32 * cw;
+                        let (x, y) = match k % 3 {
+                            0 => (g, -g),
+                            1 => (rng.float(-g, g), rng.float(-g, g)),
+                            _ => (rng.float(-1.0, 1.0) * cw, g),
+                        };
+                        let v = ClipVert { x, y, w: cw };
+                        assert!(<f32 as ClipNum>::inside(&v, near), "{v:?}");
+                        assert_eq!(
+                            FloatPath::<M>::project_inside(&v, &vp),
+                            FloatPath::<M>::project(&v, &vp),
+                            "{v:?} {w}x{h} sub {sub}"
+                        );
+                    }
+                }
+            }
+        }
+        let mut rng = crate::raster::tests::Rng(5);
+        check::<Libm>(&mut rng);
+        check::<Micromath>(&mut rng);
     }
 }
