@@ -394,6 +394,7 @@ impl<'a, const N: usize> Order<'a, N> {
 
     /// Moves to the next class that has a passing run (its hand-out in
     /// `self.at`); false at the end of the walk.
+    #[inline(never)]
     fn advance(&mut self) -> bool {
         if self.prelude_runs != 0 {
             let runs = (0, core::mem::take(&mut self.prelude_runs));

@@ -373,16 +373,13 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         } else {
             0.0
         };
-        // Inside every plane (the common case): no clipping, and the
-        // projection's unchecked form applies.
-        let inside = all_inside(&scratch.clip_a, n, self.near);
-        let (clipped, was_clipped) = if inside {
-            (&scratch.clip_a[..n.min(N)], false)
-        } else if fx.contains(Effects::CLIPPING) {
+        let (clipped, was_clipped) = if fx.contains(Effects::CLIPPING) {
             let Ok(c) = clip_polygon(&mut scratch.clip_a, n, &mut scratch.clip_b, self.near) else {
                 return Outcome::Skipped(SkipReason::ClipCapacity);
             };
             (c.verts, c.clipped)
+        } else if all_inside(&scratch.clip_a, n, self.near) {
+            (&scratch.clip_a[..n.min(N)], false)
         } else {
             return Outcome::Invisible;
         };
@@ -392,13 +389,11 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         if clipped.len() < 3 {
             return Outcome::Invisible;
         }
+        // Every vertex here came from the transform and is inside every
+        // clip plane (kept whole or made by clipping): the projection's
+        // short form applies.
         for (dst, v) in scratch.screen.iter_mut().zip(clipped.iter()) {
-            let p = if inside {
-                P::Path::project_inside(v, &self.viewport)
-            } else {
-                P::Path::project(v, &self.viewport)
-            };
-            match p {
+            match P::Path::project_clipped(v, &self.viewport) {
                 Some(p) => *dst = p,
                 None => return Outcome::Skipped(SkipReason::NonFinite),
             }

@@ -105,13 +105,13 @@ pub trait VertexPath {
     /// Perspective divide and viewport mapping; `None` if `w ≤ 0` or the
     /// vertex is not finite.
     fn project(v: &ClipVert<Self::Scalar>, vp: &Viewport) -> Option<ScreenPt>;
-    /// [`VertexPath::project`] of a vertex straight from
-    /// [`VertexPath::transform`] that is inside every clip plane
-    /// ([`ClipNum::inside`]), the common case: the same result, with the
-    /// checks that such a vertex cannot fail left out where that is
-    /// cheaper.
+    /// [`VertexPath::project`] of a vertex of the renderer's pipeline: one
+    /// from [`VertexPath::transform`] (or [`VertexPath::transform_q`]) that
+    /// is inside every clip plane ([`ClipNum::inside`]), kept whole or made
+    /// by clipping. The same result, with the checks such a vertex cannot
+    /// fail left out where that is cheaper.
     #[inline]
-    fn project_inside(v: &ClipVert<Self::Scalar>, vp: &Viewport) -> Option<ScreenPt> {
+    fn project_clipped(v: &ClipVert<Self::Scalar>, vp: &Viewport) -> Option<ScreenPt> {
         Self::project(v, vp)
     }
 }
@@ -267,15 +267,16 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
     }
 
     /// The same arithmetic as [`VertexPath::project`], without the checks
-    /// an inside vertex from [`VertexPath::transform`] passes anyway: it is
-    /// finite (the transform rejects anything else) with
-    /// `w ≥ near > 0`, so `x`, `y`, `w` need no test; the NDC clamp stays
-    /// (it bounds what follows even for an inexact reciprocal, and is what
-    /// `project` computes), and after it `|x|, |y| ≤ 5.5 · 2^21 <
+    /// such a vertex passes anyway: the transform bounds every coordinate
+    /// by [`FLOAT_CLIP_LIMIT`], so clipping's sums and interpolations stay
+    /// finite (that is what the limit is for), and every kept or clipped
+    /// vertex has `w ≥ near > 0`: `x`, `y`, `w` need no test. The NDC
+    /// clamp stays (it bounds what follows even for an inexact reciprocal,
+    /// and is what `project` computes); after it `|x|, |y| ≤ 5.5 · 2^21 <
     /// SCREEN_LIMIT` (largest viewport, 8 sub-pixel bits), so the results
     /// are finite and the screen clamp changes nothing.
     #[inline]
-    fn project_inside(v: &ClipVert<f32>, vp: &Viewport) -> Option<ScreenPt> {
+    fn project_clipped(v: &ClipVert<f32>, vp: &Viewport) -> Option<ScreenPt> {
         let r = M::recip(v.w);
         let lim = GUARD as f32 + 0.5;
         let nx = (v.x * r).clamp(-lim, lim);
@@ -455,7 +456,7 @@ mod tests {
     /// both reciprocals, every sub-pixel count and extreme viewports,
     /// vertices on the guard planes and the near plane included.
     #[test]
-    fn projecting_inside_vertices_skips_only_checks() {
+    fn projecting_pipeline_vertices_skips_only_checks() {
         fn check<M: MathFns>(rng: &mut crate::raster::tests::Rng) {
             for &(w, h) in &[(240, 240), (1, 1), (MAX_DIM, 3), (MAX_DIM, MAX_DIM)] {
                 for sub in 0..=8 {
@@ -477,7 +478,7 @@ mod tests {
                         let v = ClipVert { x, y, w: cw };
                         assert!(<f32 as ClipNum>::inside(&v, near), "{v:?}");
                         assert_eq!(
-                            FloatPath::<M>::project_inside(&v, &vp),
+                            FloatPath::<M>::project_clipped(&v, &vp),
                             FloatPath::<M>::project(&v, &vp),
                             "{v:?} {w}x{h} sub {sub}"
                         );
@@ -488,5 +489,39 @@ mod tests {
         let mut rng = crate::raster::tests::Rng(5);
         check::<Libm>(&mut rng);
         check::<Micromath>(&mut rng);
+    }
+
+    /// Vertices made by clipping project the same both ways: random
+    /// triangles across the near plane and the guard band, coordinates up
+    /// to the transform's limit.
+    #[test]
+    fn projecting_clipped_vertices_skips_only_checks() {
+        use super::super::clip::clip_polygon;
+        let mut rng = crate::raster::tests::Rng(11);
+        let vp = Viewport::new(240, 240, 4).unwrap();
+        let near = Flt::near(0.05);
+        let mut clipped = 0;
+        for k in 0..20_000 {
+            let scale = [1.0, 100.0, 1e6, 1e30, 1e36][k % 5];
+            let mut a = [ClipVert::default(); 16];
+            let mut b = [ClipVert::default(); 16];
+            for v in a.iter_mut().take(3) {
+                *v = ClipVert {
+                    x: rng.float(-1.0, 1.0) * scale,
+                    y: rng.float(-1.0, 1.0) * scale,
+                    w: rng.float(-0.5, 1.0) * scale,
+                };
+            }
+            let Ok(c) = clip_polygon(&mut a, 3, &mut b, near) else {
+                continue;
+            };
+            clipped += usize::from(c.clipped);
+            for v in c.verts {
+                let p = Flt::project(v, &vp);
+                assert!(p.is_some(), "{v:?}");
+                assert_eq!(Flt::project_clipped(v, &vp), p, "{v:?}");
+            }
+        }
+        assert!(clipped > 5_000, "{clipped}");
     }
 }
