@@ -99,9 +99,11 @@ fuzz_target!(|data: &[u8]| {
             continue;
         };
         seen.iter_mut().for_each(|s| *s = false);
+        let mut flat = Vec::new();
         for class in order {
             let ids = ids(class, control & 4 != 0);
             assert!(!ids.is_empty(), "empty class");
+            flat.extend_from_slice(&ids);
             for id in ids {
                 let slot = seen.get_mut(id as usize).expect("id in range");
                 assert!(!*slot, "polygon {id} emitted twice");
@@ -114,6 +116,14 @@ fuzz_target!(|data: &[u8]| {
                 "without culling: a polygon was not emitted"
             );
         }
+        // The walk's own ranges: the same ids in the same order.
+        let mut walk = Order::<64>::with_culling(&tree, view, cull).expect("built above");
+        let mut by_walk = Vec::new();
+        while let Some(r) = walk.next_range() {
+            assert!(r.start < r.end, "empty range {r:?}");
+            by_walk.extend(r);
+        }
+        assert_eq!(by_walk, flat, "walk ranges against class ids");
     }
     draw(&tree, control);
 });

@@ -245,17 +245,7 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
         if !(v.w > 0.0 && v.x.is_finite() && v.y.is_finite() && v.w.is_finite()) {
             return None;
         }
-        let r = M::recip(v.w);
-        // Clipped vertices are within ±GUARD already; the clamp only
-        // protects against rounding and against unclipped callers, and
-        // keeps the float → int conversion in range.
-        let lim = GUARD as f32 + 0.5;
-        let nx = (v.x * r).clamp(-lim, lim);
-        let ny = (v.y * r).clamp(-lim, lim);
-        let sw = 0.5 * (vp.width << vp.sub) as f32;
-        let sh = 0.5 * (vp.height << vp.sub) as f32;
-        let x = (nx + 1.0) * sw + 0.5;
-        let y = (1.0 - ny) * sh + 0.5;
+        let (x, y) = screen_f32::<M>(v, vp);
         if !(x.is_finite() && y.is_finite()) {
             return None;
         }
@@ -277,17 +267,30 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
     /// are finite and the screen clamp changes nothing.
     #[inline]
     fn project_clipped(v: &ClipVert<f32>, vp: &Viewport) -> Option<ScreenPt> {
-        let r = M::recip(v.w);
-        let lim = GUARD as f32 + 0.5;
-        let nx = (v.x * r).clamp(-lim, lim);
-        let ny = (v.y * r).clamp(-lim, lim);
-        let sw = 0.5 * (vp.width << vp.sub) as f32;
-        let sh = 0.5 * (vp.height << vp.sub) as f32;
+        let (x, y) = screen_f32::<M>(v, vp);
         Some(ScreenPt {
-            x: floor_to_i32((nx + 1.0) * sw + 0.5),
-            y: floor_to_i32((1.0 - ny) * sh + 0.5),
+            x: floor_to_i32(x),
+            y: floor_to_i32(y),
         })
     }
+}
+
+/// The float projection's arithmetic, shared by both of its forms: clip
+/// `x`, `y` divided by `w` (with `M`'s reciprocal), clamped to the guard
+/// band plus half a unit, mapped to sub-pixel screen units with the half
+/// unit that makes the later floor round to nearest.
+#[inline(always)]
+fn screen_f32<M: MathFns>(v: &ClipVert<f32>, vp: &Viewport) -> (f32, f32) {
+    let r = M::recip(v.w);
+    // Clipped vertices are within ±GUARD already; the clamp only protects
+    // against rounding and against unclipped callers, and keeps the
+    // float → int conversion in range.
+    let lim = GUARD as f32 + 0.5;
+    let nx = (v.x * r).clamp(-lim, lim);
+    let ny = (v.y * r).clamp(-lim, lim);
+    let sw = 0.5 * (vp.width << vp.sub) as f32;
+    let sh = 0.5 * (vp.height << vp.sub) as f32;
+    ((nx + 1.0) * sw + 0.5, (1.0 - ny) * sh + 0.5)
 }
 
 /// `floor(x)` as an integer for finite `x`, saturating outside the i32
