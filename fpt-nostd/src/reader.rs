@@ -46,7 +46,8 @@
 //! checks; every accepted file has all its accessors read and is walked for
 //! five views (one with a NaN direction), by ids and by ranges, with and
 //! without back-face culling, checking ids in range, no empty class, no id
-//! twice, every id when nothing is culled, and then drawn with every effect
+//! twice, every id when nothing is culled, the walk's own ranges equal to
+//! its class ids, and then drawn with every effect
 //! (outlines, depth cue, clipping off, dithering) in fixed point and f32.
 //! cargo-fuzz builds it with debug assertions, overflow checks and
 //! AddressSanitizer by default, so an arithmetic overflow is a crash too.
@@ -62,6 +63,7 @@
 //! | `tree_walk` (final code, from the corpus above) | same | 21 259 243 | 742 | 2 206 | 181 | nothing |
 //! | `tree_walk` with effects (format v2; both culling choices and a frame drawn with every effect, fixed and f32), session 2 | same, moved to v2 | 9 350 942 | 2 053 | 9 543 | 902 | nothing |
 //! | the same after the vertex iterator and clip-test changes, 300 s, from that corpus | same | 5 093 905 | 2 061 | 9 461 | 539 | nothing |
+//! | session 3: the walk's ranges (`Order::next_range`) checked against its class ids, short-form projection; 420 s from that corpus | same | 7 017 705 | 2 118 | 9 505 | 569 | nothing |
 //!
 //! (The target now also draws, so its edge and feature counts cover the
 //! rasterizer and are not comparable with the first rows.)
