@@ -49,6 +49,11 @@
 //!   (every node of a BSP tree) hands its frame over to its near group, as a
 //!   tail call would, instead of being resumed once more only to be popped.
 //!
+//! - per **class**: nothing copied out when the caller takes ranges
+//!   ([`Order::next_range`]): the walk keeps the class's hand-out in its own
+//!   state (a [`Class`] is that state plus the run section, for callers that
+//!   need class boundaries).
+//!
 //! What remains per node is mostly the branches on the tree's shape and on
 //! the facing tests, which no predictor can learn: they, more than the
 //! arithmetic, set the time of a walk.
