@@ -73,60 +73,27 @@ static TREES: [(&str, &[u8]); 3] = [
 /// The host's lines for the same frames.
 static EXPECTED: &str = include_str!("../trees/frames.txt");
 
-/// Where the pixels go: the whole frame.
-#[cfg(feature = "full")]
+/// Where the pixels go: the whole frame (`full`) or one band at a time
+/// (`band`); the features differ only in the buffer's size and the
+/// function that draws into (`full`) or through (`band`) it.
 mod target {
-    use fpt_nostd::frames::{FRAME_WORDS, *};
+    #[cfg(feature = "band")]
+    pub use fpt_nostd::frames::render_banded as draw;
+    #[cfg(feature = "full")]
+    pub use fpt_nostd::frames::render_full as draw;
+    #[cfg(feature = "band")]
+    use fpt_nostd::frames::BAND_WORDS as WORDS;
+    #[cfg(feature = "full")]
+    use fpt_nostd::frames::FRAME_WORDS as WORDS;
 
-    static mut FRAME: [u16; FRAME_WORDS] = [0; FRAME_WORDS];
+    static mut BUF: [u16; WORDS] = [0; WORDS];
 
-    /// The framebuffer; call once.
+    /// The frame or band buffer; call once.
     pub fn buffer() -> &'static mut [u16] {
         // SAFETY: called once, from `main`, before anything else touches
-        // FRAME; no other reference to it ever exists.
-        unsafe { &mut *core::ptr::addr_of_mut!(FRAME) }
+        // BUF; no other reference to it ever exists.
+        unsafe { &mut *core::ptr::addr_of_mut!(BUF) }
     }
-
-    /// Draws one frame into `buf`.
-    pub fn render<Pr: Probe>(
-        r: &mut FrameRenderer,
-        tree: &Tree<'_>,
-        view: &ViewSpec,
-        buf: &mut [u16],
-        probe: &Pr,
-    ) -> Result<Rendered, FrameError> {
-        render_full(r, tree, view, buf, probe)
-    }
-
-    use fpt_nostd::reader::Tree;
-}
-
-/// Where the pixels go: one band at a time.
-#[cfg(feature = "band")]
-mod target {
-    use fpt_nostd::frames::{BAND_WORDS, *};
-
-    static mut BAND: [u16; BAND_WORDS] = [0; BAND_WORDS];
-
-    /// The band buffer; call once.
-    pub fn buffer() -> &'static mut [u16] {
-        // SAFETY: called once, from `main`, before anything else touches
-        // BAND; no other reference to it ever exists.
-        unsafe { &mut *core::ptr::addr_of_mut!(BAND) }
-    }
-
-    /// Draws one frame through the band buffer `buf`.
-    pub fn render<Pr: Probe>(
-        r: &mut FrameRenderer,
-        tree: &Tree<'_>,
-        view: &ViewSpec,
-        buf: &mut [u16],
-        probe: &Pr,
-    ) -> Result<Rendered, FrameError> {
-        render_banded(r, tree, view, buf, probe)
-    }
-
-    use fpt_nostd::reader::Tree;
 }
 
 /// The renderer, in a static: it holds the per-polygon scratch buffers
@@ -175,7 +142,7 @@ fn run<Pr: Probe>(
     buf: &mut [u16],
     probe: &Pr,
 ) -> Result<Rendered, FrameError> {
-    target::render(r, tree, view, buf, probe)
+    target::draw(r, tree, view, buf, probe)
 }
 
 /// Draws one view twice (see [`probe`]), prints its line; `false` if its
