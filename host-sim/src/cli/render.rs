@@ -105,39 +105,22 @@ pub const ALIASES: [(&str, &str); 10] = [
 ];
 
 /// Every name `--precision` accepts: [`PRECISIONS`], then the short names
-/// of [`ALIASES`] (in that order; a unit test keeps the lists in step).
-pub const PRECISION_NAMES: [&str; 30] = [
-    "fixed-subpx-0",
-    "fixed-subpx-2",
-    "fixed-subpx-4",
-    "fixed-subpx-6",
-    "fixed-subpx-8",
-    "fixed-micromath-subpx-0",
-    "fixed-micromath-subpx-2",
-    "fixed-micromath-subpx-4",
-    "fixed-micromath-subpx-6",
-    "fixed-micromath-subpx-8",
-    "f32-libm-subpx-0",
-    "f32-libm-subpx-2",
-    "f32-libm-subpx-4",
-    "f32-libm-subpx-6",
-    "f32-libm-subpx-8",
-    "f32-micromath-subpx-0",
-    "f32-micromath-subpx-2",
-    "f32-micromath-subpx-4",
-    "f32-micromath-subpx-6",
-    "f32-micromath-subpx-8",
-    "fixed",
-    "subpx-0",
-    "subpx-2",
-    "subpx-4",
-    "subpx-6",
-    "subpx-8",
-    "f32-libm",
-    "f32-micromath",
-    "trig-libm",
-    "trig-micromath",
-];
+/// of [`ALIASES`], in that order (a constant array, as clap's value parser
+/// takes, built from the two lists rather than written a third time).
+pub const PRECISION_NAMES: [&str; PRECISIONS.len() + ALIASES.len()] = {
+    let mut out = [""; PRECISIONS.len() + ALIASES.len()];
+    let mut i = 0;
+    while i < PRECISIONS.len() {
+        out[i] = PRECISIONS[i];
+        i += 1;
+    }
+    let mut j = 0;
+    while j < ALIASES.len() {
+        out[i + j] = ALIASES[j].0;
+        j += 1;
+    }
+    out
+};
 
 /// The full [`PRECISIONS`] name of `name` (itself unless an alias).
 pub fn resolve_precision(name: &str) -> &str {
