@@ -10,23 +10,13 @@ use host_sim::cli::accuracy::{
 };
 use host_sim::reference::{zbuffer, RefOptions};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+
+mod common;
+
+use common::{fpt, tmp};
 
 const W: u32 = 96;
 const H: u32 = 72;
-
-fn fpt(args: &[String]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fpt"))
-        .args(args)
-        .output()
-        .expect("running fpt")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fpt-accuracy-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name)
-}
 
 fn s(p: &Path) -> String {
     p.to_string_lossy().into_owned()

@@ -2,33 +2,16 @@
 //! file; bad input of any kind gives exit status 2, one `error: ` line, and
 //! no output file.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use common::{fpt, s, tmp, CUBE_OBJ};
+use std::path::PathBuf;
 use std::process::{Command, Output};
-
-fn fpt(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fpt"))
-        .args(args)
-        .output()
-        .expect("running fpt")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fpt-cli-build-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-const CUBE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
-f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
 
 fn write(name: &str, text: &[u8]) -> PathBuf {
     let p = tmp(name);
     std::fs::write(&p, text).unwrap();
     p
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
 }
 
 /// Exit status 2, exactly one line on stderr starting with `error: `.

@@ -3,28 +3,11 @@
 //! them and simulates displays only when asked; bad names are errors with
 //! exit status 2 and no output file.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn fpt(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fpt"))
-        .args(args)
-        .output()
-        .expect("running fpt")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fpt-cli-effects-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-const CUBE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
-f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+use common::{fpt, s, tmp, CUBE_OBJ};
+use std::path::Path;
+use std::process::Output;
 
 fn stdout(o: &Output) -> String {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -52,48 +35,22 @@ fn build_stores_the_declared_effects_and_what_the_orbit_proves() {
     let mesh = tmp("cube.obj");
     std::fs::write(&mesh, CUBE_OBJ).unwrap();
     let tree = tmp("cube.fpt");
-    stdout(&fpt(&["build", s(&mesh), "-o", s(&tree)]));
+    let build =
+        |extra: &[&str]| stdout(&fpt(&[&["build", s(&mesh), "-o", s(&tree)], extra].concat()));
+    build(&[]);
     assert!(effects_line(&tree).ends_with("(culling,clipping,lighting)"));
     // A far orbit never needs clipping: it is left out of the defaults.
-    let out = stdout(&fpt(&[
-        "build",
-        s(&mesh),
-        "-o",
-        s(&tree),
-        "--orbit",
-        "3,40",
-    ]));
+    let out = build(&["--orbit", "3,40"]);
     assert!(out.contains("no view needs clipping"), "{out}");
     assert!(effects_line(&tree).ends_with("(culling,lighting)"));
     // Inside the bounding sphere it does.
-    let out = stdout(&fpt(&[
-        "build",
-        s(&mesh),
-        "-o",
-        s(&tree),
-        "--orbit",
-        "0.5,40",
-    ]));
+    let out = build(&["--orbit", "0.5,40"]);
     assert!(out.contains("may need clipping"), "{out}");
     assert!(effects_line(&tree).ends_with("(culling,clipping,lighting)"));
     // An explicit list is stored as given.
-    stdout(&fpt(&[
-        "build",
-        s(&mesh),
-        "-o",
-        s(&tree),
-        "--effects",
-        "outline, dither",
-    ]));
+    build(&["--effects", "outline, dither"]);
     assert!(effects_line(&tree).ends_with("(dither,outline)"));
-    stdout(&fpt(&[
-        "build",
-        s(&mesh),
-        "-o",
-        s(&tree),
-        "--effects",
-        "none",
-    ]));
+    build(&["--effects", "none"]);
     assert!(effects_line(&tree).ends_with("(none)"));
     // Unknown names and bad orbits: exit 2, no file.
     let fresh = tmp("never.fpt");

@@ -2,7 +2,10 @@
 //! files written by the serializer, run as the real binary.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+
+mod common;
+
+use common::fpt;
 
 use glam::DVec3;
 use host_sim::build::{build, NoProgress};
@@ -44,13 +47,6 @@ fn cube_file(name: &str, format: VertexFormat) -> PathBuf {
         std::env::temp_dir().join(format!("fpt-cli-format-{}-{name}.fpt", std::process::id()));
     std::fs::write(&path, bytes).unwrap();
     path
-}
-
-fn fpt(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fpt"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 fn json_ok(args: &[&str]) -> Value {

@@ -202,13 +202,8 @@ mod tests {
     /// emits exactly the general active-edge fill's spans.
     #[test]
     fn chains_equal_the_general_fill() {
-        let mut seed = 99u64;
-        let mut rnd = |m: i32| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 33) as i64 % (2 * m as i64 + 1) - m as i64) as i32
-        };
+        let mut rng = crate::raster::tests::Rng(99);
+        let mut rnd = |m: i32| rng.range(-m, m);
         let mut accepted = 0;
         for k in 0..4000 {
             let sub = [0u32, 2, 4, 8][k % 4];

@@ -415,13 +415,8 @@ mod tests {
 
     #[test]
     fn stepped_crossings_equal_exact_ones() {
-        let mut seed = 12345u64;
-        let mut rnd = |m: i32| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 33) as i64 % (2 * m as i64 + 1) - m as i64) as i32
-        };
+        let mut rng = crate::raster::tests::Rng(12345);
+        let mut rnd = |m: i32| rng.range(-m, m);
         for sub in [0u32, 2, 4, 8] {
             for _ in 0..300 {
                 let p = pt(rnd(300 << sub), rnd(200 << sub));
@@ -452,13 +447,8 @@ mod tests {
 
     #[test]
     fn small_edges_equal_general_ones() {
-        let mut seed = 777u64;
-        let mut rnd = |m: i32| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 33) as i64 % (2 * m as i64 + 1) - m as i64) as i32
-        };
+        let mut rng = crate::raster::tests::Rng(777);
+        let mut rnd = |m: i32| rng.range(-m, m);
         let lim = SMALL - 1;
         for sub in [0u32, 1, 4, 8] {
             for k in 0..2000 {

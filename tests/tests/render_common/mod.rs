@@ -258,15 +258,7 @@ pub fn outline_distance(
     let mut best = f64::INFINITY;
     for k in 0..pts.len() {
         let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let l2 = dx * dx + dy * dy;
-        let t = if l2 > 0.0 {
-            (((px - a.0) * dx + (py - a.1) * dy) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let (qx, qy) = (a.0 + t * dx - px, a.1 + t * dy - py);
-        best = best.min((qx * qx + qy * qy).sqrt());
+        best = best.min(seg_dist(a, b, px, py).0);
     }
     best
 }

@@ -110,38 +110,22 @@ fn every_format_and_precision_renders() {
     let tree = house_tree(&d);
     let t = tree.to_string_lossy().into_owned();
     let o = d.join("x.png").to_string_lossy().into_owned();
+    let base = [
+        t.as_str(),
+        "-o",
+        &o,
+        "--size",
+        "40x30",
+        "--yaw",
+        "10",
+        "--pitch",
+        "5",
+    ];
     for f in ["rgb565", "rgb888", "gray8", "mono"] {
-        let args = [
-            t.as_str(),
-            "-o",
-            &o,
-            "--size",
-            "40x30",
-            "--yaw",
-            "10",
-            "--pitch",
-            "5",
-            "--format",
-            f,
-        ];
-        assert_eq!(fpt(&args), 0, "{f}");
+        assert_eq!(fpt(&[&base[..], &["--format", f]].concat()), 0, "{f}");
     }
     for p in PRECISIONS {
-        let args = [
-            t.as_str(),
-            "-o",
-            &o,
-            "--size",
-            "40x30",
-            "--yaw",
-            "10",
-            "--pitch",
-            "5",
-            "--precision",
-            p,
-            "--fov",
-            "0",
-        ];
+        let args = [&base[..], &["--precision", p, "--fov", "0"]].concat();
         assert_eq!(fpt(&args), 0, "{p}");
     }
     // A matrix camera, and one with the eye inside the model.
