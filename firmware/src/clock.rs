@@ -83,6 +83,19 @@ pub struct Clock {
 }
 
 impl Clock {
+    /// The start-up of a measuring binary: takes the core peripherals and
+    /// starts the clock ([`Clock::start`]), or ends the run with a failure
+    /// saying which of the two was impossible.
+    pub fn take_and_start() -> Clock {
+        let Some(mut p) = cortex_m::Peripherals::take() else {
+            crate::fail::fail(format_args!("peripherals already taken"))
+        };
+        let Some(clock) = Clock::start(&mut p.SYST) else {
+            crate::fail::fail(format_args!("SysTick does not count"))
+        };
+        clock
+    }
+
     /// Starts the SysTick on the core clock with its wrap interrupt and
     /// calibrates it; `None` if the counter does not run.
     pub fn start(syst: &mut SYST) -> Option<Clock> {

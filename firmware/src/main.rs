@@ -214,12 +214,7 @@ fn frame(
 #[entry]
 fn main() -> ! {
     stack::paint();
-    let Some(mut p) = cortex_m::Peripherals::take() else {
-        fail(format_args!("peripherals already taken"))
-    };
-    let Some(clock) = Clock::start(&mut p.SYST) else {
-        fail(format_args!("SysTick does not count"))
-    };
+    let clock = Clock::take_and_start();
     hprintln!(
         "calib loop_instr={} ticks={} instr_per_1000_ticks={}",
         clock.cal_instr,

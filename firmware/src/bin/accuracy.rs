@@ -102,12 +102,7 @@ fn frame(clock: &Clock, config: &str, tree: &Tree<'_>, k: usize, buf: &mut [u16]
 #[entry]
 fn main() -> ! {
     stack::paint();
-    let Some(mut p) = cortex_m::Peripherals::take() else {
-        fail(format_args!("peripherals already taken"))
-    };
-    let Some(clock) = Clock::start(&mut p.SYST) else {
-        fail(format_args!("SysTick does not count"))
-    };
+    let clock = Clock::take_and_start();
     // SAFETY: the only reference to FRAME, taken once here.
     let buf: &mut [u16] = unsafe { &mut *core::ptr::addr_of_mut!(FRAME) };
     let mut ok = true;
