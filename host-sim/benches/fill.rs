@@ -31,7 +31,6 @@
 mod common;
 
 use std::hint::black_box;
-use std::time::Duration;
 
 use common::{Bench, BACKGROUND, P, STACK, VERTS};
 use criterion::measurement::WallTime;
@@ -311,10 +310,7 @@ fn fill_rate(c: &mut Criterion) {
 
 criterion_group! {
     name = benches;
-    config = Criterion::default()
-        .sample_size(20)
-        .warm_up_time(Duration::from_millis(500))
-        .measurement_time(Duration::from_secs(2));
+    config = common::criterion();
     targets = fill_rate
 }
 criterion_main!(benches);

@@ -24,7 +24,6 @@ mod common;
 mod zbuf;
 
 use std::hint::black_box;
-use std::time::Duration;
 
 use common::{Bench, BACKGROUND, STACK};
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -199,10 +198,7 @@ fn frame_time(c: &mut Criterion) {
 
 criterion_group! {
     name = benches;
-    config = Criterion::default()
-        .sample_size(20)
-        .warm_up_time(Duration::from_millis(500))
-        .measurement_time(Duration::from_secs(2));
+    config = common::criterion();
     targets = frame_time
 }
 criterion_main!(benches);

@@ -7,7 +7,9 @@
 //! the closures they pass to criterion.
 
 use std::collections::HashSet;
+use std::time::Duration;
 
+use criterion::Criterion;
 use embedded_graphics::pixelcolor::{IntoStorage, Rgb565};
 use fpt_nostd::order::Order;
 use fpt_nostd::raster::{
@@ -209,4 +211,13 @@ pub fn mesh_bytes(scene: &Scene) -> usize {
         }
     }
     12 * unique.len() + 2 * indices + 16 * scene.polygons.len()
+}
+
+/// The criterion settings of the frame and fill benchmarks: 20 samples
+/// after half a second of warm-up, two seconds of measurement each.
+pub fn criterion() -> Criterion {
+    Criterion::default()
+        .sample_size(20)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2))
 }
