@@ -407,6 +407,17 @@ pub fn shared_model(file: &str) -> Option<std::path::PathBuf> {
     Some(p)
 }
 
+/// The model `file` of [`SHARED_MODELS`] loaded, or `None` (with the
+/// "skipping: ..." line of [`shared_model`]) when it is absent; a model
+/// that is there but does not load fails the test, naming the file.
+pub fn shared_mesh(file: &str) -> Option<host_sim::mesh::Model> {
+    let path = shared_model(file)?;
+    match host_sim::mesh::load(&path) {
+        Ok(m) => Some(m),
+        Err(e) => panic!("{file}: {e}"),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -206,12 +206,6 @@ fn quantized_formats_are_smaller() {
     assert_eq!(size(VertexFormat::F32), size(VertexFormat::Q32));
 }
 
-/// The shared models, when present (a fresh clone has none).
-fn shared_model(name: &str) -> Option<host_sim::mesh::Model> {
-    let path = fpt_tests::shared_model(name)?;
-    Some(host_sim::mesh::load(&path).expect("shared model loads"))
-}
-
 #[test]
 fn built_trees_round_trip() {
     for (name, methods) in [
@@ -221,7 +215,7 @@ fn built_trees_round_trip() {
         ),
         ("shuttle.obj", &[Method::Dynamic, Method::Bsp][..]),
     ] {
-        let Some(model) = shared_model(name) else {
+        let Some(model) = fpt_tests::shared_mesh(name) else {
             continue;
         };
         for &method in methods {

@@ -2,18 +2,14 @@
 //! models in `../shared/models` (skipped when that folder is absent, as in a
 //! fresh clone of the project).
 
-use fpt_tests::{assert_orders, shared_model};
+use fpt_tests::{assert_orders, shared_mesh};
 
 const VIEWS: usize = 60;
 const SIZE: usize = 96;
 
 fn check(file: &str) {
-    let Some(path) = shared_model(file) else {
+    let Some(m) = shared_mesh(file) else {
         return;
-    };
-    let m = match host_sim::mesh::load(&path) {
-        Ok(m) => m,
-        Err(e) => panic!("{file}: {e}"),
     };
     assert_orders(file, &m.polygons, m.closed, VIEWS, SIZE);
 }

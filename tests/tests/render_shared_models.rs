@@ -6,7 +6,7 @@
 
 mod render_common;
 
-use fpt_tests::{random_cameras, shared_model};
+use fpt_tests::{random_cameras, shared_mesh};
 use render_common::{assert_clean, check_views};
 
 const VIEWS: usize = 30;
@@ -14,12 +14,8 @@ const W: usize = 96;
 const H: usize = 96;
 
 fn check(file: &str) {
-    let Some(path) = shared_model(file) else {
+    let Some(m) = shared_mesh(file) else {
         return;
-    };
-    let m = match host_sim::mesh::load(&path) {
-        Ok(m) => m,
-        Err(e) => panic!("{file}: {e}"),
     };
     let cams = random_cameras(&m.polygons, VIEWS, 0x4E4D_u64 ^ m.polygons.len() as u64);
     let rep = check_views(file, &m.polygons, m.closed, &cams, W, H);
