@@ -463,19 +463,32 @@ impl<'a> FrameLine<'a> {
     /// writes them; anything after them (the firmware's cost fields) is
     /// ignored. `None` for any other line.
     pub fn parse(line: &'a str) -> Option<FrameLine<'a>> {
-        let mut it = line.split_ascii_whitespace();
-        if it.next()? != "frame" {
-            return None;
-        }
-        let scene = it.next()?.strip_prefix("scene=")?;
-        let view = it.next()?.strip_prefix("view=")?.parse().ok()?;
-        let crc = it.next()?.strip_prefix("crc=")?;
-        if crc.len() != 8 || scene.is_empty() {
-            return None;
-        }
-        let crc = u32::from_str_radix(crc, 16).ok()?;
+        let (scene, view, crc) = parse_checksum_line(line, "frame", "scene=")?;
         Some(FrameLine { scene, view, crc })
     }
+}
+
+/// The fields of a checksum line `TAG KEY=NAME view=K crc=XXXXXXXX …`
+/// (a frame line or an accuracy line): the non-empty name, the view and
+/// the eight-digit hexadecimal checksum; anything after them is ignored.
+/// `None` for any other line.
+pub(crate) fn parse_checksum_line<'a>(
+    line: &'a str,
+    tag: &str,
+    key: &str,
+) -> Option<(&'a str, u32, u32)> {
+    let mut it = line.split_ascii_whitespace();
+    if it.next()? != tag {
+        return None;
+    }
+    let name = it.next()?.strip_prefix(key)?;
+    let view = it.next()?.strip_prefix("view=")?.parse().ok()?;
+    let crc = it.next()?.strip_prefix("crc=")?;
+    if crc.len() != 8 || name.is_empty() {
+        return None;
+    }
+    let crc = u32::from_str_radix(crc, 16).ok()?;
+    Some((name, view, crc))
 }
 
 pub mod accuracy;

@@ -151,17 +151,7 @@ impl<'a> AccuracyLine<'a> {
     /// Parses the start of a line (trailing fields, such as the firmware's
     /// `instr=N`, are ignored); `None` if it is not one.
     pub fn parse(line: &'a str) -> Option<AccuracyLine<'a>> {
-        let mut it = line.split_ascii_whitespace();
-        if it.next()? != "accuracy" {
-            return None;
-        }
-        let config = it.next()?.strip_prefix("config=")?;
-        let view = it.next()?.strip_prefix("view=")?.parse().ok()?;
-        let crc = it.next()?.strip_prefix("crc=")?;
-        if crc.len() != 8 || config.is_empty() {
-            return None;
-        }
-        let crc = u32::from_str_radix(crc, 16).ok()?;
+        let (config, view, crc) = super::parse_checksum_line(line, "accuracy", "config=")?;
         Some(AccuracyLine { config, view, crc })
     }
 
