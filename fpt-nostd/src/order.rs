@@ -412,10 +412,9 @@ impl<'a, const N: usize> Order<'a, N> {
             let Some(top) = self.len.checked_sub(1) else {
                 return false;
             };
-            let Some(&frame) = self.stack.get(top) else {
+            let Some(mut f) = self.stack.get(top).copied() else {
                 return false;
             };
-            let mut f = frame;
             match f.phase & !FAR_IS_BACK {
                 DOWN => {
                     while f.j < f.levels {

@@ -200,7 +200,7 @@ impl Cursor {
     /// The next range of ids (a whole run, or what is left of it).
     #[inline]
     pub(super) fn next_range(&mut self, runs: &[u8], face: &Facing) -> Option<Range<u32>> {
-        if self.next >= self.end && !self.settle(runs, face) {
+        if !self.pending(runs, face) {
             return None;
         }
         let r = self.next..self.end;
@@ -218,7 +218,7 @@ impl Cursor {
     /// The next id.
     #[inline]
     fn next_id(&mut self, runs: &[u8], face: &Facing) -> Option<u32> {
-        if self.next >= self.end && !self.settle(runs, face) {
+        if !self.pending(runs, face) {
             return None;
         }
         let id = self.next;
@@ -227,7 +227,8 @@ impl Cursor {
         Some(id)
     }
 
-    /// Ids left (an upper bound on what passes) and ids surely left.
+    /// Ids surely left (the rest of the current run) and an upper bound on
+    /// all the ids left (every later run passing).
     fn bounds(&self, runs: &[u8]) -> (u32, u32) {
         let current = self.end.saturating_sub(self.next);
         let rest = self
