@@ -401,8 +401,8 @@ impl<K: SpanSink, Pr: Probe> SpanSink for ProbeSink<'_, K, Pr> {
 }
 
 /// [`crate::render::draw_frame`]'s loop with the probe's hooks: walks the
-/// tree's ranges of ids back to front and draws every polygon into `sink`. The counters
-/// accumulate (the callers zero them once per frame).
+/// tree's ranges of ids back to front and draws every polygon into
+/// `sink`. The counters accumulate (the callers zero them once per frame).
 ///
 /// Not inlined: called once per frame or band, and inlining it into the
 /// band loop let the optimiser duplicate the whole pipeline (+24 KiB of
