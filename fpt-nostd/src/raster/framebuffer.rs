@@ -46,6 +46,14 @@ pub trait PixelFormat {
     fn fill_row(row: &mut [Self::Word], x0: usize, x1: usize, c: Self::Color);
     /// Reads pixel `x` of `row`.
     fn get(row: &[Self::Word], x: usize) -> Self::Color;
+    /// Sets every pixel of `rows`, whole rows of `width` pixels (the
+    /// default fills row by row; formats without padding may do better).
+    fn fill_rows(rows: &mut [Self::Word], width: u32, c: Self::Color) {
+        let stride = Self::words_per_row(width).max(1);
+        for row in rows.chunks_mut(stride) {
+            Self::fill_row(row, 0, width as usize, c);
+        }
+    }
 }
 
 /// `Rgb565`, one `u16` per pixel.
@@ -71,6 +79,17 @@ impl PixelFormat for Rgb565Format {
         if let Some(s) = row.get_mut(x0..x1) {
             s.fill(c.into_storage());
         }
+    }
+    /// The whole buffer is pixels (no padding): two a store on its
+    /// word-aligned middle, as a 32-bit core writes a word as fast as a
+    /// halfword. (Spans keep the plain loop: most are short, and the split
+    /// costs more than it saves there.)
+    fn fill_rows(rows: &mut [u16], _width: u32, c: Rgb565) {
+        let v = c.into_storage();
+        let (head, body, tail) = bytemuck::pod_align_to_mut::<u16, u32>(rows);
+        head.fill(v);
+        body.fill(u32::from(v) * 0x0001_0001);
+        tail.fill(v);
     }
     fn get(row: &[u16], x: usize) -> Rgb565 {
         Rgb565::from(RawU16::new(row.get(x).copied().unwrap_or(0)))
@@ -247,8 +266,9 @@ impl<'a, F: PixelFormat> Framebuffer<'a, F> {
 
     /// Fills the whole image.
     pub fn fill_all(&mut self, c: F::Color) {
-        for y in 0..self.height as i32 {
-            self.fill_span(y, 0, self.width as i32, c);
+        let n = self.stride * self.height as usize;
+        if let Some(rows) = self.buf.get_mut(..n) {
+            F::fill_rows(rows, self.width, c);
         }
     }
 }
@@ -343,6 +363,38 @@ mod tests {
         for w in [1, 7, 8, 9, 17, 24] {
             check_format::<BinaryFormat>(w, [BinaryColor::Off, BinaryColor::On], 0);
             check_format::<BinaryFormat>(w, [BinaryColor::On, BinaryColor::Off], 0xFF);
+        }
+    }
+
+    /// `fill_all` (the word-wide path for RGB565) against span-by-span
+    /// fills, on storage starting at both halfword alignments, with spare
+    /// words after the image that must stay untouched.
+    #[test]
+    fn fill_all_equals_row_fills_at_any_alignment() {
+        fn check<F: PixelFormat>(width: u32, height: u32, init: F::Word, c: F::Color)
+        where
+            F::Word: PartialEq + core::fmt::Debug,
+        {
+            let n = Framebuffer::<F>::required_len(width, height);
+            for skip in 0..2 {
+                let mut fast = vec![init; n + 5];
+                let mut slow = fast.clone();
+                Framebuffer::<F>::new(&mut fast[skip..], width, height)
+                    .unwrap_or_else(|e| panic!("{e:?}"))
+                    .fill_all(c);
+                let mut fb = Framebuffer::<F>::new(&mut slow[skip..], width, height)
+                    .unwrap_or_else(|e| panic!("{e:?}"));
+                for y in 0..height as i32 {
+                    fb.fill_span(y, 0, width as i32, c);
+                }
+                assert_eq!(fast, slow, "{width}x{height} from word {skip}");
+            }
+        }
+        for (w, h) in [(1, 1), (2, 1), (3, 2), (13, 3), (240, 2)] {
+            check::<Rgb565Format>(w, h, 0x5a5a, Rgb565::new(31, 7, 9));
+            check::<Gray8Format>(w, h, 3, Gray8::new(200));
+            check::<BinaryFormat>(w, h, 0x55, BinaryColor::On);
+            check::<Rgb888Format>(w, h, 1, Rgb888::new(9, 8, 7));
         }
     }
 
