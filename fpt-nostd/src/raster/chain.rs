@@ -73,60 +73,65 @@ impl Chain {
     }
 }
 
-/// Number of changes of vertical direction around the closed polygon,
-/// horizontal edges skipped (2 for a y-monotone polygon; 0 when all
-/// vertices share one y).
-fn direction_changes(pts: &[ScreenPt]) -> u32 {
-    let mut first = 0i32;
-    let mut last = 0i32;
-    let mut changes = 0u32;
-    let Some(&end) = pts.last() else {
-        return 0;
+/// Whether the closed polygon `pts` is y-monotone, given `top`, the index
+/// of a vertex with the least y: read cyclically from `top`, the y
+/// coordinates never decrease and then never increase (horizontal edges
+/// fit either phase). From a lowest vertex this is exactly "two changes of
+/// vertical direction, or none": one pass of one comparison a vertex.
+fn is_y_monotone(pts: &[ScreenPt], top: usize) -> bool {
+    let n = pts.len();
+    let mut prev = match pts.get(top) {
+        Some(p) => p.y,
+        None => return false,
     };
-    let mut prev = end;
-    for &p in pts {
-        let s = (p.y - prev.y).signum();
-        if s != 0 {
-            if first == 0 {
-                first = s;
-            } else if s != last {
-                changes += 1;
-            }
-            last = s;
+    let mut rising = false; // false: still going down the screen
+    let mut i = top;
+    for _ in 0..n {
+        i += 1;
+        if i == n {
+            i = 0;
         }
-        prev = p;
+        let y = pts[i].y;
+        if y < prev {
+            rising = true;
+        } else if y > prev && rising {
+            return false;
+        }
+        prev = y;
     }
-    if first != 0 && first != last {
-        changes += 1;
-    }
-    changes
+    true
+}
+
+/// The vertical extent of a polygon, from the caller's pass over its
+/// vertices: `top` is the index of a vertex with the least y, `ty`, and
+/// `by` the greatest y.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Extent {
+    pub(crate) top: usize,
+    pub(crate) ty: i32,
+    pub(crate) by: i32,
 }
 
 /// Fills the y-monotone polygon `pts` within `b` (already intersected with
 /// the sink's bounds) and returns the number of spans, or `None` (nothing
 /// emitted) when the polygon is not y-monotone. The caller guarantees
-/// `|x|, |y| < edge::SMALL` for every vertex, `sub ≤ 8` and
-/// `pts.len() ≥ 3`.
+/// `|x|, |y| < edge::SMALL` for every vertex, `sub ≤ 8`,
+/// `pts.len() ≥ 3` and that `ext` is `pts`' extent.
 pub(crate) fn fill_monotone<K: SpanSink>(
     pts: &[ScreenPt],
+    ext: Extent,
     sub: u32,
     b: &SpanBounds,
     color: K::Color,
     sink: &mut K,
 ) -> Option<usize> {
     let n = pts.len();
-    match direction_changes(pts) {
-        0 => return Some(0), // all on one row line: no active row
-        2 => {}
-        _ => return None,
+    let Extent { top, ty, by } = ext;
+    if ty == by {
+        return Some(0); // all on one row line: no active row
     }
-    let (mut top, mut ty, mut by) = (0usize, i32::MAX, i32::MIN);
-    for (i, p) in pts.iter().enumerate() {
-        if p.y < ty {
-            ty = p.y;
-            top = i;
-        }
-        by = by.max(p.y);
+    if !is_y_monotone(pts, top) {
+        return None;
     }
     let (first, end) = Dda32::rows(ScreenPt { x: 0, y: ty }, ScreenPt { x: 0, y: by }, sub);
     let mut y = first.max(b.y0);
@@ -218,7 +223,7 @@ mod tests {
                 y1: y0 + h,
             };
             let mut fast = Rec(Vec::new(), b);
-            let Some(n) = fill_monotone(&pts, sub, &b, (), &mut fast) else {
+            let Some(n) = fill_monotone(&pts, extent(&pts), sub, &b, (), &mut fast) else {
                 continue;
             };
             accepted += 1;
@@ -243,19 +248,74 @@ mod tests {
         ScreenPt { x, y }
     }
 
+    /// The extent the fill's bounding-box pass computes (first lowest).
+    fn extent(pts: &[ScreenPt]) -> Extent {
+        let mut e = Extent {
+            top: 0,
+            ty: i32::MAX,
+            by: i32::MIN,
+        };
+        for (i, p) in pts.iter().enumerate() {
+            if p.y < e.ty {
+                e.ty = p.y;
+                e.top = i;
+            }
+            e.by = e.by.max(p.y);
+        }
+        e
+    }
+
+    /// Reference: changes of vertical direction around the closed
+    /// polygon, horizontal edges skipped (2 for a y-monotone polygon, 0
+    /// when all vertices share one y).
+    fn direction_changes(pts: &[ScreenPt]) -> u32 {
+        let (mut first, mut last, mut changes) = (0i32, 0i32, 0u32);
+        let mut prev = pts[pts.len() - 1];
+        for &p in pts {
+            let s = (p.y - prev.y).signum();
+            if s != 0 {
+                if first == 0 {
+                    first = s;
+                } else if s != last {
+                    changes += 1;
+                }
+                last = s;
+            }
+            prev = p;
+        }
+        if first != 0 && first != last {
+            changes += 1;
+        }
+        changes
+    }
+
     #[test]
-    fn direction_changes_classify_shapes() {
-        let tri = [pt(0, 0), pt(10, 5), pt(3, 9)];
-        assert_eq!(direction_changes(&tri), 2);
-        // Horizontal top and bottom edges do not count.
-        let quad = [pt(0, 0), pt(10, 0), pt(10, 10), pt(0, 10)];
-        assert_eq!(direction_changes(&quad), 2);
-        // A zigzag (concave in y): down, up, down, up, down, up.
+    fn monotone_shapes() {
+        let mono = |p: &[ScreenPt]| is_y_monotone(p, extent(p).top);
+        assert!(mono(&[pt(0, 0), pt(10, 5), pt(3, 9)]));
+        // Horizontal top and bottom edges.
+        assert!(mono(&[pt(0, 0), pt(10, 0), pt(10, 10), pt(0, 10)]));
+        // A zigzag (concave in y), and an arrow head with a notch below.
         let w = [pt(0, 0), pt(2, 8), pt(4, 2), pt(6, 8), pt(8, 0), pt(4, 20)];
-        assert_eq!(direction_changes(&w), 6);
-        // An arrow head: one notch at the bottom makes four.
-        let arrow = [pt(0, 0), pt(10, 20), pt(0, 10), pt(-10, 20)];
-        assert_eq!(direction_changes(&arrow), 4);
-        assert_eq!(direction_changes(&[pt(0, 3), pt(5, 3), pt(9, 3)]), 0);
+        assert!(!mono(&w));
+        assert!(!mono(&[pt(0, 0), pt(10, 20), pt(0, 10), pt(-10, 20)]));
+        assert!(mono(&[pt(0, 3), pt(5, 3), pt(9, 3)]));
+    }
+
+    /// The phase walk from any lowest vertex agrees with counting the
+    /// changes of direction, on random polygons with many repeated ys
+    /// (plateaus at the top, the bottom and in between).
+    #[test]
+    fn phase_walk_equals_direction_count() {
+        let mut rng = crate::raster::tests::Rng(7);
+        for _ in 0..20_000 {
+            let n = 3 + rng.range(0, 5) as usize;
+            let pts: Vec<ScreenPt> = (0..n).map(|_| pt(0, rng.range(0, 4))).collect();
+            let want = matches!(direction_changes(&pts), 0 | 2);
+            let ty = extent(&pts).ty;
+            for (top, _) in pts.iter().enumerate().filter(|(_, p)| p.y == ty) {
+                assert_eq!(is_y_monotone(&pts, top), want, "{pts:?} from {top}");
+            }
+        }
     }
 }

@@ -15,7 +15,7 @@
 //!   nothing (edges start directly at the first row in bounds), so a band
 //!   renderer pays per band only for the polygons that reach it.
 
-use super::chain::fill_monotone;
+use super::chain::{fill_monotone, Extent};
 use super::edge::{build_edges_with, Edge, SMALL};
 use super::transform::ScreenPt;
 use embedded_graphics::pixelcolor::Rgb888;
@@ -152,10 +152,14 @@ pub fn fill_polygon<K: SpanSink>(
     // setup): crossing columns are ceil(x − ½), monotone in x.
     let (mut lo, mut hi) = (i32::MAX, i32::MIN);
     let (mut top, mut bot) = (i32::MAX, i32::MIN);
-    for p in pts {
+    let mut top_at = 0usize;
+    for (i, p) in pts.iter().enumerate() {
         lo = lo.min(p.x);
         hi = hi.max(p.x);
-        top = top.min(p.y);
+        if p.y < top {
+            top = p.y;
+            top_at = i;
+        }
         bot = bot.max(p.y);
     }
     // col(x) = floor((x − ½ pixel) in pixels) (an arithmetic shift is a
@@ -179,7 +183,12 @@ pub fn fill_polygon<K: SpanSink>(
     }
     if small {
         // Convex and other y-monotone polygons: two chains, no edge list.
-        if let Some(spans) = fill_monotone(pts, sub, &b, color, sink) {
+        let ext = Extent {
+            top: top_at,
+            ty: top,
+            by: bot,
+        };
+        if let Some(spans) = fill_monotone(pts, ext, sub, &b, color, sink) {
             return Ok(spans);
         }
     }
