@@ -33,7 +33,7 @@ use core::marker::PhantomData;
 use embedded_graphics::pixelcolor::Rgb888;
 
 use super::camera::{Camera, Orbit};
-use super::clip::{all_inside, clip_polygon, ClipNum, ClipVert};
+use super::clip::{clip_polygon, ClipNum, ClipVert};
 use super::edge::{Dda32, Edge};
 use super::outline::draw_outline;
 use super::precision::Precision;
@@ -153,6 +153,14 @@ impl core::ops::AddAssign for RenderStats {
         self.clipped += o.clipped;
         self.spans += o.spans;
     }
+}
+
+/// What [`Renderer::load`] leaves in the scratch: `n` clip vertices, and
+/// whether every one is inside all clip planes (`ClipNum::inside`).
+#[derive(Clone, Copy, Debug)]
+struct Loaded {
+    n: usize,
+    inside: bool,
 }
 
 /// Frame state and the polygon pipeline (see module docs). `E` names the
@@ -313,26 +321,30 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         scratch: &mut Scratch<P, N>,
         verts: I,
         f: impl Fn(V) -> Option<ClipVert<Scalar<P>>>,
-    ) -> Result<usize, SkipReason>
+    ) -> Result<Loaded, SkipReason>
     where
         I: IntoIterator<Item = V>,
     {
         let mut n = 0usize;
+        // The clipper's fast accept, taken while each vertex is at hand
+        // (it is the common case, and saves a second pass over them).
+        let mut inside = true;
         for v in verts {
             let slot = scratch
                 .clip_a
                 .get_mut(n)
                 .ok_or(SkipReason::TooManyVertices)?;
             *slot = f(v).ok_or(SkipReason::NonFinite)?;
+            inside &= <Scalar<P> as ClipNum>::inside(slot, self.near);
             n += 1;
         }
-        Ok(n)
+        Ok(Loaded { n, inside })
     }
 
     fn finish<K: SpanSink, const N: usize>(
         &mut self,
         scratch: &mut Scratch<P, N>,
-        loaded: Result<usize, SkipReason>,
+        loaded: Result<Loaded, SkipReason>,
         face: &Face,
         sink: &mut K,
     ) -> Outcome {
@@ -351,12 +363,12 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     fn pipeline<K: SpanSink, const N: usize>(
         &mut self,
         scratch: &mut Scratch<P, N>,
-        loaded: Result<usize, SkipReason>,
+        loaded: Result<Loaded, SkipReason>,
         face: &Face,
         sink: &mut K,
     ) -> Outcome {
-        let n = match loaded {
-            Ok(n) => n,
+        let Loaded { n, inside } = match loaded {
+            Ok(l) => l,
             Err(r) => return Outcome::Skipped(r),
         };
         if n < 3 {
@@ -373,14 +385,17 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         } else {
             0.0
         };
-        let (clipped, was_clipped) = if fx.contains(Effects::CLIPPING) {
+        let (clipped, was_clipped) = if inside {
+            // What clipping's fast accept returns (and what both arms
+            // below would give).
+            (&scratch.clip_a[..n.min(N)], false)
+        } else if fx.contains(Effects::CLIPPING) {
             let Ok(c) = clip_polygon(&mut scratch.clip_a, n, &mut scratch.clip_b, self.near) else {
                 return Outcome::Skipped(SkipReason::ClipCapacity);
             };
             (c.verts, c.clipped)
-        } else if all_inside(&scratch.clip_a, n, self.near) {
-            (&scratch.clip_a[..n.min(N)], false)
         } else {
+            // Without clipping, a polygon that needs it is dropped whole.
             return Outcome::Invisible;
         };
         if was_clipped {
