@@ -37,7 +37,7 @@ use super::clip::{clip_polygon, ClipNum, ClipVert};
 use super::edge::{Dda32, Edge};
 use super::outline::draw_outline;
 use super::precision::Precision;
-use super::scan::{fill_polygon, FillRule, Paint, SpanBounds, SpanSink};
+use super::scan::{fill_polygon_in, Bbox, FillRule, Paint, SpanBounds, SpanSink};
 use super::shade::{shade, shade_color, DepthCue, Light, ShadeMode};
 use super::transform::{ScreenPt, VertexPath, Viewport};
 use crate::effects::{AllEffects, Compiled, Effects};
@@ -424,11 +424,9 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         // the band's rows (the fill would find no active row, the same
         // outcome) skips shading and edge setup for one pass over its
         // vertices.
-        let (mut top, mut bot) = (i32::MAX, i32::MIN);
-        for p in pts {
-            top = top.min(p.y);
-            bot = bot.max(p.y);
-        }
+        // The fill's first pass, done once here for both.
+        let bbox = Bbox::of(pts);
+        let (top, bot) = (bbox.top, bbox.bot);
         // Projected points are within ±SCREEN_LIMIT: the 32-bit row bounds
         // apply (and a 64-bit variable shift is not cheap on a 32-bit core).
         let sub = self.viewport.sub_bits();
@@ -452,8 +450,9 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         }
         let paint = Paint { rgb, id: face.id };
         let color = sink.color(&paint);
-        let spans = match fill_polygon(
+        let spans = match fill_polygon_in(
             pts,
+            &bbox,
             sub,
             self.rule,
             &vp,

@@ -141,6 +141,59 @@ pub fn fill_polygon<K: SpanSink>(
     color: K::Color,
     sink: &mut K,
 ) -> Result<usize, FillError> {
+    let bbox = Bbox::of(pts);
+    fill_polygon_in(pts, &bbox, sub, rule, clip, edges, active, color, sink)
+}
+
+/// A polygon's bounding box (screen units) and the index of its first
+/// lowest vertex: the fill's first pass, which a caller that needs the
+/// box itself computes once and hands to [`fill_polygon_in`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Bbox {
+    pub(crate) lo: i32,
+    pub(crate) hi: i32,
+    pub(crate) top: i32,
+    pub(crate) bot: i32,
+    pub(crate) top_at: usize,
+}
+
+impl Bbox {
+    /// The box of `pts` (empty: `lo > hi`, `top > bot`).
+    #[inline]
+    pub(crate) fn of(pts: &[ScreenPt]) -> Bbox {
+        let mut b = Bbox {
+            lo: i32::MAX,
+            hi: i32::MIN,
+            top: i32::MAX,
+            bot: i32::MIN,
+            top_at: 0,
+        };
+        for (i, p) in pts.iter().enumerate() {
+            b.lo = b.lo.min(p.x);
+            b.hi = b.hi.max(p.x);
+            if p.y < b.top {
+                b.top = p.y;
+                b.top_at = i;
+            }
+            b.bot = b.bot.max(p.y);
+        }
+        b
+    }
+}
+
+/// [`fill_polygon`] with `pts`' box already computed (`Bbox::of(pts)`).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fill_polygon_in<K: SpanSink>(
+    pts: &[ScreenPt],
+    bbox: &Bbox,
+    sub: u32,
+    rule: FillRule,
+    clip: &SpanBounds,
+    edges: &mut [Edge],
+    active: &mut [u16],
+    color: K::Color,
+    sink: &mut K,
+) -> Result<usize, FillError> {
     if pts.len() > u16::MAX as usize || active.len() < pts.len() {
         return Err(FillError::Capacity);
     }
@@ -150,18 +203,13 @@ pub fn fill_polygon<K: SpanSink>(
     }
     // Cheap reject on the horizontal extent (rows are handled by the edge
     // setup): crossing columns are ceil(x − ½), monotone in x.
-    let (mut lo, mut hi) = (i32::MAX, i32::MIN);
-    let (mut top, mut bot) = (i32::MAX, i32::MIN);
-    let mut top_at = 0usize;
-    for (i, p) in pts.iter().enumerate() {
-        lo = lo.min(p.x);
-        hi = hi.max(p.x);
-        if p.y < top {
-            top = p.y;
-            top_at = i;
-        }
-        bot = bot.max(p.y);
-    }
+    let Bbox {
+        lo,
+        hi,
+        top,
+        bot,
+        top_at,
+    } = *bbox;
     // col(x) = floor((x − ½ pixel) in pixels) (an arithmetic shift is a
     // floor division by 2^(sub+1)); every crossing lies in
     // [col(lo), col(hi) + 1].
