@@ -252,7 +252,8 @@ impl<'a, F: PixelFormat> Framebuffer<'a, F> {
 
     /// Fills `x0..x1` of row `y`, clipped to the image.
     pub fn fill_span(&mut self, y: i32, x0: i32, x1: i32, c: F::Color) {
-        if y < 0 || y >= self.height as i32 {
+        // One unsigned comparison is both `y ≥ 0` and `y < height`.
+        if y as u32 >= self.height {
             return;
         }
         let x0 = x0.max(0) as usize;
