@@ -43,6 +43,7 @@ impl Chain {
     /// Advances to the edge active on row `y` (the first of this chain with
     /// a row after `y`), at most `n` edges; false if none is (which the
     /// monotonicity check rules out; kept as a no-panic guard).
+    #[inline(always)]
     fn seek(&mut self, pts: &[ScreenPt], sub: u32, y: i32, row_hi: i32) -> bool {
         let n = pts.len();
         for _ in 0..n {
