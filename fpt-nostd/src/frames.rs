@@ -495,3 +495,4 @@ pub mod accuracy;
 pub mod effects;
 #[cfg(test)]
 mod tests;
+pub mod work;

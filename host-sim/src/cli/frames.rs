@@ -26,6 +26,11 @@
 //! every vertex encoding: `--export` also writes
 //! `bench_city.q16.fpt`, `bench_city.q32.fpt` and their lines,
 //! `accuracy.txt`; `fpt frames --accuracy` prints those lines.
+//!
+//! `fpt frames --work` prints what each frame is made of instead
+//! ([`fpt_nostd::frames::work`]: polygons handed out by the walk, their
+//! vertices, polygons drawn, spans, pixels painted), the counts that the
+//! firmware's instruction counts divide into.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -35,6 +40,7 @@ use fpt_nostd::format::VertexFormat;
 use fpt_nostd::frames::accuracy::{
     render_config, vertex_format, AccuracyLine, ACCURACY_SCENE, CONFIGS,
 };
+use fpt_nostd::frames::work::frame_work;
 use fpt_nostd::frames::{
     render_banded, render_full, FrameLine, FrameRenderer, NoProbe, BAND_WORDS, FRAME_WORDS, HEIGHT,
     SCENES, VIEWS, WIDTH,
@@ -71,6 +77,11 @@ pub struct FramesArgs {
     /// Print the accuracy configurations' lines instead of the frames'.
     #[arg(long)]
     pub accuracy: bool,
+    /// Print each frame's work instead (`work scene=NAME view=K
+    /// polygons=N vertices=N drawn=N spans=N pixels=N`): what the
+    /// firmware's instruction counts divide into.
+    #[arg(long, conflicts_with = "accuracy")]
+    pub work: bool,
 }
 
 /// The procedural scene of one of [`SCENES`].
@@ -211,6 +222,21 @@ pub fn frame_lines(trees: &[(String, Vec<u8>)]) -> Result<Vec<String>, CliError>
     Ok(lines)
 }
 
+/// The work lines of every frame of `trees` ([`fpt_nostd::frames::work`]),
+/// in the order of [`frame_lines`].
+pub fn work_lines(trees: &[(String, Vec<u8>)]) -> Result<Vec<String>, CliError> {
+    let mut r = FrameRenderer::new(WIDTH, HEIGHT).ok_or_else(|| cli_err!("renderer size"))?;
+    let mut lines = Vec::new();
+    for (name, bytes) in trees {
+        let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{name}: {e}"))?;
+        for (k, v) in VIEWS.iter().enumerate() {
+            let w = frame_work(&mut r, &tree, v).map_err(|e| cli_err!("{name} view {k}: {e}"))?;
+            lines.push(format!("work scene={name} view={k} {w}"));
+        }
+    }
+    Ok(lines)
+}
+
 /// The text of [`EXPECTED_FILE`] for `lines`.
 pub fn expected_text(lines: &[String]) -> String {
     let mut s = String::from(
@@ -261,7 +287,13 @@ pub fn run(a: &FramesArgs) -> CliResult {
     }
     // Written by hand rather than with println!, so that a closed pipe
     // (`fpt frames | head`) ends the output quietly instead of panicking.
-    let lines = if a.accuracy { acc_lines } else { frame_lines };
+    let lines = if a.accuracy {
+        acc_lines
+    } else if a.work {
+        work_lines(&trees)?
+    } else {
+        frame_lines
+    };
     let mut out = std::io::stdout().lock();
     for l in &lines {
         match writeln!(out, "{l}") {
