@@ -16,7 +16,7 @@
 //!   renderer pays per band only for the polygons that reach it.
 
 use super::chain::{fill_monotone, Extent};
-use super::edge::{build_edges_with, Edge, SMALL};
+use super::edge::{build_edges_with, Dda32, Edge, SMALL};
 use super::transform::ScreenPt;
 use embedded_graphics::pixelcolor::Rgb888;
 
@@ -210,22 +210,36 @@ pub(crate) fn fill_polygon_in<K: SpanSink>(
         bot,
         top_at,
     } = *bbox;
+    // The bounding box decides the 32-bit edge setup (see Edge::new_small),
+    // and the arithmetic of the two rejects below: with every coordinate
+    // within ±SMALL (and `sub ≤ 8`) they fit in 32 bits, which a 32-bit
+    // core shifts in one instruction instead of a 64-bit sequence.
+    let small = lo > -SMALL && hi < SMALL && top > -SMALL && bot < SMALL && sub <= 8;
     // col(x) = floor((x − ½ pixel) in pixels) (an arithmetic shift is a
     // floor division by 2^(sub+1)); every crossing lies in
     // [col(lo), col(hi) + 1].
-    let col = |x: i32| (2 * x as i64 - (1i64 << sub)) >> (sub + 1);
-    if col(hi) < b.x0 as i64 || col(lo) >= b.x1 as i64 {
+    let (col_lo, col_hi) = if small {
+        let col = |x: i32| i64::from((2 * x - (1 << sub)) >> (sub + 1));
+        (col(lo), col(hi))
+    } else {
+        let col = |x: i32| (2 * x as i64 - (1i64 << sub)) >> (sub + 1);
+        (col(lo), col(hi))
+    };
+    if col_hi < b.x0 as i64 || col_lo >= b.x1 as i64 {
         return Ok(0);
     }
     // Same on rows, before any edge setup: the polygon's active rows are
     // within Edge::rows(top, bottom), so a band it misses costs one pass
     // over the vertices.
-    let (first, end) = Edge::rows(ScreenPt { x: 0, y: top }, ScreenPt { x: 0, y: bot }, sub);
+    let (top_pt, bot_pt) = (ScreenPt { x: 0, y: top }, ScreenPt { x: 0, y: bot });
+    let (first, end) = if small {
+        Dda32::rows(top_pt, bot_pt, sub)
+    } else {
+        Edge::rows(top_pt, bot_pt, sub)
+    };
     if end <= b.y0 || first >= b.y1 {
         return Ok(0);
     }
-    // The bounding box decides the 32-bit edge setup (see Edge::new_small).
-    let small = lo > -SMALL && hi < SMALL && top > -SMALL && bot < SMALL && sub <= 8;
     if edges.len() < pts.len() {
         return Err(FillError::Capacity);
     }
