@@ -23,7 +23,7 @@
 //!   shared edges included.
 
 use super::edge::Dda32;
-use super::scan::{SpanBounds, SpanSink};
+use super::scan::{Bbox, SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
 /// One boundary chain: the vertex its current edge ends at, the direction
@@ -103,31 +103,21 @@ fn is_y_monotone(pts: &[ScreenPt], top: usize) -> bool {
     true
 }
 
-/// The vertical extent of a polygon, from the caller's pass over its
-/// vertices: `top` is the index of a vertex with the least y, `ty`, and
-/// `by` the greatest y.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Extent {
-    pub(crate) top: usize,
-    pub(crate) ty: i32,
-    pub(crate) by: i32,
-}
-
 /// Fills the y-monotone polygon `pts` within `b` (already intersected with
 /// the sink's bounds) and returns the number of spans, or `None` (nothing
 /// emitted) when the polygon is not y-monotone. The caller guarantees
 /// `|x|, |y| < edge::SMALL` for every vertex, `sub ≤ 8`,
-/// `pts.len() ≥ 3` and that `ext` is `pts`' extent.
+/// `pts.len() ≥ 3` and that `bbox` is `Bbox::of(pts)`.
 pub(crate) fn fill_monotone<K: SpanSink>(
     pts: &[ScreenPt],
-    ext: Extent,
+    bbox: &Bbox,
     sub: u32,
     b: &SpanBounds,
     color: K::Color,
     sink: &mut K,
 ) -> Option<usize> {
     let n = pts.len();
-    let Extent { top, ty, by } = ext;
+    let (top, ty, by) = (bbox.top_at, bbox.top, bbox.bot);
     if ty == by {
         return Some(0); // all on one row line: no active row
     }
@@ -224,7 +214,7 @@ mod tests {
                 y1: y0 + h,
             };
             let mut fast = Rec(Vec::new(), b);
-            let Some(n) = fill_monotone(&pts, extent(&pts), sub, &b, (), &mut fast) else {
+            let Some(n) = fill_monotone(&pts, &Bbox::of(&pts), sub, &b, (), &mut fast) else {
                 continue;
             };
             accepted += 1;
@@ -247,23 +237,6 @@ mod tests {
 
     fn pt(x: i32, y: i32) -> ScreenPt {
         ScreenPt { x, y }
-    }
-
-    /// The extent the fill's bounding-box pass computes (first lowest).
-    fn extent(pts: &[ScreenPt]) -> Extent {
-        let mut e = Extent {
-            top: 0,
-            ty: i32::MAX,
-            by: i32::MIN,
-        };
-        for (i, p) in pts.iter().enumerate() {
-            if p.y < e.ty {
-                e.ty = p.y;
-                e.top = i;
-            }
-            e.by = e.by.max(p.y);
-        }
-        e
     }
 
     /// Reference: changes of vertical direction around the closed
@@ -292,7 +265,7 @@ mod tests {
 
     #[test]
     fn monotone_shapes() {
-        let mono = |p: &[ScreenPt]| is_y_monotone(p, extent(p).top);
+        let mono = |p: &[ScreenPt]| is_y_monotone(p, Bbox::of(p).top_at);
         assert!(mono(&[pt(0, 0), pt(10, 5), pt(3, 9)]));
         // Horizontal top and bottom edges.
         assert!(mono(&[pt(0, 0), pt(10, 0), pt(10, 10), pt(0, 10)]));
@@ -313,7 +286,7 @@ mod tests {
             let n = 3 + rng.range(0, 5) as usize;
             let pts: Vec<ScreenPt> = (0..n).map(|_| pt(0, rng.range(0, 4))).collect();
             let want = matches!(direction_changes(&pts), 0 | 2);
-            let ty = extent(&pts).ty;
+            let ty = Bbox::of(&pts).top;
             for (top, _) in pts.iter().enumerate().filter(|(_, p)| p.y == ty) {
                 assert_eq!(is_y_monotone(&pts, top), want, "{pts:?} from {top}");
             }

@@ -15,7 +15,7 @@
 //!   nothing (edges start directly at the first row in bounds), so a band
 //!   renderer pays per band only for the polygons that reach it.
 
-use super::chain::{fill_monotone, Extent};
+use super::chain::fill_monotone;
 use super::edge::{build_edges_with, Dda32, Edge, SMALL};
 use super::transform::ScreenPt;
 use embedded_graphics::pixelcolor::Rgb888;
@@ -204,11 +204,7 @@ pub(crate) fn fill_polygon_in<K: SpanSink>(
     // Cheap reject on the horizontal extent (rows are handled by the edge
     // setup): crossing columns are ceil(x − ½), monotone in x.
     let Bbox {
-        lo,
-        hi,
-        top,
-        bot,
-        top_at,
+        lo, hi, top, bot, ..
     } = *bbox;
     // The bounding box decides the 32-bit edge setup (see Edge::new_small),
     // and the arithmetic of the two rejects below: with every coordinate
@@ -245,12 +241,7 @@ pub(crate) fn fill_polygon_in<K: SpanSink>(
     }
     if small {
         // Convex and other y-monotone polygons: two chains, no edge list.
-        let ext = Extent {
-            top: top_at,
-            ty: top,
-            by: bot,
-        };
-        if let Some(spans) = fill_monotone(pts, ext, sub, &b, color, sink) {
+        if let Some(spans) = fill_monotone(pts, bbox, sub, &b, color, sink) {
             return Ok(spans);
         }
     }
