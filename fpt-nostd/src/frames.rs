@@ -48,7 +48,7 @@ use crate::raster::{
     band_starts, Band, FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, Paint, RenderStats,
     Rgb565Framebuffer, SpanBounds, SpanSink,
 };
-use crate::reader::Tree;
+use crate::reader::{PolygonRef, Tree};
 use crate::render::{face_of, scaled_vertices, walk_effects, Frame, TreeRenderer};
 
 /// Frame width in pixels.
@@ -193,6 +193,10 @@ pub trait Probe {
     /// follows, e.g. checksumming a band, is not the frame's cost).
     #[inline(always)]
     fn stop(&self) {}
+    /// The walk hands polygon `p` to the renderer (for counting what a
+    /// frame is made of, [`work`]; timing probes leave it empty).
+    #[inline(always)]
+    fn polygon(&self, _p: &PolygonRef<'_>) {}
 }
 
 /// The probe that measures nothing (and costs nothing).
@@ -425,6 +429,7 @@ fn draw_tree<K: SpanSink, Pr: Probe>(
     // and no `Tree` is copied into an iterator per class.
     while let Some(ids) = order.next_range() {
         for p in ids.filter_map(|id| tree.polygon(id)) {
+            probe.polygon(&p);
             let face = face_of(&p, &view, two_sided, p.source());
             let verts = scaled_vertices(&p, scale);
             probe.enter(Phase::Xform);

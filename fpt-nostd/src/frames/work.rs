@@ -8,13 +8,9 @@ use core::fmt;
 
 use embedded_graphics::pixelcolor::Rgb565;
 
-use super::{draw_tree, setup, FrameError, FrameRenderer, Phase, Probe, ViewSpec, HEIGHT, WIDTH};
-use crate::order::Order;
+use super::{draw_tree, setup, FrameError, FrameRenderer, Probe, ViewSpec, HEIGHT, WIDTH};
 use crate::raster::{Paint, SpanBounds, SpanSink};
-use crate::reader::Tree;
-use crate::render::walk_effects;
-
-use super::WALK_DEPTH;
+use crate::reader::{PolygonRef, Tree};
 
 /// The work of one frame ([`frame_work`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -59,16 +55,18 @@ impl SpanSink for Tally {
     }
 }
 
-/// Counts the polygons handed to the renderer (the probe hears of each
-/// one as its transform starts).
+/// Counts the polygons handed to the renderer and their vertices.
 #[derive(Default)]
-struct Handed(Cell<u32>);
+struct Handed {
+    polygons: Cell<u32>,
+    vertices: Cell<u64>,
+}
 
 impl Probe for Handed {
-    fn enter(&self, phase: Phase) {
-        if phase == Phase::Xform {
-            self.0.set(self.0.get() + 1);
-        }
+    fn polygon(&self, p: &PolygonRef<'_>) {
+        self.polygons.set(self.polygons.get() + 1);
+        self.vertices
+            .set(self.vertices.get() + p.vertex_count() as u64);
     }
 }
 
@@ -81,23 +79,13 @@ pub fn frame_work(
     view: &ViewSpec,
 ) -> Result<Work, FrameError> {
     let frame = setup(r, tree, view);
-    // The vertices of the polygons the walk hands out: the same walk as
-    // the draw's (same culling), counted on its own.
-    let (cull, _) = walk_effects(tree, &mut r.renderer);
-    let mut order = Order::<WALK_DEPTH>::with_culling(tree, frame.view, cull)?;
-    let mut vertices = 0u64;
-    while let Some(ids) = order.next_range() {
-        for p in ids.filter_map(|id| tree.polygon(id)) {
-            vertices += p.vertex_count() as u64;
-        }
-    }
     let mut sink = Tally { pixels: 0 };
     let handed = Handed::default();
     draw_tree(r, tree, &frame, &mut sink, &handed)?;
     let stats = r.renderer.stats();
     Ok(Work {
-        polygons: handed.0.get(),
-        vertices,
+        polygons: handed.polygons.get(),
+        vertices: handed.vertices.get(),
         drawn: stats.drawn,
         spans: stats.spans,
         pixels: sink.pixels,
