@@ -23,7 +23,7 @@
 //!   shared edges included.
 
 use super::edge::Dda32;
-use super::scan::{Bbox, SpanBounds, SpanSink};
+use super::scan::{pair_rows, Bbox, SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
 /// One boundary chain: the vertex its current edge ends at, the direction
@@ -152,21 +152,8 @@ pub(crate) fn fill_monotone<K: SpanSink>(
             break;
         }
         let run = l.y1.min(r.y1);
-        let (mut da, mut db) = (l.dda, r.dda);
-        while y < run {
-            let (xa, xb) = (da.crossing(), db.crossing());
-            let (lo, hi) = if xa <= xb { (xa, xb) } else { (xb, xa) };
-            let (x0, x1) = (lo.max(b.x0), hi.min(b.x1));
-            if x0 < x1 {
-                sink.span(y, x0, x1, color);
-                spans += 1;
-            }
-            da.step();
-            db.step();
-            y += 1;
-        }
-        l.dda = da;
-        r.dda = db;
+        spans += pair_rows(&mut l.dda, &mut r.dda, true, b, y, run, color, sink);
+        y = run;
     }
     Some(spans)
 }

@@ -274,6 +274,38 @@ impl Edge {
     }
 }
 
+/// An exact edge stepper, row by row: [`Edge`] (64-bit remainders) or
+/// [`Dda32`] (the same steps in 32-bit registers). Lets one row loop serve
+/// both (`super::scan::pair_rows`).
+pub(crate) trait Stepper {
+    /// The crossing pixel on the current row.
+    fn crossing(&self) -> i32;
+    /// Advances to the next row.
+    fn step(&mut self);
+}
+
+impl Stepper for Edge {
+    #[inline(always)]
+    fn crossing(&self) -> i32 {
+        Edge::crossing(self)
+    }
+    #[inline(always)]
+    fn step(&mut self) {
+        Edge::step(self)
+    }
+}
+
+impl Stepper for Dda32 {
+    #[inline(always)]
+    fn crossing(&self) -> i32 {
+        Dda32::crossing(self)
+    }
+    #[inline(always)]
+    fn step(&mut self) {
+        Dda32::step(self)
+    }
+}
+
 /// An edge's quotient/remainder stepping in 32-bit registers (see
 /// [`Edge::dda32`]): the same sequence of crossings as [`Edge`]'s.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -16,7 +16,7 @@
 //!   renderer pays per band only for the polygons that reach it.
 
 use super::chain::fill_monotone;
-use super::edge::{build_edges_with, Dda32, Edge, SMALL};
+use super::edge::{build_edges_with, Dda32, Edge, Stepper, SMALL};
 use super::transform::ScreenPt;
 use embedded_graphics::pixelcolor::Rgb888;
 
@@ -266,56 +266,58 @@ fn two_edge_rows<K: SpanSink>(
     ib: usize,
     rule: FillRule,
     b: &SpanBounds,
-    mut y: i32,
+    y: i32,
     stop: i32,
     color: K::Color,
     sink: &mut K,
 ) -> usize {
     let (mut ea, mut eb) = (edges[ia], edges[ib]);
-    let mut spans = 0usize;
     let paint = ea.dir != eb.dir || rule == FillRule::EvenOdd;
     if let (Some(mut da), Some(mut db)) = (ea.dda32(), eb.dda32()) {
         // Same loop in 32-bit registers (the usual case on screen).
-        while y < stop {
-            if paint {
-                let (xa, xb) = (da.crossing(), db.crossing());
-                let (l, r) = if xa <= xb { (xa, xb) } else { (xb, xa) };
-                let (x0, x1) = (l.max(b.x0), r.min(b.x1));
-                if x0 < x1 {
-                    sink.span(y, x0, x1, color);
-                    spans += 1;
-                }
-            }
-            da.step();
-            db.step();
-            y += 1;
-        }
+        let spans = pair_rows(&mut da, &mut db, paint, b, y, stop, color, sink);
         edges[ia].set_dda32(&da);
         edges[ib].set_dda32(&db);
         return spans;
     }
-    if paint {
-        while y < stop {
-            let (xa, xb) = (ea.crossing(), eb.crossing());
+    let spans = pair_rows(&mut ea, &mut eb, paint, b, y, stop, color, sink);
+    edges[ia] = ea;
+    edges[ib] = eb;
+    spans
+}
+
+/// Rows `[y, stop)` between the two steppers `a` and `b`, stepping both to
+/// row `stop`: with `paint`, each row's span `[min, max)` of their
+/// crossings clipped to `b`'s columns; without, steps only. Returns the
+/// spans emitted. The one row loop of the pairs of edges (`two_edge_rows`
+/// and the monotone chains, `super::chain`).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(super) fn pair_rows<S: Stepper, K: SpanSink>(
+    a: &mut S,
+    c: &mut S,
+    paint: bool,
+    b: &SpanBounds,
+    mut y: i32,
+    stop: i32,
+    color: K::Color,
+    sink: &mut K,
+) -> usize {
+    let mut spans = 0usize;
+    while y < stop {
+        if paint {
+            let (xa, xb) = (a.crossing(), c.crossing());
             let (l, r) = if xa <= xb { (xa, xb) } else { (xb, xa) };
             let (x0, x1) = (l.max(b.x0), r.min(b.x1));
             if x0 < x1 {
                 sink.span(y, x0, x1, color);
                 spans += 1;
             }
-            ea.step();
-            eb.step();
-            y += 1;
         }
-    } else {
-        while y < stop {
-            ea.step();
-            eb.step();
-            y += 1;
-        }
+        a.step();
+        c.step();
+        y += 1;
     }
-    edges[ia] = ea;
-    edges[ib] = eb;
     spans
 }
 
