@@ -88,11 +88,28 @@ mod target {
 
     static mut BUF: [u16; WORDS] = [0; WORDS];
 
-    /// The frame or band buffer; call once.
-    pub fn buffer() -> &'static mut [u16] {
+    /// The frame's working memory (`fpt_nostd::render::memory_words`):
+    /// the vertex cache (and in `band` the display list). What is left of
+    /// the RAM budget: 20 KiB beside the 7.5 KiB band (the three scenes'
+    /// largest frame, bench_city, needs more: it takes a second walk);
+    /// 4 KiB beside the 112.5 KiB frame.
+    #[cfg(feature = "band")]
+    pub const MEMORY_WORDS: usize = 5 * 1024;
+    #[cfg(feature = "full")]
+    pub const MEMORY_WORDS: usize = 1024;
+
+    static mut MEMORY: [u32; MEMORY_WORDS] = [0; MEMORY_WORDS];
+
+    /// The frame or band buffer and the working memory; call once.
+    pub fn buffers() -> (&'static mut [u16], &'static mut [u32]) {
         // SAFETY: called once, from `main`, before anything else touches
-        // BUF; no other reference to it ever exists.
-        unsafe { &mut *core::ptr::addr_of_mut!(BUF) }
+        // BUF or MEMORY; no other reference to them ever exists.
+        unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(BUF),
+                &mut *core::ptr::addr_of_mut!(MEMORY),
+            )
+        }
     }
 }
 
@@ -139,10 +156,10 @@ fn run<Pr: Probe>(
     r: &mut FrameRenderer,
     tree: &Tree<'_>,
     view: &ViewSpec,
-    buf: &mut [u16],
+    (buf, memory): (&mut [u16], &mut [u32]),
     probe: &Pr,
 ) -> Result<Rendered, FrameError> {
-    target::draw(r, tree, view, buf, probe)
+    target::draw(r, tree, view, buf, memory, probe)
 }
 
 /// Draws one view twice (see [`probe`]), prints its line; `false` if its
@@ -153,17 +170,18 @@ fn frame(
     r: &mut FrameRenderer,
     (name, tree): (&str, &Tree<'_>),
     (k, view): (usize, &ViewSpec),
-    buf: &mut [u16],
+    buf: (&mut [u16], &mut [u32]),
     marks: &mut MarkCost,
 ) -> bool {
+    let (buf, memory) = buf;
     let check = |out: Result<Rendered, FrameError>| match out {
         Ok(out) => out,
         Err(e) => fail(format_args!("{name} view {k}: {e}")),
     };
     let total = TotalProbe::default();
-    let a = check(run(r, tree, view, buf, &total));
+    let a = check(run(r, tree, view, (&mut *buf, &mut *memory), &total));
     let phases = PhaseProbe::default();
-    let b = check(run(r, tree, view, buf, &phases));
+    let b = check(run(r, tree, view, (&mut *buf, &mut *memory), &phases));
     if a.crc != b.crc {
         fail(format_args!(
             "{name} view {k}: the probed run drew crc {:08x}, the plain run {:08x}",
@@ -226,7 +244,7 @@ fn main() -> ! {
     // apart: the stack is painted again below the current SP.
     let init_peak = stack::peak();
     stack::paint();
-    let buf = target::buffer();
+    let (buf, memory) = target::buffers();
     let mut marks = MarkCost {
         min: u64::MAX,
         max: 0,
@@ -244,7 +262,14 @@ fn main() -> ! {
             Err(e) => fail(format_args!("{name}: {e}")),
         };
         for (k, view) in VIEWS.iter().enumerate() {
-            ok &= frame(&clock, r, (name, &tree), (k, view), buf, &mut marks);
+            ok &= frame(
+                &clock,
+                r,
+                (name, &tree),
+                (k, view),
+                (&mut *buf, &mut *memory),
+                &mut marks,
+            );
         }
     }
     #[cfg(feature = "full")]

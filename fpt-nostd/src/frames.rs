@@ -43,13 +43,15 @@ use core::fmt;
 
 use embedded_graphics::pixelcolor::Rgb565;
 
-use crate::order::{Order, OrderError};
+use crate::order::OrderError;
 use crate::raster::{
-    band_starts, Band, FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, Paint, RenderStats,
-    Rgb565Framebuffer, SpanBounds, SpanSink,
+    FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, RenderStats, Rgb565Format,
+    Rgb565Framebuffer, SpanSink,
 };
-use crate::reader::{PolygonRef, Tree};
-use crate::render::{face_of, scaled_vertices, walk_effects, Frame, TreeRenderer};
+use crate::reader::Tree;
+use crate::render::cached::{draw_bands, draw_direct};
+use crate::render::{BandBuffer, Frame, RenderError, TreeRenderer};
+pub use crate::render::{NoProbe, Phase, Probe};
 
 /// Frame width in pixels.
 pub const WIDTH: u32 = 240;
@@ -160,51 +162,6 @@ impl ViewSpec {
     }
 }
 
-/// The phases of a frame's cost.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Phase {
-    /// Postprocessing: the back-to-front tree walk and fetching each
-    /// polygon's plane and colour.
-    Post = 0,
-    /// Camera setup, vertex decode and transform, clipping, projection and
-    /// shading.
-    Xform = 1,
-    /// Clearing the buffer, edge setup and scan conversion, pixel writes.
-    Fill = 2,
-}
-
-impl Phase {
-    /// Every phase, in index order.
-    pub const ALL: [Phase; 3] = [Phase::Post, Phase::Xform, Phase::Fill];
-}
-
-/// Hooks at the phase boundaries of a frame (see the module docs). All do
-/// nothing by default; `&self` so that the sink wrapper can call them too
-/// (a measuring probe keeps its state in `Cell`s).
-pub trait Probe {
-    /// The frame's work starts or resumes, in `phase`.
-    #[inline(always)]
-    fn start(&self, _phase: Phase) {}
-    /// From now on the time belongs to `phase`. Called three times per
-    /// drawn polygon: keep it cheap.
-    #[inline(always)]
-    fn enter(&self, _phase: Phase) {}
-    /// The frame's work stops until the next [`Probe::start`] (what
-    /// follows, e.g. checksumming a band, is not the frame's cost).
-    #[inline(always)]
-    fn stop(&self) {}
-    /// The walk hands polygon `p` to the renderer (for counting what a
-    /// frame is made of, [`work`]; timing probes leave it empty).
-    #[inline(always)]
-    fn polygon(&self, _p: &PolygonRef<'_>) {}
-}
-
-/// The probe that measures nothing (and costs nothing).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct NoProbe;
-
-impl Probe for NoProbe {}
-
 /// Why a frame could not be drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FrameError {
@@ -302,11 +259,14 @@ impl PixelCrc {
 
 /// Draws view `view` of `tree` into `buf` (at least [`FRAME_WORDS`]
 /// words, a `WIDTH × HEIGHT` RGB565 image on return) and checksums it.
+/// `memory` is the vertex cache ([`crate::render::memory_words`]; any
+/// length, empty included: the picture is the same).
 pub fn render_full<Pr: Probe>(
     r: &mut FrameRenderer,
     tree: &Tree<'_>,
     view: &ViewSpec,
     buf: &mut [u16],
+    memory: &mut [u32],
     probe: &Pr,
 ) -> Result<Rendered, FrameError> {
     probe.start(Phase::Xform);
@@ -314,51 +274,57 @@ pub fn render_full<Pr: Probe>(
     probe.enter(Phase::Fill);
     let mut fb = Rgb565Framebuffer::new(buf, WIDTH, HEIGHT)?;
     clear(&mut fb);
-    let drawn = draw_tree(r, tree, &frame, &mut fb, probe);
+    let drawn = draw_tree(r, tree, &frame, memory, &mut fb, probe);
     probe.stop();
-    drawn?;
+    let stats = drawn?;
     let mut crc = PixelCrc::new();
     crc.update(fb.data());
     Ok(Rendered {
         crc: crc.finish(),
-        stats: r.renderer.stats(),
+        stats,
     })
 }
 
 /// Draws the same frame as [`render_full`] through `band` (at least
-/// [`BAND_WORDS`] words) one [`BAND_ROWS`]-row band at a time, checksumming
-/// each band as it is finished (outside the probe's start/stop).
+/// [`BAND_WORDS`] words) one [`BAND_ROWS`]-row band at a time, with
+/// `memory` as the frame's working memory (vertex cache and display list,
+/// [`crate::render::memory_words`]; any length: the picture is the same),
+/// checksumming each band as it is finished (outside the probe's
+/// start/stop).
 pub fn render_banded<Pr: Probe>(
     r: &mut FrameRenderer,
     tree: &Tree<'_>,
     view: &ViewSpec,
     band: &mut [u16],
+    memory: &mut [u32],
     probe: &Pr,
 ) -> Result<Rendered, FrameError> {
     probe.start(Phase::Xform);
     let frame = setup(r, tree, view);
-    probe.stop();
     let mut crc = PixelCrc::new();
-    for y0 in band_starts(HEIGHT, BAND_ROWS) {
-        let rows = BAND_ROWS.min(HEIGHT.saturating_sub(y0 as u32));
-        probe.start(Phase::Fill);
-        let fb = Rgb565Framebuffer::new(&mut *band, WIDTH, rows);
-        let mut fb = match fb {
-            Ok(fb) => fb,
-            Err(e) => {
-                probe.stop();
-                return Err(e.into());
-            }
-        };
-        clear(&mut fb);
-        let drawn = draw_tree(r, tree, &frame, &mut Band::new(&mut fb, y0), probe);
-        probe.stop();
-        drawn?;
-        crc.update(fb.data());
-    }
+    let band = BandBuffer::<Rgb565Format> {
+        buf: band,
+        rows: BAND_ROWS,
+        background: BACKGROUND,
+    };
+    let stats = draw_bands::<_, _, _, _, WALK_DEPTH, MAX_VERTS>(
+        tree,
+        &frame,
+        &mut r.renderer,
+        &mut r.scratch,
+        r.ids,
+        memory,
+        band,
+        probe,
+        |_, fb| crc.update(fb.data()),
+    )
+    .map_err(|e| match e {
+        RenderError::Order(e) => FrameError::Order(e),
+        RenderError::Band(e) => FrameError::Buffer(e),
+    })?;
     Ok(Rendered {
         crc: crc.finish(),
-        stats: r.renderer.stats(),
+        stats,
     })
 }
 
@@ -379,66 +345,31 @@ fn setup(r: &mut FrameRenderer, tree: &Tree<'_>, view: &ViewSpec) -> Frame {
     frame
 }
 
-/// Passes spans through, telling the probe when the fill starts.
-struct ProbeSink<'a, K, Pr> {
-    inner: &'a mut K,
-    probe: &'a Pr,
-}
-
-impl<K: SpanSink, Pr: Probe> SpanSink for ProbeSink<'_, K, Pr> {
-    type Color = K::Color;
-    #[inline(always)]
-    fn color(&self, paint: &Paint) -> K::Color {
-        // Called once per polygon, after shading, right before the scan
-        // conversion (see `Renderer::draw_polygon`).
-        self.probe.enter(Phase::Fill);
-        self.inner.color(paint)
-    }
-    #[inline(always)]
-    fn bounds(&self) -> SpanBounds {
-        self.inner.bounds()
-    }
-    #[inline(always)]
-    fn span(&mut self, y: i32, x0: i32, x1: i32, color: K::Color) {
-        self.inner.span(y, x0, x1, color)
-    }
-}
-
-/// [`crate::render::draw_frame`]'s loop with the probe's hooks: walks the
-/// tree's ranges of ids back to front and draws every polygon into
-/// `sink`. The counters accumulate (the callers zero them once per frame).
+/// The full frame's draw loop ([`crate::render::TreeRenderer::render_cached`]'s)
+/// with the probe's hooks, into `sink`.
 ///
-/// Not inlined: called once per frame or band, and inlining it into the
-/// band loop let the optimiser duplicate the whole pipeline (+24 KiB of
-/// `.text` on the Cortex-M4) for no measurable gain.
+/// Not inlined: inlining it into its callers let the optimiser duplicate
+/// the whole pipeline (+24 KiB of `.text` on the Cortex-M4) for no
+/// measurable gain.
 #[inline(never)]
 fn draw_tree<K: SpanSink, Pr: Probe>(
     r: &mut FrameRenderer,
     tree: &Tree<'_>,
     frame: &Frame,
+    memory: &mut [u32],
     sink: &mut K,
     probe: &Pr,
-) -> Result<(), OrderError> {
-    probe.enter(Phase::Post);
-    let (cull, two_sided) = walk_effects(tree, &mut r.renderer);
-    let mut order = Order::<WALK_DEPTH>::with_culling(tree, frame.view, cull)?;
-    let view = order.view();
-    let scale = frame.vertex_scale;
-    let mut sink = ProbeSink { inner: sink, probe };
-    // Ranges of ids straight from the walk: no class is built or copied,
-    // and no `Tree` is copied into an iterator per class.
-    while let Some(ids) = order.next_range() {
-        for p in ids.filter_map(|id| tree.polygon(id)) {
-            probe.polygon(&p);
-            let face = face_of(&p, &view, two_sided, p.source());
-            let verts = scaled_vertices(&p, scale);
-            probe.enter(Phase::Xform);
-            r.renderer
-                .draw_polygon(&mut r.scratch, verts, &face, &mut sink);
-            probe.enter(Phase::Post);
-        }
-    }
-    Ok(())
+) -> Result<RenderStats, OrderError> {
+    draw_direct::<_, _, _, _, WALK_DEPTH, MAX_VERTS>(
+        tree,
+        frame,
+        &mut r.renderer,
+        &mut r.scratch,
+        r.ids,
+        memory,
+        sink,
+        probe,
+    )
 }
 
 /// The line both sides print for a frame: `frame scene=NAME view=K

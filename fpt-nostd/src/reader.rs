@@ -192,6 +192,30 @@ impl Iterator for Vertices<'_> {
     }
 }
 
+/// The vertex indices of one polygon ([`PolygonRef::vertex_indices`]).
+#[derive(Clone, Debug)]
+pub struct VertexIndices<'a> {
+    indices: &'a [u8],
+    wide: bool,
+}
+
+impl Iterator for VertexIndices<'_> {
+    type Item = u32;
+
+    #[inline]
+    fn next(&mut self) -> Option<u32> {
+        if self.wide {
+            let (&[a, b, c, d], rest) = self.indices.split_first_chunk::<4>()?;
+            self.indices = rest;
+            Some(u32::from_le_bytes([a, b, c, d]))
+        } else {
+            let (&[a, b], rest) = self.indices.split_first_chunk::<2>()?;
+            self.indices = rest;
+            Some(u32::from(u16::from_le_bytes([a, b])))
+        }
+    }
+}
+
 /// What decoding a vertex needs; copied into every [`PolygonRef`].
 #[derive(Clone, Copy, Debug)]
 struct Geometry<'a> {
@@ -523,6 +547,22 @@ impl<'a> PolygonRef<'a> {
             format: g.format,
             q16_scale: g.q16_scale,
             q32_scale: g.q32_scale,
+        }
+    }
+
+    /// The indices of its vertices in the tree's vertex section, in order
+    /// (what [`PolygonRef::vertex_index`] gives for each `i`): the key of
+    /// a per-frame vertex cache.
+    pub fn vertex_indices(&self) -> VertexIndices<'a> {
+        let g = &self.g;
+        let size = usize::from(g.index_size);
+        let lo = g
+            .indices
+            .wrapping_add((self.first as usize).wrapping_mul(size));
+        let hi = lo.wrapping_add((self.count as usize).wrapping_mul(size));
+        VertexIndices {
+            indices: g.bytes.get(lo..hi).unwrap_or(&[]),
+            wide: size == 4,
         }
     }
 

@@ -50,10 +50,13 @@
 use crate::effects::{AllEffects, Compiled, Effects};
 use crate::order::{LocalView, Order, OrderError, View};
 use crate::raster::{
-    band_starts, Band, Camera, Face, Framebuffer, FramebufferError, Mat4, PixelFormat, Precision,
-    RenderStats, Renderer, Scratch, SpanSink,
+    Camera, Face, Framebuffer, FramebufferError, Mat4, PixelFormat, Precision, RenderStats,
+    Renderer, Scratch, SpanSink,
 };
 use crate::reader::{PolygonRef, Tree};
+
+pub use cached::memory_words;
+pub use probe::{NoProbe, Phase, Probe};
 
 /// Which number a polygon writes into id buffers (as `number + 1`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -441,7 +444,9 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
             renderer.draw_polygon(scratch, verts, &face, sink);
         }
     }
-    Ok(renderer.stats())
+    let mut stats = renderer.stats();
+    stats.walks = 1;
+    Ok(stats)
 }
 
 /// What the walk of a frame needs from the effects: settles the renderer's
@@ -549,40 +554,74 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     }
 
     /// Draws the frame band by band through `band`'s buffer: for each band
-    /// (top to bottom) fills it with the background, draws the whole tree
-    /// into it, and hands it to `emit` with its first frame row. The bands
-    /// put together are exactly the full-frame picture. The counters are
-    /// summed over the bands (a polygon is counted once per band).
+    /// (top to bottom) fills it with the background, draws the tree into
+    /// it, and hands it to `emit` with its first frame row. The bands put
+    /// together are exactly the full-frame picture. Without working memory
+    /// the tree is walked and every polygon transformed once per band;
+    /// [`TreeRenderer::render_banded_in`] does it once a frame. The
+    /// counters count each polygon once.
     pub fn render_banded<F: PixelFormat, const N: usize>(
         &mut self,
         tree: &Tree<'_>,
         frame: &Frame,
         band: BandBuffer<'_, F>,
-        mut emit: impl FnMut(i32, &Framebuffer<'_, F>),
+        emit: impl FnMut(i32, &Framebuffer<'_, F>),
     ) -> Result<RenderStats, RenderError> {
-        let vp = self.renderer.viewport();
-        let (w, h) = (vp.width(), vp.height());
-        let rows = band.rows.max(1);
-        let mut total = RenderStats::default();
-        for y0 in band_starts(h, rows) {
-            let n = rows.min(h.saturating_sub(y0 as u32));
-            let mut fb = Framebuffer::<F>::new(&mut *band.buf, w, n).map_err(RenderError::Band)?;
-            fb.fill_all(band.background);
-            let mut sink = Band::new(&mut fb, y0);
-            let s = draw_frame::<P, E, _, N, V>(
-                tree,
-                frame,
-                &mut self.renderer,
-                &mut self.scratch,
-                self.ids,
-                &mut sink,
-            )?;
-            total += s;
-            emit(y0, &fb);
-        }
-        Ok(total)
+        self.render_banded_in::<F, N>(tree, frame, band, &mut [], emit)
+    }
+
+    /// [`TreeRenderer::render`] with a vertex cache in `memory` (one word
+    /// per vertex of the tree, [`Tree::vertex_count`]; less caches the
+    /// vertices with the lowest indices): each vertex shared by several
+    /// polygons is transformed once. The same pixels as without memory.
+    pub fn render_cached<K: SpanSink, const N: usize>(
+        &mut self,
+        tree: &Tree<'_>,
+        frame: &Frame,
+        memory: &mut [u32],
+        sink: &mut K,
+    ) -> Result<RenderStats, OrderError> {
+        cached::draw_direct::<P, E, K, NoProbe, N, V>(
+            tree,
+            frame,
+            &mut self.renderer,
+            &mut self.scratch,
+            self.ids,
+            memory,
+            sink,
+            &NoProbe,
+        )
+    }
+
+    /// [`TreeRenderer::render_banded`] with working memory: one walk and
+    /// at most one transform of each vertex a frame, shared by all the
+    /// bands, when `memory` holds [`memory_words`] words; less memory
+    /// gives the same picture with more walks (see the module docs of
+    /// `render::cached` in the source, summarised in the README). The
+    /// counters count each polygon once.
+    pub fn render_banded_in<F: PixelFormat, const N: usize>(
+        &mut self,
+        tree: &Tree<'_>,
+        frame: &Frame,
+        band: BandBuffer<'_, F>,
+        memory: &mut [u32],
+        emit: impl FnMut(i32, &Framebuffer<'_, F>),
+    ) -> Result<RenderStats, RenderError> {
+        cached::draw_bands::<P, E, F, NoProbe, N, V>(
+            tree,
+            frame,
+            &mut self.renderer,
+            &mut self.scratch,
+            self.ids,
+            memory,
+            band,
+            &NoProbe,
+            emit,
+        )
     }
 }
 
+pub(crate) mod cached;
+pub mod probe;
 #[cfg(test)]
 mod tests;

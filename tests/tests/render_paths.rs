@@ -12,10 +12,11 @@ use embedded_graphics::Pixel;
 use fpt_nostd::effects::Effects;
 use fpt_nostd::raster::framebuffer::{BinaryFormat, Gray8Format, Rgb565Format, Rgb888Format};
 use fpt_nostd::raster::{
-    DefaultPrecision, DepthCue, DrawTargetSink, Framebuffer, Light, PixelFormat, ShadeMode,
+    DefaultPrecision, DepthCue, DrawTargetSink, Framebuffer, Light, PixelFormat, RenderStats,
+    ShadeMode,
 };
 use fpt_nostd::reader::Tree;
-use fpt_nostd::render::{BandBuffer, Frame, TreeRenderer};
+use fpt_nostd::render::{memory_words, BandBuffer, Frame, TreeRenderer};
 use fpt_tests::random_cameras;
 use host_sim::scenes;
 use render_common::{build_tree, frame, render_ids, STACK, VERTS};
@@ -102,21 +103,52 @@ where
     assert!(sink.finish().is_ok());
     assert!(disp.px == fast_px, "{label}: DrawTarget path differs");
 
+    // Bands, with working memory from none to all a frame needs (the
+    // display list overflows and the renderer walks again, or draws a
+    // band as it walks): the same pixels and counters.
+    let need = memory_words(tree);
     for rows in [1u32, 8, 13, H] {
-        let mut banded = vec![F::Word::default(); fast.len()];
-        let stride = F::words_per_row(W);
-        let mut buf = vec![F::Word::default(); stride * rows as usize];
-        let band = BandBuffer::<F> {
-            buf: &mut buf,
-            rows,
-            background: bg,
-        };
-        r.render_banded::<F, STACK>(tree, f, band, |y0, b| {
-            let at = y0 as usize * stride;
-            banded[at..at + b.data().len()].copy_from_slice(b.data());
-        })
-        .expect("bands");
-        assert!(banded == fast, "{label}: bands of {rows} rows differ");
+        for words in [0, 40, need / 3, need] {
+            let mut memory = vec![0u32; words];
+            let mut banded = vec![F::Word::default(); fast.len()];
+            let stride = F::words_per_row(W);
+            let mut buf = vec![F::Word::default(); stride * rows as usize];
+            let band = BandBuffer::<F> {
+                buf: &mut buf,
+                rows,
+                background: bg,
+            };
+            let s = r
+                .render_banded_in::<F, STACK>(tree, f, band, &mut memory, |y0, b| {
+                    let at = y0 as usize * stride;
+                    banded[at..at + b.data().len()].copy_from_slice(b.data());
+                })
+                .expect("bands");
+            assert!(
+                banded == fast,
+                "{label}: bands of {rows} rows, {words} words differ"
+            );
+            // (Spans may differ: a band cuts a polygon's run of rows.)
+            let counts = |s: RenderStats| (s.drawn, s.invisible, s.skipped, s.clipped);
+            assert_eq!(
+                counts(s),
+                counts(stats),
+                "{label}: {rows} rows, {words} words"
+            );
+            if words == need {
+                assert_eq!(s.walks, 1, "{label}: {rows} rows");
+            }
+        }
+    }
+    // The full frame with a vertex cache of any size.
+    for words in [1, need / 5, need] {
+        let mut memory = vec![0u32; words];
+        let mut cached = vec![F::Word::default(); fast.len()];
+        let mut fb = Framebuffer::<F>::new(&mut cached, W, H).expect("fb");
+        fb.fill_all(bg);
+        r.render_cached::<_, STACK>(tree, f, &mut memory, &mut fb)
+            .expect("walk");
+        assert!(cached == fast, "{label}: cache of {words} words differs");
     }
     fast_px.iter().any(|&c| c != bg)
 }

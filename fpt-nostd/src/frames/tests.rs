@@ -31,7 +31,7 @@ fn renderer() -> FrameRenderer {
 
 fn full(t: &Tree<'_>, v: &ViewSpec, probe: &impl Probe) -> (Vec<u16>, Rendered) {
     let mut buf = vec![0u16; FRAME_WORDS];
-    match render_full(&mut renderer(), t, v, &mut buf, probe) {
+    match render_full(&mut renderer(), t, v, &mut buf, &mut [], probe) {
         Ok(out) => (buf, out),
         Err(e) => panic!("{e}"),
     }
@@ -141,10 +141,25 @@ fn full_frame_equals_draw_frame_and_bands_equal_full() {
             let bg = BACKGROUND.into_storage();
             drew_something |= ours.iter().any(|&p| p != bg);
 
-            let mut band = vec![0u16; BAND_WORDS];
-            match render_banded(&mut renderer(), &t, v, &mut band, &NoProbe) {
-                Ok(b) => assert_eq!(b.crc, out.crc, "closed={closed} view={v:?}"),
-                Err(e) => panic!("{e}"),
+            // Bands and a vertex cache, with any amount of memory: the same
+            // picture and counters.
+            let need = crate::render::memory_words(&t);
+            for words in [0, 1, 5, 12, 20, need] {
+                let mut memory = vec![0u32; words];
+                let mut band = vec![0u16; BAND_WORDS];
+                match render_banded(&mut renderer(), &t, v, &mut band, &mut memory, &NoProbe) {
+                    Ok(b) => assert_eq!(
+                        (b.crc, b.stats),
+                        (out.crc, out.stats),
+                        "closed={closed} view={v:?} words={words}"
+                    ),
+                    Err(e) => panic!("{e}"),
+                }
+                let mut buf = vec![0u16; FRAME_WORDS];
+                match render_full(&mut renderer(), &t, v, &mut buf, &mut memory, &NoProbe) {
+                    Ok(b) => assert_eq!((b.crc, b.stats), (out.crc, out.stats)),
+                    Err(e) => panic!("{e}"),
+                }
             }
         }
         assert!(drew_something);
@@ -212,15 +227,19 @@ fn probe_hooks_mark_every_polygon_and_nest() {
     assert_eq!(p.enters[Phase::Xform as usize].get(), polys);
     assert_eq!(p.enters[Phase::Fill as usize].get(), 1 + s.drawn);
 
+    // Bands with enough memory: one walk (Xform once at the start and
+    // once per polygon), and the probe stopped while each band is handed
+    // out.
     let q = Counting::default();
     let mut band = vec![0u16; BAND_WORDS];
-    if let Err(e) = render_banded(&mut renderer(), &t, &VIEWS[0], &mut band, &q) {
+    let mut memory = vec![0u32; crate::render::memory_words(&t)];
+    if let Err(e) = render_banded(&mut renderer(), &t, &VIEWS[0], &mut band, &mut memory, &q) {
         panic!("{e}");
     }
     let bands = HEIGHT.div_ceil(BAND_ROWS);
     assert!(!q.bad.get() && !q.running.get());
     assert_eq!(q.starts.get(), 1 + bands);
-    assert_eq!(q.enters[Phase::Xform as usize].get(), 2 * bands);
+    assert_eq!(q.enters[Phase::Xform as usize].get(), 1 + polys);
 }
 
 #[test]
@@ -228,14 +247,21 @@ fn small_buffers_are_errors() {
     let bytes = floors(false);
     let t = tree(&bytes);
     let mut small = vec![0u16; FRAME_WORDS - 1];
-    let r = render_full(&mut renderer(), &t, &VIEWS[0], &mut small, &NoProbe);
+    let r = render_full(
+        &mut renderer(),
+        &t,
+        &VIEWS[0],
+        &mut small,
+        &mut [],
+        &NoProbe,
+    );
     assert_eq!(
         r.err(),
         Some(FrameError::Buffer(FramebufferError::BufferTooSmall))
     );
     let mut band = vec![0u16; BAND_WORDS - 1];
     let p = Counting::default();
-    let r = render_banded(&mut renderer(), &t, &VIEWS[0], &mut band, &p);
+    let r = render_banded(&mut renderer(), &t, &VIEWS[0], &mut band, &mut [], &p);
     assert_eq!(
         r.err(),
         Some(FrameError::Buffer(FramebufferError::BufferTooSmall))

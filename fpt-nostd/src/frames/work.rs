@@ -81,8 +81,7 @@ pub fn frame_work(
     let frame = setup(r, tree, view);
     let mut sink = Tally { pixels: 0 };
     let handed = Handed::default();
-    draw_tree(r, tree, &frame, &mut sink, &handed)?;
-    let stats = r.renderer.stats();
+    let stats = draw_tree(r, tree, &frame, &mut [], &mut sink, &handed)?;
     Ok(Work {
         polygons: handed.polygons.get(),
         vertices: handed.vertices.get(),
@@ -118,7 +117,7 @@ mod tests {
         let mut seen = 0;
         for v in &VIEWS {
             let w = frame_work(&mut r, &tree, v).unwrap_or_else(|e| panic!("{e:?}"));
-            let full = render_full(&mut r, &tree, v, &mut buf, &NoProbe)
+            let full = render_full(&mut r, &tree, v, &mut buf, &mut [], &NoProbe)
                 .unwrap_or_else(|e| panic!("{e:?}"));
             assert_eq!((w.drawn, w.spans), (full.stats.drawn, full.stats.spans));
             assert!(w.polygons <= 2 && w.drawn <= w.polygons, "{w}");

@@ -66,6 +66,7 @@ pub fn band_starts(frame_height: u32, band_rows: u32) -> impl Iterator<Item = i3
 
 impl<T: SpanSink> SpanSink for Band<'_, T> {
     type Color = T::Color;
+    const NEEDS_ID: bool = T::NEEDS_ID;
     fn color(&self, paint: &Paint) -> T::Color {
         self.inner.color(paint)
     }

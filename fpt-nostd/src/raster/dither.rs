@@ -115,6 +115,7 @@ impl<F: DitherFormat> core::fmt::Debug for Dither<'_, '_, F> {
 
 impl<F: DitherFormat> SpanSink for Dither<'_, '_, F> {
     type Color = u8;
+    const NEEDS_ID: bool = false;
 
     fn color(&self, paint: &Paint) -> u8 {
         Gray8::from(paint.rgb).luma()

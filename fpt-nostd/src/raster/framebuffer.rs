@@ -314,6 +314,7 @@ impl<F: PixelFormat> DrawTarget for Framebuffer<'_, F> {
 
 impl<F: PixelFormat> SpanSink for Framebuffer<'_, F> {
     type Color = F::Color;
+    const NEEDS_ID: bool = false;
     fn color(&self, paint: &Paint) -> F::Color {
         F::Color::from(paint.rgb)
     }

@@ -45,6 +45,7 @@ pub mod clip;
 pub mod dither;
 pub mod edge;
 pub mod framebuffer;
+pub mod list;
 pub mod outline;
 pub mod precision;
 pub mod renderer;
@@ -52,6 +53,7 @@ pub mod scan;
 pub mod shade;
 pub mod sink;
 pub mod transform;
+pub mod vcache;
 
 #[cfg(test)]
 mod tests;
@@ -62,8 +64,8 @@ pub use band::{band_starts, Band};
 pub use camera::{Camera, Mat4, Orbit};
 pub use dither::{Dither, DitherFormat};
 pub use framebuffer::{
-    BinaryFramebuffer, Framebuffer, FramebufferError, Gray8Framebuffer, PixelFormat,
-    Rgb565Framebuffer, Rgb888Framebuffer,
+    BinaryFormat, BinaryFramebuffer, Framebuffer, FramebufferError, Gray8Format, Gray8Framebuffer,
+    PixelFormat, Rgb565Format, Rgb565Framebuffer, Rgb888Format, Rgb888Framebuffer,
 };
 pub use precision::{
     Config, DefaultPrecision, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Libm,

@@ -40,6 +40,7 @@ use super::precision::Precision;
 use super::scan::{fill_polygon_in, Bbox, FillRule, Paint, SpanBounds, SpanSink};
 use super::shade::{shade, shade_color, DepthCue, Light, ShadeMode};
 use super::transform::{ScreenPt, VertexPath, Viewport};
+use super::vcache::{Slot, VertexCache};
 use crate::effects::{AllEffects, Compiled, Effects};
 use crate::fixed::Fx14;
 
@@ -79,6 +80,26 @@ impl<P: Precision, const N: usize> Scratch<P, N> {
             edges: [Edge::ZERO; N],
             active: [0; N],
         }
+    }
+}
+
+impl<P: Precision, const N: usize> Scratch<P, N> {
+    /// The projected points of the polygon at hand.
+    #[inline]
+    pub(crate) fn screen(&self) -> &[ScreenPt] {
+        &self.screen
+    }
+
+    /// The same, to fill in (the display list's replay).
+    #[inline]
+    pub(crate) fn screen_mut(&mut self) -> &mut [ScreenPt] {
+        &mut self.screen
+    }
+
+    /// The vertex indices [`Renderer::load_cached`] left.
+    #[inline]
+    pub(crate) fn active(&self) -> &[u16] {
+        &self.active
     }
 }
 
@@ -142,6 +163,13 @@ pub struct RenderStats {
     pub clipped: u32,
     /// Spans emitted.
     pub spans: u64,
+    /// Tree walks the frame took: 1 for a full frame and for bands whose
+    /// polygons all fit the working memory, more with less memory (see
+    /// [`crate::render::memory_words`]); 0 when no tree was drawn.
+    pub walks: u32,
+    /// Words of the caller's working memory the frame used (vertex cache
+    /// slots plus the display list's peak).
+    pub memory_used: u32,
 }
 
 impl core::ops::AddAssign for RenderStats {
@@ -152,6 +180,8 @@ impl core::ops::AddAssign for RenderStats {
         self.skipped += o.skipped;
         self.clipped += o.clipped;
         self.spans += o.spans;
+        self.walks += o.walks;
+        self.memory_used = self.memory_used.max(o.memory_used);
     }
 }
 
@@ -273,6 +303,11 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         self.stats
     }
 
+    /// The counters, to correct (a polygon prepared twice counts once).
+    pub(crate) fn stats_mut(&mut self) -> &mut RenderStats {
+        &mut self.stats
+    }
+
     /// Zeroes the counters.
     pub fn reset_stats(&mut self) {
         self.stats = RenderStats::default();
@@ -349,6 +384,13 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         sink: &mut K,
     ) -> Outcome {
         let outcome = self.pipeline(scratch, loaded, face, sink);
+        self.count(outcome);
+        outcome
+    }
+
+    /// Adds a polygon's outcome to the counters.
+    #[inline]
+    pub(crate) fn count(&mut self, outcome: Outcome) {
         match outcome {
             Outcome::Drawn { spans } => {
                 self.stats.drawn += 1;
@@ -357,7 +399,12 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             Outcome::Invisible => self.stats.invisible += 1,
             Outcome::Skipped(_) => self.stats.skipped += 1,
         }
-        outcome
+    }
+
+    /// The viewport's pixels.
+    #[inline]
+    pub(crate) fn viewport_bounds(&self) -> SpanBounds {
+        SpanBounds::of_size(self.viewport.width(), self.viewport.height())
     }
 
     fn pipeline<K: SpanSink, const N: usize>(
@@ -367,12 +414,111 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         face: &Face,
         sink: &mut K,
     ) -> Outcome {
+        let reach = self.viewport_bounds().intersect(&sink.bounds());
+        match self.prepare(scratch, loaded, face, &reach) {
+            Ok(ready) => self.fill_ready(scratch, &ready, face.id, face.hidden_edges, sink),
+            Err(outcome) => outcome,
+        }
+    }
+
+    /// `M · [v, 1]` with the frame's matrix (the vertex cache's miss path).
+    #[inline]
+    pub(crate) fn transform(&self, v: [f32; 3]) -> Option<ClipVert<Scalar<P>>> {
+        P::Path::transform(&self.matrix, v)
+    }
+
+    /// Transforms, clips and projects the polygon `verts` (model-space
+    /// `f32`, as [`Renderer::draw_polygon`] takes them) and shades it:
+    /// everything but the fill, for rows `reach`.
+    pub(crate) fn prepare_verts<I, const N: usize>(
+        &mut self,
+        scratch: &mut Scratch<P, N>,
+        verts: I,
+        face: &Face,
+        reach: &SpanBounds,
+    ) -> Result<Ready, Outcome>
+    where
+        I: IntoIterator<Item = [f32; 3]>,
+    {
+        let m = self.matrix;
+        let loaded = self.load(scratch, verts, |v| P::Path::transform(&m, v));
+        self.prepare(scratch, loaded, face, reach)
+    }
+
+    /// Loads a polygon's screen points through `cache` into
+    /// `scratch.screen[..n]` and its vertex indices into
+    /// `scratch.active[..n]`; a vertex not cached yet is transformed with
+    /// `xform` (given its index) and projected, once a frame. `None` when
+    /// the polygon must take the per-polygon path instead: a vertex is
+    /// [`Slot::Slow`] (outside a clip plane, not finite, far off screen or
+    /// beyond the cache), or the polygon has more than `N` vertices. Both
+    /// paths give the same points (see [`super::vcache`]).
+    #[inline]
+    pub(crate) fn load_cached<const N: usize>(
+        &self,
+        scratch: &mut Scratch<P, N>,
+        cache: &mut VertexCache<'_>,
+        indices: impl Iterator<Item = u32>,
+        xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
+    ) -> Option<usize> {
+        let mut n = 0;
+        for v in indices {
+            let p = match cache.get(v) {
+                Slot::Point(p) => p,
+                Slot::Slow => return None,
+                Slot::Unset => {
+                    let p = xform(v)
+                        .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
+                        .and_then(|c| P::Path::project_clipped(&c, &self.viewport));
+                    cache.set(v, p);
+                    match cache.get(v) {
+                        Slot::Point(p) => p,
+                        _ => return None,
+                    }
+                }
+            };
+            *scratch.screen.get_mut(n)? = p;
+            // Cached vertices have indices below the cache's capacity,
+            // at most 2^16 (render::FrameMemory).
+            *scratch.active.get_mut(n)? = v as u16;
+            n += 1;
+        }
+        Some(n)
+    }
+
+    /// [`Renderer::prepare_verts`] for points already in
+    /// `scratch.screen[..n]` (from [`Renderer::load_cached`]: every one
+    /// inside the clip planes). Not for depth cueing, which needs clip `w`.
+    #[inline]
+    pub(crate) fn prepare_screen<const N: usize>(
+        &mut self,
+        scratch: &Scratch<P, N>,
+        n: usize,
+        face: &Face,
+        reach: &SpanBounds,
+    ) -> Result<Ready, Outcome> {
+        if n < 3 {
+            return Err(Outcome::Invisible);
+        }
+        self.shade_ready(&scratch.screen[..n.min(N)], face, 0.0, false, reach)
+    }
+
+    /// Everything of the pipeline before the fill: clipping, projection
+    /// into `scratch.screen`, the row range, shading. `Err` is the
+    /// polygon's outcome when there is nothing to fill (for rows `reach`).
+    fn prepare<const N: usize>(
+        &mut self,
+        scratch: &mut Scratch<P, N>,
+        loaded: Result<Loaded, SkipReason>,
+        face: &Face,
+        reach: &SpanBounds,
+    ) -> Result<Ready, Outcome> {
         let Loaded { n, inside } = match loaded {
             Ok(l) => l,
-            Err(r) => return Outcome::Skipped(r),
+            Err(r) => return Err(Outcome::Skipped(r)),
         };
         if n < 3 {
-            return Outcome::Invisible;
+            return Err(Outcome::Invisible);
         }
         let fx = self.effects();
         // Mean eye depth, before clipping changes the vertices.
@@ -391,18 +537,18 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             (&scratch.clip_a[..n.min(N)], false)
         } else if fx.contains(Effects::CLIPPING) {
             let Ok(c) = clip_polygon(&mut scratch.clip_a, n, &mut scratch.clip_b, self.near) else {
-                return Outcome::Skipped(SkipReason::ClipCapacity);
+                return Err(Outcome::Skipped(SkipReason::ClipCapacity));
             };
             (c.verts, c.clipped)
         } else {
             // Without clipping, a polygon that needs it is dropped whole.
-            return Outcome::Invisible;
+            return Err(Outcome::Invisible);
         };
         if was_clipped {
             self.stats.clipped += 1;
         }
         if clipped.len() < 3 {
-            return Outcome::Invisible;
+            return Err(Outcome::Invisible);
         }
         // Every vertex here came from the transform and is inside every
         // clip plane (kept whole or made by clipping): the projection's
@@ -410,15 +556,27 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         for (dst, v) in scratch.screen.iter_mut().zip(clipped.iter()) {
             match P::Path::project_clipped(v, &self.viewport) {
                 Some(p) => *dst = p,
-                None => return Outcome::Skipped(SkipReason::NonFinite),
+                None => return Err(Outcome::Skipped(SkipReason::NonFinite)),
             }
         }
-        let pts = &scratch.screen[..clipped.len()];
-        let vp = SpanBounds::of_size(self.viewport.width(), self.viewport.height());
+        let m = clipped.len();
+        self.shade_ready(&scratch.screen[..m], face, depth, was_clipped, reach)
+    }
+
+    /// The row range and the shaded colour of projected points `pts`;
+    /// `Err(Drawn { spans: 0 })` when the polygon misses rows `reach`.
+    #[inline]
+    fn shade_ready(
+        &self,
+        pts: &[ScreenPt],
+        face: &Face,
+        depth: f32,
+        clipped: bool,
+        reach: &SpanBounds,
+    ) -> Result<Ready, Outcome> {
         // Shade only polygons that reach the sink at all (cheap test first).
-        let reach = vp.intersect(&sink.bounds());
         if reach.is_empty() {
-            return Outcome::Drawn { spans: 0 };
+            return Err(Outcome::Drawn { spans: 0 });
         }
         // A band renderer sees every polygon once per band: one that misses
         // the band's rows (the fill would find no active row, the same
@@ -430,6 +588,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         // Projected points are within ±SCREEN_LIMIT: the 32-bit row bounds
         // apply (and a 64-bit variable shift is not cheap on a 32-bit core).
         let sub = self.viewport.sub_bits();
+        let fx = self.effects();
         let (first, end) = if fx.contains(Effects::OUTLINE) {
             // Outline pixels are the rows holding the vertices (`y >> sub`),
             // which may be one above the first row the fill samples.
@@ -438,7 +597,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             Dda32::rows(ScreenPt { x: 0, y: top }, ScreenPt { x: 0, y: bot }, sub)
         };
         if end <= reach.y0 || first >= reach.y1 {
-            return Outcome::Drawn { spans: 0 };
+            return Err(Outcome::Drawn { spans: 0 });
         }
         let mut rgb = if fx.contains(Effects::LIGHTING) {
             shade(self.mode, &self.light, face.normal, face.color)
@@ -448,11 +607,37 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         if fx.contains(Effects::DEPTH_CUE) {
             rgb = self.cue.apply(rgb, depth);
         }
-        let paint = Paint { rgb, id: face.id };
-        let color = sink.color(&paint);
+        Ok(Ready {
+            n: pts.len(),
+            bbox,
+            first,
+            end,
+            rgb,
+            clipped,
+        })
+    }
+
+    /// Fills a prepared polygon (its points in `scratch.screen[..n]`) and
+    /// draws its outline when that effect is on: the pipeline's last stage,
+    /// which band rendering replays per band from the display list.
+    #[inline]
+    pub(crate) fn fill_ready<K: SpanSink, const N: usize>(
+        &self,
+        scratch: &mut Scratch<P, N>,
+        ready: &Ready,
+        id: u32,
+        hidden_edges: u8,
+        sink: &mut K,
+    ) -> Outcome {
+        let Some(pts) = scratch.screen.get(..ready.n) else {
+            return Outcome::Skipped(SkipReason::ClipCapacity);
+        };
+        let sub = self.viewport.sub_bits();
+        let vp = self.viewport_bounds();
+        let color = sink.color(&Paint { rgb: ready.rgb, id });
         let spans = match fill_polygon_in(
             pts,
-            &bbox,
+            &ready.bbox,
             sub,
             self.rule,
             &vp,
@@ -464,13 +649,13 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             Ok(spans) => spans,
             Err(_) => return Outcome::Skipped(SkipReason::ClipCapacity),
         };
-        if fx.contains(Effects::OUTLINE) {
+        if self.effects().contains(Effects::OUTLINE) {
             let ink = sink.color(&Paint {
                 rgb: self.outline,
-                id: face.id,
+                id,
             });
             // A clipped polygon's edges no longer match the stored ones.
-            let hidden = if was_clipped { 0 } else { face.hidden_edges };
+            let hidden = if ready.clipped { 0 } else { hidden_edges };
             let lines = draw_outline(pts, hidden, sub, &vp, ink, sink);
             return Outcome::Drawn {
                 spans: spans + lines,
@@ -478,6 +663,25 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         }
         Outcome::Drawn { spans }
     }
+}
+
+/// A polygon transformed, clipped, projected and shaded, its screen points
+/// in `scratch.screen[..n]`: what the fill needs (and what the display
+/// list stores).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Ready {
+    /// Points in `scratch.screen`.
+    pub(crate) n: usize,
+    /// Their box.
+    pub(crate) bbox: Bbox,
+    /// First row the fill (or the outline) may touch.
+    pub(crate) first: i32,
+    /// One past the last.
+    pub(crate) end: i32,
+    /// Shaded colour.
+    pub(crate) rgb: Rgb888,
+    /// Whether clipping changed the polygon.
+    pub(crate) clipped: bool,
 }
 
 #[cfg(test)]
@@ -493,6 +697,8 @@ mod tests {
             skipped: 3,
             clipped: 4,
             spans: 5,
+            walks: 1,
+            memory_used: 7,
         };
         let mut t = a;
         t += a;
@@ -503,7 +709,9 @@ mod tests {
                 invisible: 4,
                 skipped: 6,
                 clipped: 8,
-                spans: 10
+                spans: 10,
+                walks: 2,
+                memory_used: 7,
             }
         );
     }

@@ -99,6 +99,10 @@ pub struct Paint {
 pub trait SpanSink {
     /// The sink's native colour, converted once per polygon.
     type Color: Copy;
+    /// Whether [`SpanSink::color`] reads [`Paint::id`]. Band rendering's
+    /// display list stores each polygon's id only for sinks that do
+    /// (2 bytes a polygon less for a plain framebuffer).
+    const NEEDS_ID: bool = true;
     /// Converts a polygon's paint to the native colour.
     fn color(&self, paint: &Paint) -> Self::Color;
     /// The pixels this sink can receive, in frame coordinates.
@@ -109,6 +113,7 @@ pub trait SpanSink {
 
 impl<K: SpanSink + ?Sized> SpanSink for &mut K {
     type Color = K::Color;
+    const NEEDS_ID: bool = K::NEEDS_ID;
     fn color(&self, paint: &Paint) -> K::Color {
         (**self).color(paint)
     }

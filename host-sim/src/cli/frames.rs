@@ -199,10 +199,12 @@ pub fn frame_lines(trees: &[(String, Vec<u8>)]) -> Result<Vec<String>, CliError>
     let mut lines = Vec::new();
     for (name, bytes) in trees {
         let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{name}: {e}"))?;
+        // The full frame without memory, the bands with all they need.
+        let mut memory = vec![0u32; fpt_nostd::render::memory_words(&tree)];
         for (k, v) in VIEWS.iter().enumerate() {
-            let a = render_full(&mut r, &tree, v, &mut full, &NoProbe)
+            let a = render_full(&mut r, &tree, v, &mut full, &mut [], &NoProbe)
                 .map_err(|e| cli_err!("{name} view {k}: {e}"))?;
-            let b = render_banded(&mut r, &tree, v, &mut band, &NoProbe)
+            let b = render_banded(&mut r, &tree, v, &mut band, &mut memory, &NoProbe)
                 .map_err(|e| cli_err!("{name} view {k}: {e}"))?;
             if a.crc != b.crc {
                 return Err(cli_err!(

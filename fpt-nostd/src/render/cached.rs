@@ -1,0 +1,523 @@
+//! One walk and one transform a frame: the draw loops that use the
+//! caller's working memory.
+//!
+//! Without memory, band rendering walks the tree and transforms, clips,
+//! projects and shades every polygon once per band, and every polygon
+//! transforms its own corners although its vertices are shared. With
+//! memory (a `&mut [u32]` of any length the caller chooses):
+//!
+//! * a **vertex cache** ([`crate::raster::vcache`]) holds each vertex's
+//!   screen point once it is computed, so a vertex is transformed at most
+//!   once a frame, whatever the number of its polygons and bands;
+//! * a **display list** ([`crate::raster::list`]) records each polygon,
+//!   ready to fill, during one walk, and every band replays the records
+//!   that touch its rows: the walk, transform and shading happen once a
+//!   frame, a band costs only its fill.
+//!
+//! # Less memory than a frame needs
+//!
+//! The picture never depends on the memory, only the time does:
+//!
+//! * The cache takes one word per vertex of the tree, up to half the
+//!   memory (and 2^16 vertices); vertices beyond it are transformed per
+//!   polygon, as without a cache.
+//! * The list takes the rest. A walk records the polygons touching rows
+//!   `[y, cut)`, `cut` starting at the frame's bottom; when a record does
+//!   not fit, `cut` moves up to halve the bands still covered (in whole
+//!   bands), records starting at or below it are dropped, and the walk goes
+//!   on. The bands above `cut` are then replayed and the next walk starts
+//!   at `cut`. So half the memory a frame needs costs about one more walk.
+//! * When even one band's polygons do not fit, that band is drawn as the
+//!   walk goes: the records so far are replayed into it, and the rest of
+//!   the walk fills it directly (one walk per band, today's cost without
+//!   memory, but still with the cache).
+//!
+//! The counters ([`RenderStats`]) count each polygon once a frame (from the
+//! first walk) and every span filled.
+
+use core::cell::Cell;
+
+use super::probe::{Phase, Probe};
+use super::{face_of, scaled_vertices, walk_effects, BandBuffer, FaceIds, Frame, RenderError};
+use crate::effects::{Compiled, Effects};
+use crate::order::{Order, OrderError};
+use crate::raster::list::{DisplayList, Entry, Points};
+use crate::raster::renderer::Ready;
+use crate::raster::scan::Bbox;
+use crate::raster::vcache::{Slot, VertexCache};
+use crate::raster::{
+    Band, Face, Framebuffer, Outcome, PixelFormat, Precision, RenderStats, Renderer, Scratch,
+    SpanBounds, SpanSink,
+};
+use crate::reader::{PolygonRef, Tree};
+
+/// Most vertices the cache holds: the display list stores their indices
+/// as `u16`.
+const MAX_CACHED: usize = 1 << 16;
+
+/// Splits `memory` into the vertex cache's slots (one per vertex of
+/// `tree`, up to half of it; none when `cache` is false) and the display
+/// list's words.
+fn split<'m>(
+    memory: &'m mut [u32],
+    tree: &Tree<'_>,
+    cache: bool,
+) -> (VertexCache<'m>, &'m mut [u16]) {
+    let want = if cache {
+        tree.vertex_count() as usize
+    } else {
+        0
+    };
+    let slots = want.min(MAX_CACHED).min(memory.len() / 2);
+    let (c, l) = memory.split_at_mut(slots);
+    let mut c = VertexCache::new(c);
+    c.clear();
+    (c, bytemuck::cast_slice_mut(l))
+}
+
+/// Words of memory with which a frame of `tree` needs one walk and
+/// transforms each vertex once, whatever the view: a cache slot for
+/// every vertex and a list with room for every polygon (by index, with
+/// ids and outline masks). Clipped polygons are stored inline and may
+/// need more; a frame that needs more still draws the same picture,
+/// with one more walk (see the module docs).
+pub fn memory_words(tree: &Tree<'_>) -> usize {
+    let v = (tree.vertex_count() as usize).min(MAX_CACHED);
+    let halves = 8 * tree.polygon_count() as usize + tree.index_count() as usize;
+    // The cache may take at most half the memory.
+    v.max(halves.div_ceil(2)) + halves.div_ceil(2)
+}
+
+/// What a walk's callback asks for next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Step {
+    /// The next polygon.
+    Next,
+    /// The same polygon, prepared again.
+    Again,
+}
+
+/// Everything a walk needs besides the renderer.
+struct Walk<'t, 'a, 'c> {
+    tree: &'a Tree<'t>,
+    frame: &'a Frame,
+    ids: FaceIds,
+    cache: &'a mut VertexCache<'c>,
+}
+
+impl Walk<'_, '_, '_> {
+    /// Walks the tree back to front and hands each polygon, prepared for
+    /// rows `reach()`, to `f`, with the cache (which `f` may read). `f`
+    /// returns [`Step::Again`] to have the same polygon prepared and
+    /// handed over once more (after it has used the scratch for something
+    /// else). `count`: add each polygon's outcome to the counters.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn run<P: Precision, E: Compiled, Pr: Probe, const N: usize, const V: usize>(
+        &mut self,
+        r: &mut Renderer<P, E>,
+        scratch: &mut Scratch<P, V>,
+        probe: &Pr,
+        count: bool,
+        reach: impl Fn() -> SpanBounds,
+        mut f: impl FnMut(
+            &mut Renderer<P, E>,
+            &mut Scratch<P, V>,
+            &Ready,
+            bool,
+            &Face,
+            &VertexCache<'_>,
+        ) -> Step,
+    ) -> Result<(), OrderError> {
+        probe.enter(Phase::Post);
+        let (cull, two_sided) = walk_effects(self.tree, r);
+        let mut order = Order::<N>::with_culling(self.tree, self.frame.view, cull)?;
+        let view = order.view();
+        let scale = self.frame.vertex_scale;
+        while let Some(range) = order.next_range() {
+            for p in range.filter_map(|id| self.tree.polygon(id)) {
+                probe.polygon(&p);
+                let id = match self.ids {
+                    FaceIds::Source => p.source(),
+                    FaceIds::Polygon => p.id(),
+                };
+                let face = face_of(&p, &view, two_sided, id);
+                let mut first = true;
+                let clipped = r.stats().clipped;
+                loop {
+                    probe.enter(Phase::Xform);
+                    let (ready, by_index) = self.prepare(r, scratch, &p, scale, &face, &reach());
+                    if !first {
+                        // Prepared again: count its clipping once.
+                        let now = r.stats_mut();
+                        now.clipped = now.clipped.min(clipped + 1);
+                    }
+                    if count && first {
+                        r.count(match ready {
+                            Ok(_) => Outcome::Drawn { spans: 0 },
+                            Err(o) => o,
+                        });
+                    }
+                    first = false;
+                    let step = match ready {
+                        Ok(ready) => f(r, scratch, &ready, by_index, &face, self.cache),
+                        Err(_) => Step::Next,
+                    };
+                    if step == Step::Next {
+                        break;
+                    }
+                }
+                probe.enter(Phase::Post);
+            }
+        }
+        Ok(())
+    }
+
+    /// Prepares `p` through the cache when every vertex is in it (`true`:
+    /// its indices are in `scratch.active`), else per polygon.
+    #[inline(always)]
+    fn prepare<P: Precision, E: Compiled, const V: usize>(
+        &mut self,
+        r: &mut Renderer<P, E>,
+        scratch: &mut Scratch<P, V>,
+        p: &PolygonRef<'_>,
+        scale: f32,
+        face: &Face,
+        reach: &SpanBounds,
+    ) -> (Result<Ready, Outcome>, bool) {
+        if self.cache.capacity() > 0 {
+            let tree = self.tree;
+            let xform = |v: u32| {
+                let x = tree.vertex(v)?;
+                r.transform([x[0] * scale, x[1] * scale, x[2] * scale])
+            };
+            if let Some(n) = r.load_cached(scratch, self.cache, p.vertex_indices(), xform) {
+                return (r.prepare_screen(scratch, n, face, reach), true);
+            }
+        }
+        let verts = scaled_vertices(p, scale);
+        (r.prepare_verts(scratch, verts, face, reach), false)
+    }
+}
+
+/// Fills one prepared polygon into `sink` (the probe sees the fill).
+#[inline(always)]
+fn fill<P: Precision, E: Compiled, K: SpanSink, Pr: Probe, const V: usize>(
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    ready: &Ready,
+    face: &Face,
+    sink: &mut K,
+    probe: &Pr,
+) -> u64 {
+    probe.enter(Phase::Fill);
+    match r.fill_ready(scratch, ready, face.id, face.hidden_edges, sink) {
+        Outcome::Drawn { spans } => spans as u64,
+        _ => 0,
+    }
+}
+
+/// Whether this frame may use the vertex cache: depth cueing needs each
+/// polygon's clip `w`, which the cache does not keep.
+fn cacheable<P: Precision, E: Compiled>(r: &Renderer<P, E>) -> bool {
+    !r.effects().contains(Effects::DEPTH_CUE)
+}
+
+/// A full frame into `sink`, each vertex transformed once through a cache
+/// in `memory` (see the module docs).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn draw_direct<P, E, K, Pr, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    ids: FaceIds,
+    memory: &mut [u32],
+    sink: &mut K,
+    probe: &Pr,
+) -> Result<RenderStats, OrderError>
+where
+    P: Precision,
+    E: Compiled,
+    K: SpanSink,
+    Pr: Probe,
+{
+    r.set_camera(&frame.camera);
+    r.reset_stats();
+    walk_effects(tree, r);
+    let want = if cacheable(r) {
+        tree.vertex_count() as usize
+    } else {
+        0
+    };
+    let slots = want.min(memory.len());
+    let mut cache = VertexCache::new(&mut memory[..slots]);
+    cache.clear();
+    let reach = r.viewport_bounds().intersect(&sink.bounds());
+    let mut spans = 0;
+    let mut walk = Walk {
+        tree,
+        frame,
+        ids,
+        cache: &mut cache,
+    };
+    walk.run::<P, E, Pr, N, V>(
+        r,
+        scratch,
+        probe,
+        true,
+        || reach,
+        |r, s, ready, _, face, _| {
+            spans += fill(r, s, ready, face, sink, probe);
+            Step::Next
+        },
+    )?;
+    let mut stats = r.stats();
+    stats.spans = spans;
+    stats.walks = 1;
+    stats.memory_used = slots as u32;
+    Ok(stats)
+}
+
+/// Replays the records of `list` that touch rows `[y0, y1)` into `sink`;
+/// returns the spans.
+fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
+    r: &Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    list: &DisplayList<'_>,
+    cache: &VertexCache<'_>,
+    (y0, y1): (i32, i32),
+    sink: &mut K,
+) -> u64 {
+    let mut spans = 0;
+    let mut at = 0;
+    while let Some(rec) = list.record(at) {
+        at = list.next(&rec);
+        let e = rec.entry;
+        if e.end <= y0 || e.first >= y1 || rec.n > V {
+            continue;
+        }
+        let mut ok = true;
+        if rec.inline {
+            for (i, dst) in scratch.screen_mut()[..rec.n].iter_mut().enumerate() {
+                *dst = list.inline_point(&rec, i);
+            }
+        } else {
+            for (dst, &v) in scratch.screen_mut().iter_mut().zip(list.indices(&rec)) {
+                match cache.get(u32::from(v)) {
+                    Slot::Point(p) => *dst = p,
+                    // Recorded by index only when cached: not reached.
+                    _ => ok = false,
+                }
+            }
+        }
+        if !ok {
+            continue;
+        }
+        let pts = &scratch.screen_mut()[..rec.n];
+        let ready = Ready {
+            n: rec.n,
+            bbox: Bbox::of(pts),
+            first: e.first,
+            end: e.end,
+            rgb: e.rgb,
+            clipped: e.clipped,
+        };
+        if let Outcome::Drawn { spans: s } = r.fill_ready(scratch, &ready, e.id, e.hidden, sink) {
+            spans += s as u64;
+        }
+    }
+    spans
+}
+
+/// Band `y0` (of `rows` rows in a `size` frame) as a framebuffer over
+/// `buf`, cleared to `background`.
+fn open_band<F: PixelFormat>(
+    buf: &mut [F::Word],
+    (w, h): (i32, i32),
+    rows: i32,
+    y0: i32,
+    background: F::Color,
+) -> Result<Framebuffer<'_, F>, RenderError> {
+    let n = rows.min(h - y0) as u32;
+    let mut fb = Framebuffer::<F>::new(buf, w as u32, n).map_err(RenderError::Band)?;
+    fb.fill_all(background);
+    Ok(fb)
+}
+
+/// A frame band by band through `band`'s buffer, with one walk per group
+/// of bands whose polygons fit the display list in `memory` (see the module
+/// docs); each finished band goes to `emit` with its first row, outside
+/// the probe's measurement.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn draw_bands<P, E, F, Pr, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    ids: FaceIds,
+    memory: &mut [u32],
+    band: BandBuffer<'_, F>,
+    probe: &Pr,
+    emit: impl FnMut(i32, &Framebuffer<'_, F>),
+) -> Result<RenderStats, RenderError>
+where
+    P: Precision,
+    E: Compiled,
+    F: PixelFormat,
+    Pr: Probe,
+{
+    let out = bands::<P, E, F, Pr, N, V>(tree, frame, r, scratch, ids, memory, band, probe, emit);
+    if out.is_err() {
+        // Every error leaves the probe running.
+        probe.stop();
+    }
+    out
+}
+
+/// [`draw_bands`] but for stopping the probe on an error.
+#[allow(clippy::too_many_arguments)]
+fn bands<P, E, F, Pr, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    ids: FaceIds,
+    memory: &mut [u32],
+    band: BandBuffer<'_, F>,
+    probe: &Pr,
+    mut emit: impl FnMut(i32, &Framebuffer<'_, F>),
+) -> Result<RenderStats, RenderError>
+where
+    P: Precision,
+    E: Compiled,
+    F: PixelFormat,
+    Pr: Probe,
+{
+    // The caller has started the probe (before its own set-up).
+    probe.enter(Phase::Xform);
+    r.set_camera(&frame.camera);
+    r.reset_stats();
+    walk_effects(tree, r);
+    let outlines = r.effects().contains(Effects::OUTLINE);
+    let (mut cache, list_words) = split(memory, tree, cacheable(r));
+    let needs_id = <Band<'_, Framebuffer<'_, F>> as SpanSink>::NEEDS_ID;
+    let mut list = DisplayList::new(list_words, needs_id, outlines);
+    let screen = r.viewport_bounds();
+    let (w, h) = (screen.x1, screen.y1);
+    let rows = band.rows.clamp(1, h.max(1) as u32) as i32;
+    let BandBuffer {
+        buf, background, ..
+    } = band;
+    let mut spans = 0u64;
+    let mut stats: Option<RenderStats> = None;
+    let mut y = 0;
+    let mut walks = 0;
+    while y < h {
+        walks += 1;
+        list.clear();
+        let cut = Cell::new(h);
+        // The list overflowed for band `y` alone: the rest of this walk
+        // fills it directly.
+        let mut direct = false;
+        probe.enter(Phase::Fill);
+        let mut fb = open_band::<F>(&mut *buf, (w, h), rows, y, background)?;
+        let mut walk = Walk {
+            tree,
+            frame,
+            ids,
+            cache: &mut cache,
+        };
+        let reach = || SpanBounds {
+            y0: y,
+            y1: cut.get(),
+            ..screen
+        };
+        walk.run::<P, E, Pr, N, V>(
+            r,
+            scratch,
+            probe,
+            stats.is_none(),
+            reach,
+            |r, s, ready, by_index, face, cache| {
+                if direct {
+                    spans += fill(r, s, ready, face, &mut Band::new(&mut fb, y), probe);
+                    return Step::Next;
+                }
+                let e = Entry {
+                    first: ready.first.clamp(0, h),
+                    end: ready.end.clamp(0, h),
+                    rgb: ready.rgb,
+                    id: face.id,
+                    hidden: face.hidden_edges,
+                    clipped: ready.clipped,
+                };
+                loop {
+                    let pts = if by_index {
+                        Points::Indices(s.active().get(..ready.n).unwrap_or(&[]))
+                    } else {
+                        Points::Inline(s.screen().get(..ready.n).unwrap_or(&[]))
+                    };
+                    if list.push(&e, pts) {
+                        return Step::Next;
+                    }
+                    let left = (cut.get() - y + rows - 1) / rows;
+                    if left <= 1 {
+                        break;
+                    }
+                    // Keep the top half of the bands still covered.
+                    cut.set(y + rows * (left / 2));
+                    list.retain_rows_below(cut.get());
+                    if e.first >= cut.get() {
+                        return Step::Next;
+                    }
+                }
+                // Not even band `y` fits: draw what is recorded into it, then
+                // this polygon (prepared again: the replay used the scratch)
+                // and the rest of the walk straight into it.
+                probe.enter(Phase::Fill);
+                spans += replay(
+                    r,
+                    s,
+                    &list,
+                    cache,
+                    (y, y + rows),
+                    &mut Band::new(&mut fb, y),
+                );
+                list.clear();
+                direct = true;
+                Step::Again
+            },
+        )
+        .map_err(RenderError::Order)?;
+        if stats.is_none() {
+            stats = Some(r.stats());
+        }
+        if direct {
+            probe.stop();
+            emit(y, &fb);
+            probe.start(Phase::Fill);
+            y += rows;
+            continue;
+        }
+        drop(fb);
+        let mut y0 = y;
+        while y0 < cut.get() {
+            probe.enter(Phase::Fill);
+            let mut fb = open_band::<F>(&mut *buf, (w, h), rows, y0, background)?;
+            let mut sink = Band::new(&mut fb, y0);
+            spans += replay(r, scratch, &list, &cache, (y0, y0 + rows), &mut sink);
+            probe.stop();
+            emit(y0, &fb);
+            probe.start(Phase::Fill);
+            y0 += rows;
+        }
+        y = cut.get();
+    }
+    probe.stop();
+    let mut stats = stats.unwrap_or_default();
+    stats.spans = spans;
+    stats.walks = walks;
+    stats.memory_used = (cache.capacity() + list.peak().div_ceil(2)) as u32;
+    Ok(stats)
+}

@@ -1,0 +1,72 @@
+//! Measuring hooks in the draw loops: where a frame's time goes.
+//!
+//! The draw loops of [`crate::render`] take a [`Probe`]: hooks at the
+//! boundaries between the phases of a frame ([`Phase`]: tree walk,
+//! transform, fill). Every hook has an empty default body and the probe is
+//! a generic parameter, so with [`NoProbe`] (what the product API passes)
+//! they compile to nothing. The firmware's measuring harness
+//! ([`crate::frames`]) passes probes that read a cycle counter.
+
+use crate::reader::PolygonRef;
+
+/// The phases of a frame's cost.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Phase {
+    /// Postprocessing: the back-to-front tree walk and fetching each
+    /// polygon's plane and colour.
+    Post = 0,
+    /// Camera setup, vertex decode and transform, clipping, projection and
+    /// shading.
+    Xform = 1,
+    /// Clearing the buffer, edge setup and scan conversion, pixel writes.
+    Fill = 2,
+}
+
+impl Phase {
+    /// Every phase, in index order.
+    pub const ALL: [Phase; 3] = [Phase::Post, Phase::Xform, Phase::Fill];
+}
+
+/// Hooks at the phase boundaries of a frame (see the module docs). All do
+/// nothing by default; `&self` so that a sink wrapper can call them too
+/// (a measuring probe keeps its state in `Cell`s).
+///
+/// ```
+/// use core::cell::Cell;
+/// use fpt_nostd::render::{Phase, Probe};
+/// /// Counts the polygons a frame hands to the renderer.
+/// #[derive(Default)]
+/// struct Count(Cell<u32>);
+/// impl Probe for Count {
+///     fn polygon(&self, _p: &fpt_nostd::reader::PolygonRef<'_>) {
+///         self.0.set(self.0.get() + 1);
+///     }
+/// }
+/// let c = Count::default();
+/// c.enter(Phase::Fill); // the other hooks keep their empty defaults
+/// assert_eq!(c.0.get(), 0);
+/// ```
+pub trait Probe {
+    /// The frame's work starts or resumes, in `phase`.
+    #[inline(always)]
+    fn start(&self, _phase: Phase) {}
+    /// From now on the time belongs to `phase`. Called a few times per
+    /// drawn polygon: keep it cheap.
+    #[inline(always)]
+    fn enter(&self, _phase: Phase) {}
+    /// The frame's work stops until the next [`Probe::start`] (what
+    /// follows, e.g. sending or checksumming a band, is not the frame's
+    /// cost).
+    #[inline(always)]
+    fn stop(&self) {}
+    /// The walk hands polygon `p` to the renderer (for counting what a
+    /// frame is made of; timing probes leave it empty).
+    #[inline(always)]
+    fn polygon(&self, _p: &PolygonRef<'_>) {}
+}
+
+/// The probe that measures nothing (and costs nothing).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoProbe;
+
+impl Probe for NoProbe {}
