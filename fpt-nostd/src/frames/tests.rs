@@ -144,20 +144,22 @@ fn full_frame_equals_draw_frame_and_bands_equal_full() {
             // Bands and a vertex cache, with any amount of memory: the same
             // picture and counters.
             let need = crate::render::memory_words(&t);
+            // Walks, memory and spans (a band boundary may cut a run) differ.
+            let counts = |s: RenderStats| (s.drawn, s.invisible, s.skipped, s.clipped);
             for words in [0, 1, 5, 12, 20, need] {
                 let mut memory = vec![0u32; words];
                 let mut band = vec![0u16; BAND_WORDS];
                 match render_banded(&mut renderer(), &t, v, &mut band, &mut memory, &NoProbe) {
                     Ok(b) => assert_eq!(
-                        (b.crc, b.stats),
-                        (out.crc, out.stats),
+                        (b.crc, counts(b.stats)),
+                        (out.crc, counts(out.stats)),
                         "closed={closed} view={v:?} words={words}"
                     ),
                     Err(e) => panic!("{e}"),
                 }
                 let mut buf = vec![0u16; FRAME_WORDS];
                 match render_full(&mut renderer(), &t, v, &mut buf, &mut memory, &NoProbe) {
-                    Ok(b) => assert_eq!((b.crc, b.stats), (out.crc, out.stats)),
+                    Ok(b) => assert_eq!((b.crc, counts(b.stats)), (out.crc, counts(out.stats))),
                     Err(e) => panic!("{e}"),
                 }
             }
