@@ -96,7 +96,7 @@ mod target {
     #[cfg(feature = "band")]
     pub const MEMORY_WORDS: usize = 5 * 1024;
     #[cfg(feature = "full")]
-    pub const MEMORY_WORDS: usize = 1024;
+    pub const MEMORY_WORDS: usize = 1800;
 
     static mut MEMORY: [u32; MEMORY_WORDS] = [0; MEMORY_WORDS];
 

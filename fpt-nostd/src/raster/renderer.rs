@@ -430,6 +430,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Transforms, clips and projects the polygon `verts` (model-space
     /// `f32`, as [`Renderer::draw_polygon`] takes them) and shades it:
     /// everything but the fill, for rows `reach`.
+    #[inline(always)]
     pub(crate) fn prepare_verts<I, const N: usize>(
         &mut self,
         scratch: &mut Scratch<P, N>,
@@ -448,11 +449,14 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Loads a polygon's screen points through `cache` into
     /// `scratch.screen[..n]` and its vertex indices into
     /// `scratch.active[..n]`; a vertex not cached yet is transformed with
-    /// `xform` (given its index) and projected, once a frame. `None` when
-    /// the polygon must take the per-polygon path instead: a vertex is
-    /// [`Slot::Slow`] (outside a clip plane, not finite, far off screen or
-    /// beyond the cache), or the polygon has more than `N` vertices. Both
-    /// paths give the same points (see [`super::vcache`]).
+    /// `xform` (given its index) and projected, once a frame; a vertex
+    /// beyond the cache's capacity is transformed and projected here
+    /// without being kept. Returns `n` and whether every vertex is cached
+    /// (so that the indices stand for the points). `None` when the polygon
+    /// must take the per-polygon path instead: a vertex is [`Slot::Slow`]
+    /// (outside a clip plane, not finite or far off screen), or the polygon
+    /// has more than `N` vertices. Every path gives the same points (see
+    /// [`super::vcache`]).
     #[inline]
     pub(crate) fn load_cached<const N: usize>(
         &self,
@@ -460,30 +464,33 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         cache: &mut VertexCache<'_>,
         indices: impl Iterator<Item = u32>,
         xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
-    ) -> Option<usize> {
+    ) -> Option<(usize, bool)> {
+        let project = |v: u32| {
+            xform(v)
+                .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
+                .and_then(|c| P::Path::project_clipped(&c, &self.viewport))
+        };
+        let cap = cache.capacity();
         let mut n = 0;
+        let mut all = true;
         for v in indices {
-            let p = match cache.get(v) {
-                Slot::Point(p) => p,
-                Slot::Slow => return None,
-                Slot::Unset => {
-                    let p = xform(v)
-                        .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
-                        .and_then(|c| P::Path::project_clipped(&c, &self.viewport));
-                    cache.set(v, p);
-                    match cache.get(v) {
-                        Slot::Point(p) => p,
-                        _ => return None,
-                    }
+            let p = if v as usize >= cap {
+                all = false;
+                project(v)?
+            } else {
+                match cache.get(v) {
+                    Slot::Point(p) => p,
+                    Slot::Slow => return None,
+                    Slot::Unset => cache.insert(v, project(v))?,
                 }
             };
             *scratch.screen.get_mut(n)? = p;
-            // Cached vertices have indices below the cache's capacity,
-            // at most 2^16 (render::FrameMemory).
+            // Cached vertices have indices below the cache's capacity, at
+            // most 2^16 (`render::cached`); the others are not read back.
             *scratch.active.get_mut(n)? = v as u16;
             n += 1;
         }
-        Some(n)
+        Some((n, all))
     }
 
     /// [`Renderer::prepare_verts`] for points already in
@@ -506,6 +513,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Everything of the pipeline before the fill: clipping, projection
     /// into `scratch.screen`, the row range, shading. `Err` is the
     /// polygon's outcome when there is nothing to fill (for rows `reach`).
+    #[inline(always)]
     fn prepare<const N: usize>(
         &mut self,
         scratch: &mut Scratch<P, N>,
@@ -565,7 +573,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
 
     /// The row range and the shaded colour of projected points `pts`;
     /// `Err(Drawn { spans: 0 })` when the polygon misses rows `reach`.
-    #[inline]
+    #[inline(always)]
     fn shade_ready(
         &self,
         pts: &[ScreenPt],
@@ -620,7 +628,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Fills a prepared polygon (its points in `scratch.screen[..n]`) and
     /// draws its outline when that effect is on: the pipeline's last stage,
     /// which band rendering replays per band from the display list.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn fill_ready<K: SpanSink, const N: usize>(
         &self,
         scratch: &mut Scratch<P, N>,

@@ -103,6 +103,23 @@ impl<'m> VertexCache<'m> {
             *slot = p.and_then(pack).unwrap_or(SLOW);
         }
     }
+
+    /// [`VertexCache::set`], returning the point when the slot now holds
+    /// it (`None`: the vertex takes the per-polygon path).
+    #[inline]
+    pub fn insert(&mut self, v: u32, p: Option<ScreenPt>) -> Option<ScreenPt> {
+        let slot = self.slots.get_mut(v as usize)?;
+        match p.and_then(pack) {
+            Some(w) => {
+                *slot = w;
+                p
+            }
+            None => {
+                *slot = SLOW;
+                None
+            }
+        }
+    }
 }
 
 /// `p` as two `i16` (x low, y high), or `None` when a coordinate is

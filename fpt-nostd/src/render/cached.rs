@@ -143,7 +143,7 @@ impl Walk<'_, '_, '_> {
                 };
                 let face = face_of(&p, &view, two_sided, id);
                 let mut first = true;
-                let clipped = r.stats().clipped;
+                let clipped = r.stats_mut().clipped;
                 loop {
                     probe.enter(Phase::Xform);
                     let (ready, by_index) = self.prepare(r, scratch, &p, scale, &face, &reach());
@@ -173,8 +173,9 @@ impl Walk<'_, '_, '_> {
         Ok(())
     }
 
-    /// Prepares `p` through the cache when every vertex is in it (`true`:
-    /// its indices are in `scratch.active`), else per polygon.
+    /// Prepares `p` through the cache when every vertex is inside the clip
+    /// planes (`true`: every vertex is cached, and its indices are in
+    /// `scratch.active`), else per polygon.
     #[inline(always)]
     fn prepare<P: Precision, E: Compiled, const V: usize>(
         &mut self,
@@ -191,8 +192,10 @@ impl Walk<'_, '_, '_> {
                 let x = tree.vertex(v)?;
                 r.transform([x[0] * scale, x[1] * scale, x[2] * scale])
             };
-            if let Some(n) = r.load_cached(scratch, self.cache, p.vertex_indices(), xform) {
-                return (r.prepare_screen(scratch, n, face, reach), true);
+            if let Some((n, by_index)) =
+                r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
+            {
+                return (r.prepare_screen(scratch, n, face, reach), by_index);
             }
         }
         let verts = scaled_vertices(p, scale);
