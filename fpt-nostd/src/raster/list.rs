@@ -224,6 +224,29 @@ impl<'m> DisplayList<'m> {
         })
     }
 
+    /// The rows `(first, end)` of the record at word `at` and where the
+    /// next one starts, from its first words only: the quick test a band
+    /// makes of every record. `None` at the end.
+    #[inline(always)]
+    pub fn rows_at(&self, at: usize) -> Option<(i32, i32, usize)> {
+        let h = self.buf.get(at..self.len)?;
+        let &[h0, h1, _, h3, ..] = h else {
+            return None;
+        };
+        let mut k = 4 + usize::from(self.outlines) + 2 * usize::from(self.ids);
+        let mut n = usize::from(h3 >> 8);
+        if n == 0 {
+            n = usize::from(*h.get(4)?);
+            k += 1;
+        }
+        let per = if h0 & FLAG != 0 { 4 } else { 1 };
+        Some((
+            i32::from(h0 & !FLAG),
+            i32::from(h1 & !FLAG),
+            at + k + n * per,
+        ))
+    }
+
     /// Where the record after `r` starts.
     #[inline]
     pub fn next(&self, r: &Record) -> usize {

@@ -294,10 +294,17 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
 ) -> u64 {
     let mut spans = 0;
     let mut at = 0;
-    while let Some(rec) = list.record(at) {
-        at = list.next(&rec);
+    while let Some((first, end, next)) = list.rows_at(at) {
+        let here = at;
+        at = next;
+        if end <= y0 || first >= y1 {
+            continue;
+        }
+        let Some(rec) = list.record(here) else {
+            break;
+        };
         let e = rec.entry;
-        if e.end <= y0 || e.first >= y1 || rec.n > V {
+        if rec.n > V {
             continue;
         }
         let mut ok = true;
