@@ -427,8 +427,8 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
 ) -> Result<RenderStats, OrderError> {
     renderer.set_camera(&frame.camera);
     renderer.reset_stats();
-    let (cull, two_sided) = walk_effects(tree, renderer);
-    let mut order = Order::<N>::with_culling(tree, frame.view, cull)?;
+    let fx = walk_effects(tree, renderer);
+    let mut order = Order::<N>::with_culling(tree, frame.view, fx.cull)?;
     let view = order.view();
     let scale = frame.vertex_scale;
     // Ranges of ids straight from the walk: no class is built or copied,
@@ -439,7 +439,7 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
                 FaceIds::Source => p.source(),
                 FaceIds::Polygon => p.id(),
             };
-            let face = face_of(&p, &view, two_sided, id);
+            let face = face_of(&p, &view, fx, id);
             let verts = scaled_vertices(&p, scale);
             renderer.draw_polygon(scratch, verts, &face, sink);
         }
@@ -449,36 +449,54 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
     Ok(stats)
 }
 
-/// What the walk of a frame needs from the effects: settles the renderer's
-/// effects for `tree` ([`Renderer::begin_tree`]) and returns whether to cull
-/// back faces and whether back sides are lit two-sided. Shared by
-/// [`draw_frame`] and the firmware's measured loop in [`crate::frames`].
-/// (The walk itself is built by each caller: handing a walk back by value
-/// would copy its whole stack every frame.)
+/// What the walk of a frame needs from the effects (see
+/// [`walk_effects`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct WalkFx {
+    /// Cull back faces (choose the culling walk).
+    pub(crate) cull: bool,
+    /// Light back sides as if they faced the viewer.
+    pub(crate) two_sided: bool,
+    /// Lighting is on: the face needs its normal.
+    pub(crate) lit: bool,
+}
+
+/// Settles the renderer's effects for `tree` ([`Renderer::begin_tree`])
+/// and returns what the walk needs of them. Shared by [`draw_frame`] and
+/// the loops of `render::cached`. (The walk itself is built by each
+/// caller: handing a walk back by value would copy its whole stack every
+/// frame.)
 #[inline]
 pub(crate) fn walk_effects<P: Precision, E: Compiled>(
     tree: &Tree<'_>,
     renderer: &mut Renderer<P, E>,
-) -> (bool, bool) {
+) -> WalkFx {
     let fx = renderer.begin_tree(Effects::from_bits(tree.effects()));
-    (
-        fx.contains(Effects::CULLING),
-        fx.contains(Effects::TWO_SIDED),
-    )
+    WalkFx {
+        cull: fx.contains(Effects::CULLING),
+        two_sided: fx.contains(Effects::TWO_SIDED),
+        lit: fx.contains(Effects::LIGHTING),
+    }
 }
 
 /// The face the rasterizer draws for polygon `p` of the walk: its colour,
 /// `id`, its outline mask, and the normal that lighting uses: with
 /// `two_sided`, a face seen from behind is lit as if it faced the viewer.
-/// Shared by [`draw_frame`] and the firmware's measured loop in
-/// [`crate::frames`], so both draw alike.
+/// Without lighting the plane is not read at all (the normal is zero), so
+/// that lighting switched off costs what lighting compiled out does.
+/// Shared by [`draw_frame`] and the loops of `render::cached`, so all draw
+/// alike.
 #[inline]
-pub(crate) fn face_of(p: &PolygonRef<'_>, view: &LocalView, two_sided: bool, id: u32) -> Face {
-    let plane = p.plane();
-    let normal = if two_sided && !view.is_backward(&plane) {
-        plane.normal.map(|c| -c)
+pub(crate) fn face_of(p: &PolygonRef<'_>, view: &LocalView, fx: WalkFx, id: u32) -> Face {
+    let normal = if fx.lit {
+        let plane = p.plane();
+        if fx.two_sided && !view.is_backward(&plane) {
+            plane.normal.map(|c| -c)
+        } else {
+            plane.normal
+        }
     } else {
-        plane.normal
+        [0.0; 3]
     };
     Face {
         normal,

@@ -130,8 +130,8 @@ impl Walk<'_, '_, '_> {
         ) -> Step,
     ) -> Result<(), OrderError> {
         probe.enter(Phase::Post);
-        let (cull, two_sided) = walk_effects(self.tree, r);
-        let mut order = Order::<N>::with_culling(self.tree, self.frame.view, cull)?;
+        let fx = walk_effects(self.tree, r);
+        let mut order = Order::<N>::with_culling(self.tree, self.frame.view, fx.cull)?;
         let view = order.view();
         let scale = self.frame.vertex_scale;
         while let Some(range) = order.next_range() {
@@ -141,7 +141,7 @@ impl Walk<'_, '_, '_> {
                     FaceIds::Source => p.source(),
                     FaceIds::Polygon => p.id(),
                 };
-                let face = face_of(&p, &view, two_sided, id);
+                let face = face_of(&p, &view, fx, id);
                 let mut first = true;
                 let clipped = r.stats_mut().clipped;
                 loop {
