@@ -135,26 +135,25 @@ pub enum RawVertex {
 pub struct Vertices<'a> {
     indices: &'a [u8],
     wide: bool,
+    dec: VertexDecoder<'a>,
+}
+
+/// Decodes vertices of a [`Tree`] by index, as [`Vertices`] does
+/// ([`Tree::vertex_decoder`]): the fast path of a vertex cache's misses.
+/// An index outside the section decodes to the origin (which a validated
+/// tree never has).
+#[derive(Clone, Copy, Debug)]
+pub struct VertexDecoder<'a> {
     section: &'a [u8],
     format: VertexFormat,
     q16_scale: [f32; 3],
     q32_scale: f32,
 }
 
-impl Iterator for Vertices<'_> {
-    type Item = [f32; 3];
-
+impl VertexDecoder<'_> {
+    /// Vertex `v`, relative to the origin, decoded to `f32`.
     #[inline]
-    fn next(&mut self) -> Option<[f32; 3]> {
-        let v = if self.wide {
-            let (&[a, b, c, d], rest) = self.indices.split_first_chunk::<4>()?;
-            self.indices = rest;
-            u32::from_le_bytes([a, b, c, d]) as usize
-        } else {
-            let (&[a, b], rest) = self.indices.split_first_chunk::<2>()?;
-            self.indices = rest;
-            usize::from(u16::from_le_bytes([a, b]))
-        };
+    pub fn get(&self, v: usize) -> [f32; 3] {
         let at = v.wrapping_mul(self.format.vertex_len());
         let f = |r: &[u8], k: usize| -> [u8; 4] {
             let mut o = [0; 4];
@@ -163,7 +162,7 @@ impl Iterator for Vertices<'_> {
             }
             o
         };
-        Some(match self.format {
+        match self.format {
             VertexFormat::F32 => match self.section.get(at..at.wrapping_add(12)) {
                 Some(r) => [0, 4, 8].map(|k| f32::from_le_bytes(f(r, k))),
                 None => [0.0; 3],
@@ -183,7 +182,25 @@ impl Iterator for Vertices<'_> {
                 }
                 None => [0.0; 3],
             },
-        })
+        }
+    }
+}
+
+impl Iterator for Vertices<'_> {
+    type Item = [f32; 3];
+
+    #[inline]
+    fn next(&mut self) -> Option<[f32; 3]> {
+        let v = if self.wide {
+            let (&[a, b, c, d], rest) = self.indices.split_first_chunk::<4>()?;
+            self.indices = rest;
+            u32::from_le_bytes([a, b, c, d]) as usize
+        } else {
+            let (&[a, b], rest) = self.indices.split_first_chunk::<2>()?;
+            self.indices = rest;
+            usize::from(u16::from_le_bytes([a, b]))
+        };
+        Some(self.dec.get(v))
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
@@ -273,6 +290,16 @@ impl<'a> Geometry<'a> {
                 rd_i32(b, o.wrapping_add(4)),
                 rd_i32(b, o.wrapping_add(8)),
             ]),
+        }
+    }
+
+    #[inline]
+    fn decoder(&self) -> VertexDecoder<'a> {
+        VertexDecoder {
+            section: self.bytes.get(self.vertices..).unwrap_or(&[]),
+            format: self.format,
+            q16_scale: self.q16_scale,
+            q32_scale: self.q32_scale,
         }
     }
 
@@ -543,10 +570,7 @@ impl<'a> PolygonRef<'a> {
         Vertices {
             indices: g.bytes.get(lo..hi).unwrap_or(&[]),
             wide: size == 4,
-            section: g.bytes.get(g.vertices..).unwrap_or(&[]),
-            format: g.format,
-            q16_scale: g.q16_scale,
-            q32_scale: g.q32_scale,
+            dec: g.decoder(),
         }
     }
 
@@ -827,6 +851,11 @@ impl<'a> Tree<'a> {
     /// Stored vertex `v` relative to the origin, decoded to `f32`.
     pub fn vertex(&self, v: u32) -> Option<[f32; 3]> {
         self.vertex_raw(v).map(|r| self.g.decode(r))
+    }
+
+    /// A decoder of vertices by index ([`VertexDecoder`]).
+    pub fn vertex_decoder(&self) -> VertexDecoder<'a> {
+        self.g.decoder()
     }
 
     /// Stored vertex `v` as stored.

@@ -187,9 +187,9 @@ impl Walk<'_, '_, '_> {
         reach: &SpanBounds,
     ) -> (Result<Ready, Outcome>, bool) {
         if self.cache.capacity() > 0 {
-            let tree = self.tree;
+            let dec = self.tree.vertex_decoder();
             let xform = |v: u32| {
-                let x = tree.vertex(v)?;
+                let x = dec.get(v as usize);
                 r.transform([x[0] * scale, x[1] * scale, x[2] * scale])
             };
             if let Some((n, by_index)) =
