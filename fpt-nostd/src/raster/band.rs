@@ -15,15 +15,37 @@
 //! coordinates, so embedded-graphics overlays (text, markers) can be drawn
 //! into the same bands.
 //!
-//! Typical loop (per frame):
-//! ```ignore
-//! for y0 in band_starts(frame_h, BAND_ROWS) {
-//!     let mut fb = Rgb565Framebuffer::new(&mut band_buf, w, BAND_ROWS)?;
-//!     fb.fill_all(background);
-//!     let mut band = Band::new(&mut fb, y0);
-//!     for poly in scene { renderer.draw_polygon(&mut scratch, poly.verts, &poly.face, &mut band); }
-//!     display.send_rows(y0, fb.data());
+//! The usual way to draw bands is
+//! [`crate::render::TreeRenderer::render_banded_in`]: it walks the tree
+//! once a frame into a display list in memory the caller gives, and
+//! replays it into each band (see `render::cached` for what less memory
+//! costs). A band buffer of 16 rows of a 240-pixel RGB565 panel:
+//!
+//! ```
+//! use fpt_nostd::raster::{FloatLibm, Rgb565Format};
+//! use fpt_nostd::reader::Tree;
+//! use fpt_nostd::render::{memory_words, BandBuffer, Frame, RenderError, TreeRenderer};
+//! use embedded_graphics::pixelcolor::Rgb565;
+//!
+//! /// Draws one frame; `send` gets each band's first row and its pixels.
+//! fn frame(
+//!     r: &mut TreeRenderer<FloatLibm<4>, 40>,
+//!     tree: &Tree<'_>,
+//!     frame: &Frame,
+//!     band: &mut [u16; 240 * 16],
+//!     memory: &mut [u32],
+//!     mut send: impl FnMut(i32, &[u16]),
+//! ) -> Result<(), RenderError> {
+//!     let band = BandBuffer::<Rgb565Format> {
+//!         buf: band,
+//!         rows: 16,
+//!         background: Rgb565::new(2, 4, 6),
+//!     };
+//!     // 64-walk depth; `memory_words(tree)` words make it one walk.
+//!     r.render_banded_in::<_, 64>(tree, frame, band, memory, |y0, fb| send(y0, fb.data()))?;
+//!     Ok(())
 //! }
+//! # let _ = memory_words;
 //! ```
 
 use embedded_graphics::draw_target::DrawTarget;

@@ -29,13 +29,22 @@
 //! * Bands: the fill is exact from any starting row, so banded output is
 //!   identical to full-frame output.
 //!
-//! Integration sketch (per frame):
-//! ```ignore
-//! let mut r = Renderer::<DefaultPrecision>::new(w, h, &camera)?;
-//! let mut scratch = Scratch::<DefaultPrecision, 64>::new();
-//! for poly in tree_walk_order {
-//!     r.draw_polygon(&mut scratch, poly.verts(), &Face { normal, color, id, hidden_edges: 0 }, &mut fb);
-//! }
+//! One polygon through the pipeline (a tree renderer,
+//! [`crate::render::TreeRenderer`], does this for each polygon the walk
+//! hands out, back to front):
+//! ```
+//! use fpt_nostd::raster::{Camera, DefaultPrecision, Face, Mat4, Outcome, Renderer};
+//! use fpt_nostd::raster::{Rgb565Framebuffer, Scratch};
+//! let camera = Camera::from_matrix(Mat4::IDENTITY, 1e-3);
+//! let mut r = Renderer::<DefaultPrecision>::new(32, 24, &camera).unwrap();
+//! let mut scratch = Scratch::<DefaultPrecision, 16>::new();
+//! let mut pixels = [0u16; 32 * 24];
+//! let mut fb = Rgb565Framebuffer::new(&mut pixels, 32, 24).unwrap();
+//! let face = Face { normal: [0.0, 0.0, 1.0], color: [255, 128, 0], id: 7, hidden_edges: 0 };
+//! // A triangle in clip space (the identity camera), counter-clockwise.
+//! let tri = [[-0.5, -0.5, 0.0], [0.5, -0.5, 0.0], [0.0, 0.5, 0.0]];
+//! let out = r.draw_polygon(&mut scratch, tri, &face, &mut fb);
+//! assert!(matches!(out, Outcome::Drawn { spans } if spans > 0));
 //! ```
 
 pub mod band;
