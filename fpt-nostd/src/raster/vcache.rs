@@ -128,7 +128,7 @@ impl<'m> VertexCache<'m> {
 pub(crate) fn pack(p: ScreenPt) -> Option<u32> {
     const LIM: i32 = i16::MAX as i32;
     let ok = (-LIM..=LIM).contains(&p.x) && (-LIM..=LIM).contains(&p.y);
-    ok.then(|| (p.x as u16 as u32) | ((p.y as u16 as u32) << 16))
+    ok.then_some((p.x as u16 as u32) | ((p.y as u16 as u32) << 16))
 }
 
 /// The inverse of [`pack`].

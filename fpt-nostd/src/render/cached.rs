@@ -512,7 +512,6 @@ where
             y += rows;
             continue;
         }
-        drop(fb);
         let mut y0 = y;
         while y0 < cut.get() {
             probe.enter(Phase::Fill);
