@@ -12,8 +12,7 @@ use fpt_nostd::order::for_each_polygon_back_to_front;
 use fpt_nostd::raster::framebuffer::BinaryFormat;
 use fpt_nostd::raster::{
     Camera, DefaultPrecision, FixedPrecision, FloatLibm, FloatMicromath, IdBuffer, IntPrecision,
-    Libm, Mat4,
-    Orbit, Precision, RenderStats,
+    Libm, Mat4, Orbit, Precision, RenderStats,
 };
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{near_w_for, rows_f64, BandBuffer, Frame, TreeRenderer};

@@ -202,8 +202,8 @@ impl<const VB: u32> VertexPath for IntPath<VB> {
             let shift = (a + Self::B as i32 - e).clamp(1, 31);
             let a = shift + e - Self::B as i32;
             out.shift[k] = shift as u32;
-            for j in 0..3 {
-                out.m[k][j] = round_i32(scale2(r[j], a)).clamp(-(1 << 14), 1 << 14);
+            for (d, &v) in out.m[k].iter_mut().zip(r) {
+                *d = round_i32(scale2(v, a)).clamp(-(1 << 14), 1 << 14);
             }
         }
         out

@@ -416,7 +416,8 @@ mod tests {
 
     #[test]
     fn projection_follows_pixel_convention() {
-        let vp = Viewport::new(200, 100, 4).unwrap_or(Viewport::new(1, 1, 0).unwrap_or_else(|| panic!()));
+        let vp = Viewport::new(200, 100, 4)
+            .unwrap_or(Viewport::new(1, 1, 0).unwrap_or_else(|| panic!()));
         // ndc (-1, 1) is the top-left corner, (1, -1) the bottom-right.
         let corners = [
             ((-1.0, 1.0), (0, 0)),
@@ -465,7 +466,8 @@ mod tests {
 
     #[test]
     fn projection_of_extreme_fixed_values_does_not_overflow() {
-        let vp = Viewport::new(MAX_DIM, MAX_DIM, 8).unwrap_or(Viewport::new(1, 1, 0).unwrap_or_else(|| panic!()));
+        let vp = Viewport::new(MAX_DIM, MAX_DIM, 8)
+            .unwrap_or(Viewport::new(1, 1, 0).unwrap_or_else(|| panic!()));
         let big = FxWide::<16>::from_raw(i64::MAX);
         let one = FxWide::<16>::from_raw(1);
         for (x, w) in [(big, one), (big, big), (FxWide::from_raw(i64::MIN), one)] {

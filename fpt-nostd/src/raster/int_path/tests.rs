@@ -52,12 +52,18 @@ fn ball(rng: &mut Rng, radius: f32) -> [f32; 3] {
 /// units, and its `w`.
 fn exact(m: &Mat4, v: [f32; 3], vp: &Viewport) -> (f64, f64, f64) {
     let row = |r: &[f32; 4]| {
-        r[0] as f64 * v[0] as f64 + r[1] as f64 * v[1] as f64 + r[2] as f64 * v[2] as f64
+        r[0] as f64 * v[0] as f64
+            + r[1] as f64 * v[1] as f64
+            + r[2] as f64 * v[2] as f64
             + r[3] as f64
     };
     let (x, y, w) = (row(&m.0[0]), row(&m.0[1]), row(&m.0[3]));
     let c = |n: u32| (n << vp.sub_bits()) as f64 * 0.5;
-    ((x / w + 1.0) * c(vp.width()), (1.0 - y / w) * c(vp.height()), w)
+    (
+        (x / w + 1.0) * c(vp.width()),
+        (1.0 - y / w) * c(vp.height()),
+        w,
+    )
 }
 
 /// Over random normalised frames and vertices: the integer path's screen
@@ -104,7 +110,9 @@ fn tracks_the_exact_projection_on_normalised_frames() {
             }
         }
     }
-    std::eprintln!("int path: worst {worst_on} on screen ({n_on}), {worst_guard} in the guard band");
+    std::eprintln!(
+        "int path: worst {worst_on} on screen ({n_on}), {worst_guard} in the guard band"
+    );
     assert!(n_on > 10_000, "{n_on}");
     assert!(worst_on <= 1.0, "{worst_on}");
     assert!(worst_guard <= 2.0, "{worst_guard}");
@@ -137,7 +145,10 @@ fn q16_vertices_as_stored_match_decoded_ones() {
             let (Some(pa), Some(pb)) = (Int::project(&a, &vp), Int::project(&b, &vp)) else {
                 panic!()
             };
-            assert!((pa.x - pb.x).abs() <= 1 && (pa.y - pb.y).abs() <= 1, "{pa:?} {pb:?}");
+            assert!(
+                (pa.x - pb.x).abs() <= 1 && (pa.y - pb.y).abs() <= 1,
+                "{pa:?} {pb:?}"
+            );
             diffs += usize::from(pa != pb);
         }
     }
@@ -163,7 +174,10 @@ fn integer_vertices_go_onto_the_grid() {
     assert_eq!(t([5, -5, 7], 2), t([3, -2, 4], 1));
     assert_eq!(t([3, -4, 0], 0), t([6, -8, 0], 1));
     // Saturation at ±2^14 (the grid's ±2^15), never wrapping.
-    assert_eq!(t([i32::MAX, i32::MIN, 0], 0), t([1 << 15, -(1 << 15), 0], 1));
+    assert_eq!(
+        t([i32::MAX, i32::MIN, 0], 0),
+        t([1 << 15, -(1 << 15), 0], 1)
+    );
     assert_eq!(t([i32::MAX, i32::MIN, 1], 62), t([0, 0, 0], 1));
     assert_eq!(t([1, 1, 1], 63), None);
     assert_eq!(Int::transform(&m, [f32::NAN, 0.0, 0.0]), None);
@@ -190,7 +204,14 @@ fn projection_follows_the_pixel_convention() {
                 w,
             };
             let p = Int::project(&v, &vp);
-            assert_eq!(p, Some(ScreenPt { x: want.0, y: want.1 }), "{v:?}");
+            assert_eq!(
+                p,
+                Some(ScreenPt {
+                    x: want.0,
+                    y: want.1
+                }),
+                "{v:?}"
+            );
             assert_eq!(Int::project_clipped(&v, &vp), p);
         }
     }
@@ -204,8 +225,24 @@ fn projection_follows_the_pixel_convention() {
 #[test]
 fn extreme_clip_values_project_within_limits() {
     let mut rng = Rng(9);
-    let vals = [i32::MIN, i32::MIN + 1, -1, 0, 1, 2, 1 << 28, i32::MAX - 1, i32::MAX];
-    for &(w, h, sub) in &[(240, 240, 4), (1, 1, 0), (MAX, 3, 8), (MAX, MAX, 8), (320, 240, 8)] {
+    let vals = [
+        i32::MIN,
+        i32::MIN + 1,
+        -1,
+        0,
+        1,
+        2,
+        1 << 28,
+        i32::MAX - 1,
+        i32::MAX,
+    ];
+    for &(w, h, sub) in &[
+        (240, 240, 4),
+        (1, 1, 0),
+        (MAX, 3, 8),
+        (MAX, MAX, 8),
+        (320, 240, 8),
+    ] {
         let vp = Viewport::new(w, h, sub).unwrap_or_else(|| panic!());
         for &x in &vals {
             for &y in &vals {
@@ -243,7 +280,17 @@ const MAX: u32 = super::super::transform::MAX_DIM;
 #[test]
 fn extreme_matrices_and_vertices_never_overflow() {
     let mut rng = Rng(13);
-    let special = [0.0, -0.0, 1e-45, 1e-30, 1e30, 3e38, -3e38, f32::NAN, f32::INFINITY];
+    let special = [
+        0.0,
+        -0.0,
+        1e-45,
+        1e-30,
+        1e30,
+        3e38,
+        -3e38,
+        f32::NAN,
+        f32::INFINITY,
+    ];
     let bound = (1 << 28) + (1 << 16);
     for k in 0..3000 {
         let mut m = Mat4::IDENTITY;
@@ -346,10 +393,29 @@ fn clipping_keeps_every_vertex_inside() {
 fn shared_edge_cuts_are_bit_identical() {
     let near = 37;
     let (p, q) = (
-        ClipVert { x: 300, y: 700, w: -770 },
-        ClipVert { x: 1100, y: -200, w: 2900 },
+        ClipVert {
+            x: 300,
+            y: 700,
+            w: -770,
+        },
+        ClipVert {
+            x: 1100,
+            y: -200,
+            w: 2900,
+        },
     );
-    let (r1, r2) = (ClipVert { x: -100, y: 300, w: 2000 }, ClipVert { x: 2000, y: -300, w: 1300 });
+    let (r1, r2) = (
+        ClipVert {
+            x: -100,
+            y: 300,
+            w: 2000,
+        },
+        ClipVert {
+            x: 2000,
+            y: -300,
+            w: 1300,
+        },
+    );
     let run = |tri: [ClipVert<i32>; 3]| {
         let mut a = [ClipVert::default(); 16];
         let mut b = [ClipVert::default(); 16];
@@ -358,5 +424,9 @@ fn shared_edge_cuts_are_bit_identical() {
     };
     let (t1, t2) = (run([p, q, r1]), run([q, p, r2]));
     let new: Vec<_> = t1.iter().filter(|v| ![p, q, r1].contains(v)).collect();
-    assert_eq!(new.iter().filter(|v| t2.contains(v)).count(), 1, "{t1:?} {t2:?}");
+    assert_eq!(
+        new.iter().filter(|v| t2.contains(v)).count(),
+        1,
+        "{t1:?} {t2:?}"
+    );
 }

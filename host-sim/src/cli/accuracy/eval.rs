@@ -29,15 +29,15 @@ use crate::reference::{zbuffer, Camera, RefFrame, RefOptions};
 use crate::serialize::{polygon_order, serialize, SerializeOptions};
 use crate::tree::Method;
 use embedded_graphics::pixelcolor::Rgb888;
-use fpt_nostd::format::VertexFormat;
 use fpt_nostd::effects::AllEffects;
+use fpt_nostd::format::VertexFormat;
 use fpt_nostd::raster::clip::ClipVert;
 use fpt_nostd::raster::framebuffer::Rgb565Format;
 use fpt_nostd::raster::int_path::{draw_frame_q16, q16_camera};
 use fpt_nostd::raster::transform::{VertexPath, Viewport};
 use fpt_nostd::raster::{
-    FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Framebuffer, IdBuffer,
-    IntPrecision, Light, Precision, ShadeMode, SpanSink,
+    FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Framebuffer, IdBuffer, IntPrecision,
+    Light, Precision, ShadeMode, SpanSink,
 };
 use fpt_nostd::reader::{PolygonRef, RawVertex, Tree};
 use fpt_nostd::render::{FaceIds, Frame, TreeRenderer};
@@ -475,9 +475,7 @@ pub fn max_vertex_error_raw_q16(
     let qc = q16_camera(&frame.camera, frame.vertex_scale, tree.half_extent(), 1);
     let m = <P as Precision>::Path::prepare(&qc.matrix);
     vertex_error_with::<P>(tree, exact, cam, w, h, |p, i| match p.vertex_raw(i) {
-        RawVertex::Q16(q) => {
-            <P as Precision>::Path::transform_q(&m, q.map(i32::from), 1)
-        }
+        RawVertex::Q16(q) => <P as Precision>::Path::transform_q(&m, q.map(i32::from), 1),
         _ => None,
     })
 }
