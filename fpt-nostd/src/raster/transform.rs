@@ -1,5 +1,7 @@
 //! Vertex transform (model → clip space) and the perspective divide (clip →
-//! screen fixed point), in two interchangeable arithmetics.
+//! screen fixed point), in interchangeable arithmetics: the two below and
+//! the 32-bit integer path of [`super::int_path`] (for cores without an
+//! FPU).
 //!
 //! * [`FixedPath<F>`]: matrix and vertices as [`Fx<F>`] (default 16.16),
 //!   clip coordinates as [`FxWide<F>`] (i64). Model coordinates outside the

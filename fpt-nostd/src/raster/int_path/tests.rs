@@ -430,3 +430,33 @@ fn shared_edge_cuts_are_bit_identical() {
         "{t1:?} {t2:?}"
     );
 }
+
+/// `near` and `depth` convert between the path's per-frame units and the
+/// camera's: a clip `w` comes back as the `f32` path's `w` (to the
+/// units' resolution), the near threshold as `near_w`.
+#[test]
+fn near_and_depth_are_in_camera_units() {
+    let mut rng = Rng(29);
+    for k in 0..300 {
+        let (cam, radius) = frame_camera(&mut rng, k % 7 == 0);
+        let m = Int::prepare(&cam.matrix);
+        let near = Int::near(&m, cam.near_w);
+        let back = Int::depth(&m, near);
+        assert!(
+            (back - cam.near_w).abs() <= 1e-3 * cam.near_w.abs() + Int::depth(&m, 1),
+            "{back} {}",
+            cam.near_w
+        );
+        for _ in 0..20 {
+            let v = ball(&mut rng, radius);
+            let (Some(a), Some(b)) = (Int::transform(&m, v), Flt::transform(&cam.matrix, v)) else {
+                panic!()
+            };
+            let d = Int::depth(&m, a.w);
+            // The bound B of IntMatrix is about 2^28 units: 2^-14 of it
+            // covers the vertex grid and the entries' rounding.
+            let scale = Int::depth(&m, 1 << 28);
+            assert!((d - b.w).abs() <= scale * 2e-4, "{d} {} {scale}", b.w);
+        }
+    }
+}
