@@ -538,4 +538,39 @@ mod tests {
             }
         }
     }
+
+    /// The integer path's direct test equals the five planes' on extreme
+    /// values (saturation included).
+    #[test]
+    fn the_i32_inside_test_agrees_with_the_planes() {
+        let vals = [
+            i32::MIN,
+            i32::MIN + 1,
+            -(1 << 29) - 1,
+            -(1 << 29),
+            -5,
+            -4,
+            -1,
+            0,
+            1,
+            3,
+            4,
+            5,
+            1 << 29,
+            (1 << 29) + 1,
+            i32::MAX - 1,
+            i32::MAX,
+        ];
+        for &x in &vals {
+            for &y in &vals {
+                for &w in &vals {
+                    for near in [1, 4, i32::MAX] {
+                        let v = ClipVert { x, y, w };
+                        let planes = PLANES.iter().all(|p| p.dist(&v, near) >= 0);
+                        assert_eq!(<i32 as ClipNum>::inside(&v, near), planes, "{v:?} {near}");
+                    }
+                }
+            }
+        }
+    }
 }
