@@ -1,7 +1,8 @@
 //! The integer vertex path, for cores without an FPU (Cortex-M0: no
 //! hardware divide, only a 32×32→32 multiply): transform, clipping and
-//! projection in 32-bit integers, with at most one 32-bit division a
-//! vertex and no 64-bit division anywhere.
+//! projection in 32-bit integers, with no division per vertex (the
+//! perspective divide's reciprocal is a table seed and one Newton step)
+//! and no 64-bit division anywhere.
 //!
 //! Formats (see [`IntMatrix`] for the proofs of the bounds):
 //! * **Vertices** are integers of at most 16 bits, `|v| ≤ 2^15`, in units
@@ -25,8 +26,9 @@
 //!   below). The units change with the camera, which is why
 //!   [`VertexPath::near`] and [`VertexPath::depth`] take the matrix.
 //! * **Per vertex**: nine 32×32→32 multiplies, adds and three shifts
-//!   (transform); one count of leading zeros, one 32-bit division and six
-//!   multiplies (projection).
+//!   (transform); one count of leading zeros, a reciprocal from a 128-entry
+//!   table and one Newton step (no division at all), and eight multiplies
+//!   (projection).
 //!
 //! Accuracy (tests below, against [`super::transform::FloatPath`]): entries
 //! carry 14–15 significant bits, vertices 16, the projection's `w` 16 and
@@ -266,7 +268,8 @@ impl<const VB: u32> VertexPath for IntPath<VB> {
 /// 1. `x, y, w` are shifted together (the ratios are all that matters) so
 ///    that `w' ∈ [2^15, 2^16)`: exact when shifted up, with a relative
 ///    error below `2^-15` when shifted down. Then `|x'|, |y'| ≤ 4w' + 3`.
-/// 2. One 32-bit division: `r = floor(2^31 / w') ∈ (2^15, 2^16]`.
+/// 2. The reciprocal `r ≈ 2^31 / w'` ([`recip`]: a table and one Newton
+///    step, no division), `2^15 < r ≤ 2^16`.
 /// 3. `u = x' + w'` (`|u| < 5·2^16 + 3 < 2^18.4`); `q = floor(u·r / 2^8)
 ///    ≈ (u/w)·2^23`, `|q| < 5.1·2^23`, from two products that each fit
 ///    (`|u >> 8|·r < 2^26.4`, `(u & 255)·r < 2^24`).
@@ -284,7 +287,7 @@ fn project_inside(x: i32, y: i32, w: i32, vp: &Viewport) -> ScreenPt {
         let s = 16 - bits;
         (x.wrapping_shl(s), y.wrapping_shl(s), w.wrapping_shl(s))
     };
-    let r = ((1u32 << 31) / (w as u32).max(1)) as i32;
+    let r = recip(w as u32);
     let ratio = |u: i32| {
         (u >> 8)
             .wrapping_mul(r)
@@ -301,6 +304,39 @@ fn project_inside(x: i32, y: i32, w: i32, vp: &Viewport) -> ScreenPt {
         x: screen(ratio(x.wrapping_add(w)), vp.width(), sx),
         y: screen(ratio(w.wrapping_sub(y)), vp.height(), sy),
     }
+}
+
+/// Seeds of [`recip`]: `round(2^31 / m)` at the midpoint `m` of each of
+/// the 128 intervals `[256·k, 256·(k + 1))`, `k ∈ [128, 256)`, i.e.
+/// `round(2^24 / (2k + 1))`. Relative error below `2^-8` over the interval.
+const RECIP_SEED: [u16; 128] = {
+    let mut t = [0u16; 128];
+    let mut i = 0;
+    while i < 128 {
+        let d = 2 * (i as u32 + 128) + 1;
+        t[i] = ((1u32 << 25) / d).div_ceil(2) as u16;
+        i += 1;
+    }
+    t
+};
+
+/// `2^31 / w` for `w ∈ [2^15, 2^16)`, from below: `2^31/w − 2 ≤ r ≤
+/// 2^31/w` (checked for every `w` by a test), so `2^15 − 2 < r ≤ 2^16`.
+///
+/// No division: a core without a divide instruction (Cortex-M0) would call
+/// a software division of about a hundred instructions; this is a table
+/// load and three multiplies. A seed `r0` with relative error `ε ≤ 2^-8`,
+/// then one Newton step `r1 = r0·(2 − w·r0/2^31)`, whose error is `−ε²·(1/w)`
+/// (never above the true value) plus the truncations: `e = 2^31 − w·r0`
+/// (`w·r0 < 2^32` as u32; `|e| ≤ 2^23.1`), `r1 = r0 + (r0·(e >> 9)) >> 22`
+/// (`|r0·(e >> 9)| < 2^16·2^14.1 < 2^31`). Inputs outside the range give
+/// some value without overflow (wrapping).
+#[inline]
+fn recip(w: u32) -> i32 {
+    let k = ((w >> 8) as usize).wrapping_sub(128) & 127;
+    let r0 = RECIP_SEED[k] as i32;
+    let e = (1u32 << 31).wrapping_sub(w.wrapping_mul(r0 as u32)) as i32;
+    r0.wrapping_add(r0.wrapping_mul(e >> 9) >> 22)
 }
 
 /// The interpolation parameter `floor(da·2^30 / (da − db))` in `[0, 2^30]`

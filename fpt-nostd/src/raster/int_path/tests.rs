@@ -460,3 +460,17 @@ fn near_and_depth_are_in_camera_units() {
         }
     }
 }
+
+/// The division-free reciprocal, for every input of its range: at most 2
+/// below `2^31 / w`, never above (so `r ≤ 2^16`, the projection's bound).
+#[test]
+fn the_reciprocal_is_within_two_units_from_below() {
+    let mut worst = 0.0f64;
+    for w in 1u32 << 15..1 << 16 {
+        let exact = 2f64.powi(31) / w as f64;
+        let r = recip(w) as f64;
+        assert!(r <= exact && exact - r <= 2.0, "{w}: {r} vs {exact}");
+        worst = worst.max(exact - r);
+    }
+    assert!(worst >= 0.5, "{worst}");
+}
