@@ -66,7 +66,7 @@ fn capture(b: &Bench) -> Vec<ScreenPoly> {
     let frame = b.frame(W, H);
     let light = common::light(&frame);
     let m = Path::prepare(&frame.camera.matrix);
-    let near = Path::near(frame.camera.near_w);
+    let near = Path::near(&m, frame.camera.near_w);
     let vp = Viewport::new(W, H, P::SUB_BITS).expect("viewport");
     let view = frame.view.local(&tree);
     let two_sided = !tree.is_closed();

@@ -8,7 +8,9 @@
 
 mod render_common;
 
-use fpt_nostd::raster::{FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Precision};
+use fpt_nostd::raster::{
+    FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, IntPrecision, Precision,
+};
 use fpt_tests::{random_cameras, Rng};
 use glam::DVec3;
 use host_sim::geom::{bounds, Polygon};
@@ -293,4 +295,6 @@ fn every_arithmetic_configuration() {
     precision::<FloatLibm<2>>("f32-libm-subpx-2");
     precision::<FloatLibm<6>>("f32-libm-subpx-6");
     precision::<FloatMicromath<4>>("f32-micromath-subpx-4");
+    precision::<IntPrecision<4>>("int-subpx-4");
+    precision::<IntPrecision<8>>("int-subpx-8");
 }

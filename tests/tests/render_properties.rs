@@ -11,8 +11,8 @@ use embedded_graphics::pixelcolor::BinaryColor;
 use fpt_nostd::order::for_each_polygon_back_to_front;
 use fpt_nostd::raster::framebuffer::BinaryFormat;
 use fpt_nostd::raster::{
-    Camera, DefaultPrecision, FixedPrecision, FloatLibm, FloatMicromath, IdBuffer, Libm, Mat4,
-    Orbit, Precision, RenderStats,
+    Camera, DefaultPrecision, FixedPrecision, FloatLibm, FloatMicromath, IdBuffer, IntPrecision,
+    Libm, Mat4, Orbit, Precision, RenderStats,
 };
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{near_w_for, rows_f64, BandBuffer, Frame, TreeRenderer};
@@ -63,6 +63,7 @@ fn check(tree: &Tree<'_>, f: &Frame) -> RenderStats {
         draw::<FixedPrecision<0>>(tree, f),
         draw::<FloatLibm<8>>(tree, f),
         draw::<FloatMicromath<2>>(tree, f),
+        draw::<IntPrecision<4>>(tree, f),
     ] {
         assert_eq!(t.drawn + t.invisible + t.skipped, emitted, "{t:?}");
     }

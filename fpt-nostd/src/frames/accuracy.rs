@@ -6,7 +6,11 @@
 //!   each one arithmetic ([`crate::raster::Precision`]) and, for
 //!   `vertex-q16`/`vertex-q32`, the benchmark tree stored in that encoding
 //!   ([`vertex_format`]). `trig-*` build the orbit camera with the
-//!   configuration's own trigonometry; the others with `libm`.
+//!   configuration's own trigonometry; the others with `libm`. `int` is
+//!   the integer vertex path ([`crate::raster::int_path`]) on the `f32`
+//!   tree; `int-q16` the same path on the q16 tree with its vertices
+//!   drawn as stored ([`draw_frame_q16`]: no decoding to `f32`), the
+//!   configuration of a core without an FPU.
 //! * **Frames**: [`ACCURACY_SCENE`] from every view of [`super::VIEWS`],
 //!   240×240 RGB565, cleared to [`super::BACKGROUND`], key light, the
 //!   tree's declared effects. [`AccuracyLine`] is the line both sides print
@@ -21,9 +25,10 @@ use super::{clear, FrameError, PixelCrc, Probe, ViewSpec, AMBIENT, DIFFUSE, Z_UP
 use super::{Phase, HEIGHT, MAX_VERTS, WALK_DEPTH, WIDTH};
 use crate::effects::AllEffects;
 use crate::format::VertexFormat;
+use crate::raster::int_path::draw_frame_q16;
 use crate::raster::{
-    Camera, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, FramebufferError, Libm,
-    Light, Mat4, MathFns, Precision, Renderer, Rgb565Framebuffer, Scratch,
+    Camera, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, FramebufferError,
+    IntPrecision, Libm, Light, Mat4, MathFns, Precision, Renderer, Rgb565Framebuffer, Scratch,
 };
 use crate::reader::Tree;
 use crate::render::{draw_frame, FaceIds, Frame};
@@ -32,7 +37,7 @@ use crate::render::{draw_frame, FaceIds, Frame};
 pub const ACCURACY_SCENE: &str = "bench_city";
 
 /// The configurations, in `fpt bench-accuracy`'s row order.
-pub const CONFIGS: [&str; 13] = [
+pub const CONFIGS: [&str; 15] = [
     "vertex-f32",
     "vertex-q16",
     "vertex-q32",
@@ -46,12 +51,14 @@ pub const CONFIGS: [&str; 13] = [
     "subpx-8",
     "trig-libm",
     "trig-micromath",
+    "int",
+    "int-q16",
 ];
 
 /// The vertex encoding of the tree configuration `name` draws.
 pub fn vertex_format(name: &str) -> VertexFormat {
     match name {
-        "vertex-q16" => VertexFormat::Q16,
+        "vertex-q16" | "int-q16" => VertexFormat::Q16,
         "vertex-q32" => VertexFormat::Q32,
         _ => VertexFormat::F32,
     }
@@ -68,34 +75,51 @@ pub fn render_config<Pr: Probe>(
     buf: &mut [u16],
     probe: &Pr,
 ) -> Result<u32, FrameError> {
+    let f = |raw: bool| Frame1 {
+        tree,
+        view,
+        raw_q16: raw,
+    };
     match name {
         "vertex-f32" | "vertex-q16" | "vertex-q32" | "fixed" | "subpx-4" => {
-            render_with::<FixedPrecision<4>, Libm, Pr>(tree, view, buf, probe)
+            render_with::<FixedPrecision<4>, Libm, Pr>(f(false), buf, probe)
         }
-        "f32-libm" => render_with::<FloatLibm<4>, Libm, Pr>(tree, view, buf, probe),
-        "f32-micromath" => render_with::<FloatMicromath<4>, Libm, Pr>(tree, view, buf, probe),
-        "subpx-0" => render_with::<FixedPrecision<0>, Libm, Pr>(tree, view, buf, probe),
-        "subpx-2" => render_with::<FixedPrecision<2>, Libm, Pr>(tree, view, buf, probe),
-        "subpx-6" => render_with::<FixedPrecision<6>, Libm, Pr>(tree, view, buf, probe),
-        "subpx-8" => render_with::<FixedPrecision<8>, Libm, Pr>(tree, view, buf, probe),
-        "trig-libm" => render_with::<FixedPrecision<4>, Libm, Pr>(tree, view, buf, probe),
-        "trig-micromath" => {
-            render_with::<FixedMicromath<4>, <FixedMicromath<4> as Precision>::Math, Pr>(
-                tree, view, buf, probe,
-            )
-        }
+        "f32-libm" => render_with::<FloatLibm<4>, Libm, Pr>(f(false), buf, probe),
+        "f32-micromath" => render_with::<FloatMicromath<4>, Libm, Pr>(f(false), buf, probe),
+        "subpx-0" => render_with::<FixedPrecision<0>, Libm, Pr>(f(false), buf, probe),
+        "subpx-2" => render_with::<FixedPrecision<2>, Libm, Pr>(f(false), buf, probe),
+        "subpx-6" => render_with::<FixedPrecision<6>, Libm, Pr>(f(false), buf, probe),
+        "subpx-8" => render_with::<FixedPrecision<8>, Libm, Pr>(f(false), buf, probe),
+        "trig-libm" => render_with::<FixedPrecision<4>, Libm, Pr>(f(false), buf, probe),
+        "trig-micromath" => render_with::<
+            FixedMicromath<4>,
+            <FixedMicromath<4> as Precision>::Math,
+            Pr,
+        >(f(false), buf, probe),
+        "int" => render_with::<IntPrecision<4>, Libm, Pr>(f(false), buf, probe),
+        "int-q16" => render_with::<IntPrecision<4>, Libm, Pr>(f(true), buf, probe),
         _ => Err(FrameError::UnknownConfig),
     }
+}
+
+/// What one frame of the study draws: a view of a tree, with the q16
+/// vertices as stored or decoded.
+#[derive(Clone, Copy)]
+struct Frame1<'t, 'b, 'v> {
+    tree: &'t Tree<'b>,
+    view: &'v ViewSpec,
+    /// Draw with [`draw_frame_q16`] (the integer path's `VB = 1`).
+    raw_q16: bool,
 }
 
 /// One frame with arithmetic `P` and orbit trigonometry `T`.
 #[inline(never)]
 fn render_with<P: Precision, T: MathFns, Pr: Probe>(
-    tree: &Tree<'_>,
-    view: &ViewSpec,
+    f: Frame1<'_, '_, '_>,
     buf: &mut [u16],
     probe: &Pr,
 ) -> Result<u32, FrameError> {
+    let Frame1 { tree, view, .. } = f;
     let identity = Camera::from_matrix(Mat4::IDENTITY, 1.0);
     // `Renderer::new` refuses only a side that is 0 or too large: the
     // frame's size, reported as such.
@@ -111,14 +135,26 @@ fn render_with<P: Precision, T: MathFns, Pr: Probe>(
     // A failure ends the measurement as well.
     let mut fb = Rgb565Framebuffer::new(buf, WIDTH, HEIGHT).inspect_err(|_| probe.stop())?;
     clear(&mut fb);
-    let drawn = draw_frame::<P, AllEffects, _, WALK_DEPTH, MAX_VERTS>(
-        tree,
-        &frame,
-        &mut renderer,
-        &mut scratch,
-        FaceIds::Source,
-        &mut fb,
-    );
+    let drawn = if f.raw_q16 {
+        draw_frame_q16::<P, AllEffects, _, WALK_DEPTH, MAX_VERTS>(
+            tree,
+            &frame,
+            1,
+            &mut renderer,
+            &mut scratch,
+            FaceIds::Source,
+            &mut fb,
+        )
+    } else {
+        draw_frame::<P, AllEffects, _, WALK_DEPTH, MAX_VERTS>(
+            tree,
+            &frame,
+            &mut renderer,
+            &mut scratch,
+            FaceIds::Source,
+            &mut fb,
+        )
+    };
     probe.stop();
     drawn?;
     let mut crc = PixelCrc::new();

@@ -36,7 +36,9 @@
 //!   overflows or panics either way; non-finite results skip the polygon.
 //! * Arithmetic is generic over [`ClipNum`]: `f32` for the float path,
 //!   [`FxWide`] (i64 with i128 products in the interpolation) for the fixed
-//!   path. Neither overflows on values the transform stage admits.
+//!   path, `i32` for the integer path (`super::int_path`: saturating
+//!   plane tests, an exact bit-serial interpolation parameter, no division
+//!   routine). None overflows on values the transform stage admits.
 
 use core::fmt::Debug;
 
@@ -69,6 +71,18 @@ pub trait ClipNum: Copy + PartialOrd + Debug + Default {
     /// at `a` and `db` at `b` vanishes; callers guarantee `da ≥ 0 > db`.
     /// The result lies between `a` and `b` (inclusive).
     fn lerp(a: Self, b: Self, da: Self, db: Self) -> Self;
+    /// The vertex on segment `i → o` where the plane's distance (`di` at
+    /// `i`, `d_o` at `o`, `di ≥ 0 > d_o`) vanishes: [`ClipNum::lerp`] of
+    /// each coordinate. A type whose interpolation parameter is costly
+    /// (the integer path divides) computes it once here instead.
+    #[inline]
+    fn lerp_vert(i: &ClipVert<Self>, o: &ClipVert<Self>, di: Self, d_o: Self) -> ClipVert<Self> {
+        ClipVert {
+            x: Self::lerp(i.x, o.x, di, d_o),
+            y: Self::lerp(i.y, o.y, di, d_o),
+            w: Self::lerp(i.w, o.w, di, d_o),
+        }
+    }
     /// `g·w` (used to snap a guard-band intersection onto the plane).
     fn scale(w: Self, g: i32) -> Self;
     /// Negation.
@@ -329,11 +343,7 @@ fn clip_one<S: ClipNum>(
             } else {
                 (&cur, &prev, dcur, dprev)
             };
-            let mut v = ClipVert {
-                x: S::lerp(i.x, o.x, di, d_o),
-                y: S::lerp(i.y, o.y, di, d_o),
-                w: S::lerp(i.w, o.w, di, d_o),
-            };
+            let mut v = S::lerp_vert(i, o, di, d_o);
             plane.snap(&mut v, near);
             push(v)?;
         }
@@ -524,6 +534,41 @@ mod tests {
                     let v = ClipVert { x, y, w };
                     let planes = PLANES.iter().all(|p| p.dist(&v, near) >= 0.0);
                     assert_eq!(<f32 as ClipNum>::inside(&v, near), planes, "{v:?}");
+                }
+            }
+        }
+    }
+
+    /// The integer path's direct test equals the five planes' on extreme
+    /// values (saturation included).
+    #[test]
+    fn the_i32_inside_test_agrees_with_the_planes() {
+        let vals = [
+            i32::MIN,
+            i32::MIN + 1,
+            -(1 << 29) - 1,
+            -(1 << 29),
+            -5,
+            -4,
+            -1,
+            0,
+            1,
+            3,
+            4,
+            5,
+            1 << 29,
+            (1 << 29) + 1,
+            i32::MAX - 1,
+            i32::MAX,
+        ];
+        for &x in &vals {
+            for &y in &vals {
+                for &w in &vals {
+                    for near in [1, 4, i32::MAX] {
+                        let v = ClipVert { x, y, w };
+                        let planes = PLANES.iter().all(|p| p.dist(&v, near) >= 0);
+                        assert_eq!(<i32 as ClipNum>::inside(&v, near), planes, "{v:?} {near}");
+                    }
                 }
             }
         }

@@ -29,6 +29,20 @@
 //! on a 32-bit core, 64-bit products, variable shifts and division
 //! routines were most of the fill's cost.
 //!
+//! When a 64-bit division can happen: only in [`Edge::new`], only when the
+//! numerator `N` (or `D`) does not fit i32 (`div_floor` checks at run
+//! time and otherwise divides in 32 bits). Every projected vertex lies in
+//! the guard band (`|ndc| ≤ 4`: `x ∈ [−1.5·Cx, 2.5·Cx]` with `Cx =
+//! W·2^S`, likewise y; a few units more for rounding). `N/D` is the
+//! crossing on an active row, i.e. `x_edge − ½` there, and `x_edge` lies
+//! between the endpoints, so `|N| ≤ 2·dy·(2.5·Cx + 2^S) ≤ 20·Cx·Cy +
+//! 8·2^S·Cy` (`dy ≤ 4·Cy`), and `D = 2^(S+1)·dy ≤ 8·Cy`. That is below
+//! 2^31 whenever `W·H·2^(2S) ≤ 10^8`: up to 640×480 pixels at 4 sub-pixel
+//! bits (320×240 with a factor 5 to spare), but only 40×30 at 8 bits.
+//! Such displays never divide in 64 bits, on any vertex path; larger ones
+//! may, for edges reaching far into the guard band (test
+//! `guard_band_edges_divide_in_32_bits`).
+//!
 //! [`SCREEN_LIMIT`]: super::transform::SCREEN_LIMIT
 
 use super::transform::{ScreenPt, SCREEN_LIMIT};
@@ -427,6 +441,55 @@ pub(crate) fn build_edges_with(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The numerator `N` of [`Edge::new`] for its first row (the largest
+    /// row term, `y0 = end − 1`, is checked too), in i128.
+    fn numerators(t: ScreenPt, b: ScreenPt, sub: u32) -> [i128; 2] {
+        let (first, end) = Edge::rows(t, b, sub);
+        let (dx, dy) = ((b.x - t.x) as i128, (b.y - t.y) as i128);
+        let half = 1i128 << sub;
+        [first, end - 1].map(|y0| {
+            (2 * t.x as i128 - half) * dy + ((2 * y0 as i128 + 1) * half - 2 * t.y as i128) * dx
+        })
+    }
+
+    /// The bound of the module docs: on displays up to 640×480 with 4
+    /// sub-pixel bits (and 40×30 with 8) every edge between guard-band
+    /// points (corners, random points, 4 units of rounding beyond) has
+    /// `|N| < 2^31`, so edge setup divides in 32 bits; on 1024×768 it
+    /// would not.
+    #[test]
+    fn guard_band_edges_divide_in_32_bits() {
+        let widest = |w: i32, h: i32, sub: u32, rng: &mut super::super::tests::Rng| {
+            let (cx, cy) = (w << sub, h << sub);
+            let xs = [-(3 * cx) / 2 - 4, (5 * cx) / 2 + 4];
+            let ys = [-(3 * cy) / 2 - 4, (5 * cy) / 2 + 4];
+            let mut worst = 0i128;
+            for k in 0..20_000 {
+                let p = |rng: &mut super::super::tests::Rng, c: bool| {
+                    if c {
+                        pt(xs[rng.range(0, 1) as usize], ys[rng.range(0, 1) as usize])
+                    } else {
+                        pt(rng.range(xs[0], xs[1]), rng.range(ys[0], ys[1]))
+                    }
+                };
+                let (a, b) = (p(rng, k % 2 == 0), p(rng, k % 3 == 0));
+                if a.y == b.y {
+                    continue;
+                }
+                let (t, b) = if a.y < b.y { (a, b) } else { (b, a) };
+                for n in numerators(t, b, sub) {
+                    worst = worst.max(n.abs());
+                }
+            }
+            worst
+        };
+        let mut rng = super::super::tests::Rng(23);
+        assert!(widest(320, 240, 4, &mut rng) < 1 << 29);
+        assert!(widest(640, 480, 4, &mut rng) < 1 << 31);
+        assert!(widest(40, 30, 8, &mut rng) < 1 << 31);
+        assert!(widest(1024, 768, 4, &mut rng) >= 1 << 31);
+    }
 
     fn pt(x: i32, y: i32) -> ScreenPt {
         ScreenPt { x, y }

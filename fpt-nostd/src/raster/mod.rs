@@ -8,7 +8,7 @@
 //! |---|---|---|
 //! | arithmetic choice | [`precision`] | [`Precision`]: vertex path, math library, sub-pixel bits |
 //! | camera | [`camera`] | orbit parameters or a matrix → [`Camera`] |
-//! | transform / divide | [`transform`] | model `[f32; 3]` or q-ints → clip vertex → [`ScreenPt`] |
+//! | transform / divide | [`transform`], [`int_path`] | model `[f32; 3]` or q-ints → clip vertex → [`ScreenPt`] |
 //! | clipping | [`clip`] | clip polygon → polygon inside near plane and guard band |
 //! | edge setup | [`edge`] | screen polygon → exact stepped edges |
 //! | scan conversion | [`scan`] | edges → spans to a [`SpanSink`] |
@@ -54,6 +54,7 @@ pub mod clip;
 pub mod dither;
 pub mod edge;
 pub mod framebuffer;
+pub mod int_path;
 pub mod list;
 pub mod outline;
 pub mod precision;
@@ -77,8 +78,8 @@ pub use framebuffer::{
     PixelFormat, Rgb565Format, Rgb565Framebuffer, Rgb888Format, Rgb888Framebuffer,
 };
 pub use precision::{
-    Config, DefaultPrecision, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Libm,
-    MathFns, Micromath, Precision,
+    Config, DefaultPrecision, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath,
+    IntPrecision, Libm, MathFns, Micromath, Precision,
 };
 pub use renderer::{Face, Outcome, RenderStats, Renderer, Scratch, SkipReason};
 pub use scan::{fill_polygon, FillRule, Paint, SpanBounds, SpanSink};

@@ -10,7 +10,8 @@
 //!
 //! What each part decides:
 //! * [`Precision::Path`] — the arithmetic of the vertex transform, clipping
-//!   and the perspective divide ([`FixedPath`] or [`FloatPath`]).
+//!   and the perspective divide ([`FixedPath`], [`FloatPath`] or
+//!   [`IntPath`]).
 //! * [`Precision::Math`] — trigonometry for cameras and, on the float path,
 //!   the reciprocal and floor used by the divide ([`Libm`] or [`Micromath`]).
 //! * [`Precision::SUB_BITS`] — sub-pixel bits of screen coordinates, 0..=8.
@@ -19,6 +20,7 @@
 
 use core::marker::PhantomData;
 
+use super::int_path::IntPath;
 use super::transform::{FixedPath, FloatPath, VertexPath};
 
 /// The scalar functions the rasterizer needs from a math library.
@@ -126,6 +128,11 @@ pub type FixedPrecision<const SUB: u32 = 4> = Config<FixedPath<16>, Libm, SUB>;
 /// Fixed-point vertex path with micromath camera trigonometry (no libm
 /// linked at all).
 pub type FixedMicromath<const SUB: u32 = 4> = Config<FixedPath<16>, Micromath, SUB>;
+/// Integer vertex path (32-bit multiplies, one 32-bit division a vertex:
+/// see [`super::int_path`]), libm for camera trigonometry. For cores
+/// without an FPU; expects the renderer's normalised frames
+/// ([`crate::render::Frame`]: vertices within `±2^14`).
+pub type IntPrecision<const SUB: u32 = 4> = Config<IntPath<1>, Libm, SUB>;
 /// `f32` vertex path with libm: the accuracy reference.
 pub type FloatLibm<const SUB: u32 = 4> = Config<FloatPath<Libm>, Libm, SUB>;
 /// `f32` vertex path with micromath's fast reciprocal, floor and trig.

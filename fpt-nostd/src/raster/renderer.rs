@@ -216,9 +216,10 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// above [`super::transform::MAX_DIM`].
     pub fn new(width: u32, height: u32, camera: &Camera) -> Option<Self> {
         let viewport = Viewport::new(width, height, P::SUB_BITS)?;
+        let matrix = P::Path::prepare(&camera.matrix);
         Some(Renderer {
-            matrix: P::Path::prepare(&camera.matrix),
-            near: P::Path::near(camera.near_w),
+            matrix,
+            near: P::Path::near(&matrix, camera.near_w),
             viewport,
             light: Light::default(),
             mode: ShadeMode::default(),
@@ -273,7 +274,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Sets the camera (model → clip matrix and near threshold).
     pub fn set_camera(&mut self, camera: &Camera) {
         self.matrix = P::Path::prepare(&camera.matrix);
-        self.near = P::Path::near(camera.near_w);
+        self.near = P::Path::near(&self.matrix, camera.near_w);
     }
 
     /// Sets an orbit camera, using `P`'s math library and the viewport's
@@ -533,7 +534,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         let depth = if fx.contains(Effects::DEPTH_CUE) {
             let sum: f32 = scratch.clip_a[..n.min(N)]
                 .iter()
-                .map(|v| v.w.to_f32())
+                .map(|v| P::Path::depth(&self.matrix, v.w))
                 .sum();
             sum / n as f32
         } else {

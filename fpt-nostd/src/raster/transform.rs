@@ -1,5 +1,7 @@
 //! Vertex transform (model → clip space) and the perspective divide (clip →
-//! screen fixed point), in two interchangeable arithmetics.
+//! screen fixed point), in interchangeable arithmetics: the two below and
+//! the 32-bit integer path of [`super::int_path`] (for cores without an
+//! FPU).
 //!
 //! * [`FixedPath<F>`]: matrix and vertices as [`Fx<F>`] (default 16.16),
 //!   clip coordinates as [`FxWide<F>`] (i64). Model coordinates outside the
@@ -54,6 +56,32 @@ pub struct Viewport {
     width: u32,
     height: u32,
     sub: u32,
+    /// The integer projection's shifts for x and y (derived from the
+    /// above once, see [`AxisShifts`]).
+    shifts: [AxisShifts; 2],
+}
+
+/// The shifts with which the integer path maps `u/w` (a fixed-point ratio
+/// with 23 fraction bits, below `5.1 · 2^23`) to sub-pixel units along an
+/// axis of `n` pixels: `round((q >> pre) · n / 2^post)`. `pre =
+/// max(0, bits(n) − 5)` keeps the product below `2^25.4 · 2^5 < 2^31`;
+/// `post = 24 − sub − pre ≥ 6` (`n ≤ 2^14` so `pre ≤ 10`, `sub ≤ 8`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct AxisShifts {
+    /// Right shift of the ratio before the multiply.
+    pub(crate) pre: u32,
+    /// Right shift (with rounding) after it.
+    pub(crate) post: u32,
+}
+
+impl AxisShifts {
+    fn of(n: u32, sub: u32) -> AxisShifts {
+        let pre = (32 - n.leading_zeros()).saturating_sub(5);
+        AxisShifts {
+            pre,
+            post: 24u32.saturating_sub(sub + pre).max(1),
+        }
+    }
 }
 
 impl Viewport {
@@ -61,7 +89,18 @@ impl Viewport {
     /// `None` when a side is 0 or above [`MAX_DIM`], or `sub > 8`.
     pub fn new(width: u32, height: u32, sub: u32) -> Option<Viewport> {
         let ok = (1..=MAX_DIM).contains(&width) && (1..=MAX_DIM).contains(&height) && sub <= 8;
-        ok.then_some(Viewport { width, height, sub })
+        ok.then_some(Viewport {
+            width,
+            height,
+            sub,
+            shifts: [AxisShifts::of(width, sub), AxisShifts::of(height, sub)],
+        })
+    }
+
+    /// The integer projection's shifts for x (`0`) and y (`1`).
+    #[inline]
+    pub(crate) fn shifts(&self) -> [AxisShifts; 2] {
+        self.shifts
     }
 
     /// Width in pixels.
@@ -99,9 +138,19 @@ pub trait VertexPath {
     /// Like [`VertexPath::transform`] for integer vertices with `frac`
     /// fraction bits (q16 → 16, q32 → 32; at most 62).
     fn transform_q(m: &Self::Matrix, v: [i32; 3], frac: u32) -> Option<ClipVert<Self::Scalar>>;
-    /// The near threshold in this path's format (at least one unit in the
-    /// last place, so that it is positive).
-    fn near(near_w: f32) -> Self::Scalar;
+    /// The near threshold in this path's format for the prepared matrix
+    /// `m` (at least one unit in the last place, so that it is positive).
+    /// It takes the matrix because a path may choose the units of its clip
+    /// coordinates per frame ([`super::int_path::IntPath`] does).
+    fn near(m: &Self::Matrix, near_w: f32) -> Self::Scalar;
+    /// A clip `w` of matrix `m` as `f32` in the camera's units (for
+    /// per-face decisions such as depth cueing, compared with ranges in
+    /// the units of [`super::camera::Camera::matrix`]).
+    #[inline]
+    fn depth(m: &Self::Matrix, w: Self::Scalar) -> f32 {
+        let _ = m;
+        w.to_f32()
+    }
     /// Perspective divide and viewport mapping; `None` if `w ≤ 0` or the
     /// vertex is not finite.
     fn project(v: &ClipVert<Self::Scalar>, vp: &Viewport) -> Option<ScreenPt>;
@@ -173,7 +222,7 @@ impl<const F: u32> VertexPath for FixedPath<F> {
         Some(Self::apply(m, v.map(conv)))
     }
 
-    fn near(near_w: f32) -> Self::Scalar {
+    fn near(_: &Self::Matrix, near_w: f32) -> Self::Scalar {
         let raw = FxWide::<F>::try_from_f32(near_w).map_or(1, FxWide::raw);
         FxWide::from_raw(raw.max(1))
     }
@@ -233,7 +282,7 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
         Self::transform(m, v.map(|c| (c as f64 * scale) as f32))
     }
 
-    fn near(near_w: f32) -> f32 {
+    fn near(_: &Mat4, near_w: f32) -> f32 {
         if near_w.is_finite() && near_w > 1e-30 {
             near_w
         } else {
@@ -369,11 +418,8 @@ mod tests {
 
     #[test]
     fn projection_follows_pixel_convention() {
-        let vp = Viewport::new(200, 100, 4).unwrap_or(Viewport {
-            width: 1,
-            height: 1,
-            sub: 0,
-        });
+        let vp = Viewport::new(200, 100, 4)
+            .unwrap_or(Viewport::new(1, 1, 0).unwrap_or_else(|| panic!()));
         // ndc (-1, 1) is the top-left corner, (1, -1) the bottom-right.
         let corners = [
             ((-1.0, 1.0), (0, 0)),
@@ -422,11 +468,8 @@ mod tests {
 
     #[test]
     fn projection_of_extreme_fixed_values_does_not_overflow() {
-        let vp = Viewport::new(MAX_DIM, MAX_DIM, 8).unwrap_or(Viewport {
-            width: 1,
-            height: 1,
-            sub: 0,
-        });
+        let vp = Viewport::new(MAX_DIM, MAX_DIM, 8)
+            .unwrap_or(Viewport::new(1, 1, 0).unwrap_or_else(|| panic!()));
         let big = FxWide::<16>::from_raw(i64::MAX);
         let one = FxWide::<16>::from_raw(1);
         for (x, w) in [(big, one), (big, big), (FxWide::from_raw(i64::MIN), one)] {
@@ -465,7 +508,7 @@ mod tests {
                 for sub in 0..=8 {
                     let vp = Viewport::new(w, h, sub).unwrap();
                     for k in 0..400 {
-                        let near = FloatPath::<M>::near(0.01);
+                        let near = FloatPath::<M>::near(&Mat4::IDENTITY, 0.01);
                         let cw = match k % 4 {
                             0 => near,
                             1 => rng.float(near, 2.0),
@@ -502,7 +545,7 @@ mod tests {
         use super::super::clip::clip_polygon;
         let mut rng = crate::raster::tests::Rng(11);
         let vp = Viewport::new(240, 240, 4).unwrap();
-        let near = Flt::near(0.05);
+        let near = Flt::near(&Mat4::IDENTITY, 0.05);
         let mut clipped = 0;
         for k in 0..20_000 {
             let scale = [1.0, 100.0, 1e6, 1e30, 1e36][k % 5];

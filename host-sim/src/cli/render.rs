@@ -50,8 +50,8 @@ use fpt_nostd::raster::framebuffer::{BinaryFormat, Gray8Format, Rgb565Format, Rg
 use fpt_nostd::raster::transform::MAX_DIM;
 use fpt_nostd::raster::{
     band_starts, DepthCue, Dither, DitherFormat, FixedMicromath, FixedPrecision, FloatLibm,
-    FloatMicromath, Framebuffer, IdBuffer, Light, MathFns, Orbit, PixelFormat, Precision,
-    RenderStats, ShadeMode,
+    FloatMicromath, Framebuffer, IdBuffer, IntPrecision, Light, MathFns, Orbit, PixelFormat,
+    Precision, RenderStats, ShadeMode,
 };
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{near_w_for, BandBuffer, FaceIds, Frame, TreeRenderer};
@@ -60,7 +60,7 @@ use std::time::Instant;
 
 /// The names `--precision` accepts: vertex path and math library, then
 /// the sub-pixel bits.
-pub const PRECISIONS: [&str; 20] = [
+pub const PRECISIONS: [&str; 25] = [
     "fixed-subpx-0",
     "fixed-subpx-2",
     "fixed-subpx-4",
@@ -81,6 +81,11 @@ pub const PRECISIONS: [&str; 20] = [
     "f32-micromath-subpx-4",
     "f32-micromath-subpx-6",
     "f32-micromath-subpx-8",
+    "int-subpx-0",
+    "int-subpx-2",
+    "int-subpx-4",
+    "int-subpx-6",
+    "int-subpx-8",
 ];
 
 /// Short names `--precision` also accepts, for the accuracy study
@@ -90,8 +95,9 @@ pub const PRECISIONS: [&str; 20] = [
 /// `trig-libm` and `trig-micromath` are fixed point with 4 bits whose orbit
 /// camera (`--yaw`/`--pitch`) is built with libm's or micromath's sine and
 /// cosine (with `--mvp` there is no trigonometry and they equal `fixed`,
-/// resp. `fixed-micromath-subpx-4`).
-pub const ALIASES: [(&str, &str); 10] = [
+/// resp. `fixed-micromath-subpx-4`); `int` is the integer vertex path
+/// with 4 bits.
+pub const ALIASES: [(&str, &str); 11] = [
     ("fixed", "fixed-subpx-4"),
     ("subpx-0", "fixed-subpx-0"),
     ("subpx-2", "fixed-subpx-2"),
@@ -102,6 +108,7 @@ pub const ALIASES: [(&str, &str); 10] = [
     ("f32-micromath", "f32-micromath-subpx-4"),
     ("trig-libm", "fixed-subpx-4"),
     ("trig-micromath", "fixed-micromath-subpx-4"),
+    ("int", "int-subpx-4"),
 ];
 
 /// Every name `--precision` accepts: [`PRECISIONS`], then the short names
@@ -362,6 +369,11 @@ pub fn render_job(tree: &Tree<'_>, job: &Job, name: &str) -> Result<Rendered, Cl
         "f32-micromath-subpx-4" => render_with::<FloatMicromath<4>>(tree, job),
         "f32-micromath-subpx-6" => render_with::<FloatMicromath<6>>(tree, job),
         "f32-micromath-subpx-8" => render_with::<FloatMicromath<8>>(tree, job),
+        "int-subpx-0" => render_with::<IntPrecision<0>>(tree, job),
+        "int-subpx-2" => render_with::<IntPrecision<2>>(tree, job),
+        "int-subpx-4" => render_with::<IntPrecision<4>>(tree, job),
+        "int-subpx-6" => render_with::<IntPrecision<6>>(tree, job),
+        "int-subpx-8" => render_with::<IntPrecision<8>>(tree, job),
         _ => Err(cli_err!(
             "unknown precision '{name}' (expected one of {}, or a short name: {})",
             PRECISIONS.join(", "),

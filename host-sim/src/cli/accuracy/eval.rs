@@ -29,13 +29,18 @@ use crate::reference::{zbuffer, Camera, RefFrame, RefOptions};
 use crate::serialize::{polygon_order, serialize, SerializeOptions};
 use crate::tree::Method;
 use embedded_graphics::pixelcolor::Rgb888;
+use fpt_nostd::effects::AllEffects;
 use fpt_nostd::format::VertexFormat;
+use fpt_nostd::raster::clip::ClipVert;
+use fpt_nostd::raster::framebuffer::Rgb565Format;
+use fpt_nostd::raster::int_path::{draw_frame_q16, q16_camera};
 use fpt_nostd::raster::transform::{VertexPath, Viewport};
 use fpt_nostd::raster::{
-    FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Precision, ShadeMode,
+    FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Framebuffer, IdBuffer, IntPrecision,
+    Light, Precision, ShadeMode, SpanSink,
 };
-use fpt_nostd::reader::Tree;
-use fpt_nostd::render::Frame;
+use fpt_nostd::reader::{PolygonRef, RawVertex, Tree};
+use fpt_nostd::render::{FaceIds, Frame, TreeRenderer};
 use glam::DVec3;
 use std::time::Instant;
 
@@ -55,6 +60,9 @@ pub struct Config {
     /// The camera is the orbit built with the configuration's trigonometry
     /// (`fpt render --yaw --pitch`) instead of the exact matrix (`--mvp`).
     pub orbit_trig: bool,
+    /// The q16 tree's vertices are drawn as stored, not decoded to `f32`
+    /// ([`draw_frame_q16`], integer path only): not a `fpt render` mode.
+    pub raw_q16: bool,
 }
 
 const fn row(name: &'static str, precision: &'static str) -> Config {
@@ -63,13 +71,16 @@ const fn row(name: &'static str, precision: &'static str) -> Config {
         precision,
         vertex: VertexFormat::F32,
         orbit_trig: false,
+        raw_q16: false,
     }
 }
 
 /// The rows, in CSV order. `fixed` is the default configuration (the
 /// reference of `host_rel_time`); `vertex-f32`, `subpx-4` and `trig-libm`
-/// render with the same arithmetic and differ only in what they vary.
-pub const CONFIGS: [Config; 13] = [
+/// render with the same arithmetic and differ only in what they vary;
+/// `int` and `int-q16` are the integer vertex path on the `f32` tree and
+/// on the q16 tree drawn as stored.
+pub const CONFIGS: [Config; 15] = [
     Config {
         vertex: VertexFormat::F32,
         ..row("vertex-f32", "fixed-subpx-4")
@@ -97,6 +108,12 @@ pub const CONFIGS: [Config; 13] = [
     Config {
         orbit_trig: true,
         ..row("trig-micromath", "fixed-micromath-subpx-4")
+    },
+    row("int", "int-subpx-4"),
+    Config {
+        vertex: VertexFormat::Q16,
+        raw_q16: true,
+        ..row("int-q16", "int-subpx-4")
     },
 ];
 
@@ -375,10 +392,92 @@ pub fn view_counts(
     let bytes = case.tree_bytes(config.vertex)?;
     let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e:?}", case.name))?;
     let spec = camera_spec(config, &tree, view, w, h);
-    let r = render_job(&tree, &job(spec, w, h, true), config.precision)?;
-    let mut c = compare_ids(reference, &r.ids)?;
-    c.max_vertex_err_px = vertex_error(config.precision, &tree, &spec, &case.exact, cam, w, h)?;
-    Ok((c, r.ids))
+    let ids = if config.raw_q16 {
+        render_raw_q16(&tree, &job(spec, w, h, true))?
+    } else {
+        render_job(&tree, &job(spec, w, h, true), config.precision)?.ids
+    };
+    let mut c = compare_ids(reference, &ids)?;
+    c.max_vertex_err_px = if config.raw_q16 {
+        max_vertex_error_raw_q16(&tree, &spec, &case.exact, cam, w, h)?
+    } else {
+        vertex_error(config.precision, &tree, &spec, &case.exact, cam, w, h)?
+    };
+    Ok((c, ids))
+}
+
+/// The integer path of the `raw_q16` rows.
+type RawQ16 = IntPrecision<4>;
+
+/// [`render_job`] for a `raw_q16` row (rgb565 only, full frame): the
+/// picture with the q16 tree's vertices as stored ([`draw_frame_q16`]);
+/// returns the ids when the job asks for them.
+pub fn render_raw_q16(tree: &Tree<'_>, job: &Job) -> Result<Vec<u32>, CliError> {
+    type P = RawQ16;
+    let (w, h) = (job.w, job.h);
+    let mut tr = Box::new(
+        TreeRenderer::<P, RAW_VERTS>::new(w, h).ok_or_else(|| cli_err!("bad size {w}x{h}"))?,
+    );
+    let frame = job.camera.frame::<<P as Precision>::Math>(tree, w, h);
+    tr.renderer.set_shade_mode(job.shade);
+    tr.renderer
+        .set_light(Light::new(frame.key_light(), 0.25, 0.75));
+    tr.renderer.set_effects(job.effects);
+    let mut px = vec![0u16; Framebuffer::<Rgb565Format>::required_len(w, h)];
+    let mut fb = Framebuffer::<Rgb565Format>::new(&mut px, w, h)
+        .map_err(|e| cli_err!("framebuffer: {e:?}"))?;
+    fb.fill_all(job.background.into());
+    fn draw<K: SpanSink>(
+        tr: &mut TreeRenderer<RawQ16, RAW_VERTS>,
+        tree: &Tree<'_>,
+        frame: &Frame,
+        sink: &mut K,
+    ) -> Result<(), CliError> {
+        draw_frame_q16::<RawQ16, AllEffects, _, RAW_STACK, RAW_VERTS>(
+            tree,
+            frame,
+            1,
+            &mut tr.renderer,
+            &mut tr.scratch,
+            FaceIds::Source,
+            sink,
+        )
+        .map(|_| ())
+        .map_err(|e| cli_err!("{e}"))
+    }
+    draw(&mut tr, tree, &frame, &mut fb)?;
+    std::hint::black_box(&px);
+    let mut ids = Vec::new();
+    if job.ids {
+        ids = vec![0u32; w as usize * h as usize];
+        let mut sink = IdBuffer::new(&mut ids, w, h).map_err(|e| cli_err!("id buffer: {e:?}"))?;
+        draw(&mut tr, tree, &frame, &mut sink)?;
+    }
+    Ok(ids)
+}
+
+/// Vertex capacity and walk stack of [`render_raw_q16`] (as `fpt render`).
+const RAW_VERTS: usize = 256;
+const RAW_STACK: usize = 4096;
+
+/// [`max_vertex_error`] of a `raw_q16` row: the stored q16 values through
+/// the integer path's [`q16_camera`] of the frame.
+pub fn max_vertex_error_raw_q16(
+    tree: &Tree<'_>,
+    spec: &CameraSpec,
+    exact: &[Vec<DVec3>],
+    cam: &Camera,
+    w: u32,
+    h: u32,
+) -> Result<f64, CliError> {
+    type P = RawQ16;
+    let frame: Frame = spec.frame::<<P as Precision>::Math>(tree, w, h);
+    let qc = q16_camera(&frame.camera, frame.vertex_scale, tree.half_extent(), 1);
+    let m = <P as Precision>::Path::prepare(&qc.matrix);
+    vertex_error_with::<P>(tree, exact, cam, w, h, |p, i| match p.vertex_raw(i) {
+        RawVertex::Q16(q) => <P as Precision>::Path::transform_q(&m, q.map(i32::from), 1),
+        _ => None,
+    })
 }
 
 /// [`max_vertex_error`] for a precision name.
@@ -400,6 +499,7 @@ fn vertex_error(
         "fixed-micromath-subpx-4" => max_vertex_error::<FixedMicromath<4>>,
         "f32-libm-subpx-4" => max_vertex_error::<FloatLibm<4>>,
         "f32-micromath-subpx-4" => max_vertex_error::<FloatMicromath<4>>,
+        "int-subpx-4" => max_vertex_error::<IntPrecision<4>>,
         other => return Err(cli_err!("no vertex error for precision '{other}'")),
     };
     f(tree, spec, exact, cam, w, h)
@@ -421,9 +521,25 @@ pub fn max_vertex_error<P: Precision>(
 ) -> Result<f64, CliError> {
     let frame: Frame = spec.frame::<P::Math>(tree, w, h);
     let m = P::Path::prepare(&frame.camera.matrix);
+    let s = frame.vertex_scale;
+    vertex_error_with::<P>(tree, exact, cam, w, h, |p, i| {
+        let v = p.vertex(i);
+        P::Path::transform(&m, [v[0] * s, v[1] * s, v[2] * s])
+    })
+}
+
+/// The loop of [`max_vertex_error`], with vertex `i` of polygon `p` put
+/// into clip space by `clip`.
+fn vertex_error_with<P: Precision>(
+    tree: &Tree<'_>,
+    exact: &[Vec<DVec3>],
+    cam: &Camera,
+    w: u32,
+    h: u32,
+    clip: impl Fn(&PolygonRef<'_>, usize) -> Option<ClipVert<Scalar<P>>>,
+) -> Result<f64, CliError> {
     let vp = Viewport::new(w, h, P::SUB_BITS).ok_or_else(|| cli_err!("bad size {w}x{h}"))?;
     let unit = f64::from(1u32 << P::SUB_BITS);
-    let s = frame.vertex_scale;
     let mut worst = 0.0f64;
     for id in 0..tree.polygon_count() {
         let p = tree
@@ -444,9 +560,7 @@ pub fn max_vertex_error<P: Precision>(
             if !((0.0..=f64::from(w)).contains(&x) && (0.0..=f64::from(h)).contains(&y)) {
                 continue;
             }
-            let v = p.vertex(i);
-            let screen = P::Path::transform(&m, [v[0] * s, v[1] * s, v[2] * s])
-                .and_then(|cv| P::Path::project(&cv, &vp));
+            let screen = clip(&p, i).and_then(|cv| P::Path::project(&cv, &vp));
             let err = match screen {
                 Some(pt) => (f64::from(pt.x) / unit - x).hypot(f64::from(pt.y) / unit - y),
                 // A visible vertex the path cannot place is as wrong as can be.
@@ -458,6 +572,9 @@ pub fn max_vertex_error<P: Precision>(
     Ok(worst)
 }
 
+/// The clip scalar of configuration `P`.
+type Scalar<P> = <<P as Precision>::Path as VertexPath>::Scalar;
+
 /// Draws `view` of the tree file `tree` as `config` does when timed (the
 /// unit [`host_seconds`] times): rgb565, lambert, no ids. For benchmarks.
 pub fn draw(
@@ -468,6 +585,9 @@ pub fn draw(
     h: u32,
 ) -> Result<(), CliError> {
     let spec = camera_spec(config, tree, view, w, h);
+    if config.raw_q16 {
+        return render_raw_q16(tree, &job(spec, w, h, false)).map(|_| ());
+    }
     render_job(tree, &job(spec, w, h, false), config.precision).map(|_| ())
 }
 
@@ -515,7 +635,11 @@ pub fn host_seconds(
             };
             for ((tree, j), t) in jobs.iter().zip(out.iter_mut()) {
                 let start = Instant::now();
-                std::hint::black_box(render_job(tree, j, config.precision)?);
+                if config.raw_q16 {
+                    std::hint::black_box(render_raw_q16(tree, j)?);
+                } else {
+                    std::hint::black_box(render_job(tree, j, config.precision)?);
+                }
                 *t = t.min(start.elapsed().as_secs_f64());
             }
         }

@@ -36,7 +36,9 @@ fn precision_names_are_the_full_names_then_the_aliases() {
 fn every_render_time_row_is_a_render_precision_name() {
     for c in CONFIGS {
         assert!(PRECISIONS.contains(&c.precision), "{}", c.name);
-        if !c.name.starts_with("vertex-") {
+        // `vertex-*` and the raw q16 rows change the tree, not the
+        // arithmetic: no `fpt render` name of their own.
+        if !c.name.starts_with("vertex-") && !c.raw_q16 {
             assert!(PRECISION_NAMES.contains(&c.name), "{}", c.name);
             assert_eq!(resolve_precision(c.name), c.precision, "{}", c.name);
         }
@@ -53,6 +55,8 @@ fn every_render_time_row_is_a_render_precision_name() {
         "subpx-8",
         "trig-libm",
         "trig-micromath",
+        "int",
+        "int-q16",
     ] {
         assert!(names.contains(&n), "{n}");
     }
@@ -200,4 +204,27 @@ fn mcu_means_average_the_views_and_need_every_row() {
     assert!(super::mcu_means(&short).is_err());
     let bare = text.replacen(" instr=1000", "", 1);
     assert!(super::mcu_means(&bare).is_err());
+}
+
+/// The integer path's rows (`int` on the f32 tree, `int-q16` drawing the
+/// q16 tree as stored) are as accurate as the 16.16 fixed path at the
+/// same sub-pixel bits, up to a few pixels of edge rounding, and place
+/// every visible vertex within a fraction of a pixel.
+#[test]
+fn the_integer_rows_are_as_accurate_as_fixed_point() {
+    let case = house_case();
+    let vs = views(3);
+    let cfgs = [config("fixed"), config("int"), config("int-q16")];
+    let rows = rows_for(std::slice::from_ref(&case), &cfgs, &vs, W, H).expect("rows");
+    let fixed = &rows[0].counts;
+    for r in &rows[1..] {
+        let c = &r.counts;
+        assert_eq!(c.pixels, fixed.pixels);
+        assert!(
+            c.wrong_face <= fixed.wrong_face + fixed.pixels / 500,
+            "{c:?} vs {fixed:?}"
+        );
+        assert!(c.wrong_pixel_frac() < 0.002, "{c:?}");
+        assert!(c.max_vertex_err_px < 0.25, "{c:?}");
+    }
 }
