@@ -48,6 +48,8 @@ mod stack;
 compile_error!("enable exactly one of the features `full` and `band`");
 #[cfg(not(any(feature = "full", feature = "band")))]
 compile_error!("enable one of the features `full` and `band`");
+#[cfg(all(fpt_armv6m, feature = "full"))]
+compile_error!("the Cortex-M0's 16 KiB of RAM needs feature `band`");
 
 use core::mem::MaybeUninit;
 use cortex_m_rt::entry;
@@ -64,10 +66,19 @@ use fail::fail;
 use probe::{PhaseProbe, TotalProbe};
 
 /// The scenes' tree files, in the order of [`SCENES`].
+#[cfg(not(fpt_armv6m))]
 static TREES: [(&str, &[u8]); 3] = [
     ("vise", include_bytes!("../trees/vise.fpt")),
     ("house", include_bytes!("../trees/house.fpt")),
     ("bench_city", include_bytes!("../trees/bench_city.fpt")),
+];
+
+/// The scenes that fit the Cortex-M0's 256 KiB of flash with the code
+/// (`bench_city`, 173 KiB, does not), in the order of [`SCENES`].
+#[cfg(fpt_armv6m)]
+static TREES: [(&str, &[u8]); 2] = [
+    ("vise", include_bytes!("../trees/vise.fpt")),
+    ("house", include_bytes!("../trees/house.fpt")),
 ];
 
 /// The host's lines for the same frames.
