@@ -275,6 +275,12 @@ fn main() -> ! {
         render_peak
     );
     hprintln!("stack_peak={}", init_peak.max(render_peak));
+    if stack::overflowed() {
+        fail(format_args!(
+            "stack overflow: the stack reached the statics ({} B of RAM left for it)",
+            stack::room()
+        ));
+    }
     if !ok {
         fail(format_args!("checksums differ from trees/frames.txt"));
     }

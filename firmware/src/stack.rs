@@ -107,3 +107,16 @@ pub fn peak() -> usize {
     }
     top - p
 }
+
+/// Bytes between the end of the statics and the top of RAM: the most the
+/// stack can take.
+pub fn room() -> usize {
+    stack_top() - stack_bottom()
+}
+
+/// Whether the stack has reached the end of the statics since [`paint`]
+/// (its lowest word is no longer the pattern): it may have overwritten
+/// them, and its peak is unknown.
+pub fn overflowed() -> bool {
+    peak() >= room()
+}
