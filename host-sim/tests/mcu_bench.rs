@@ -1,9 +1,9 @@
 //! `fpt mcu-bench`: bad options and missing tools are one `error:` line
 //! with exit status 2 (always checked); on a machine with QEMU and both
 //! thumb targets, a committed tree drawn on the emulated Cortex-M0 and
-//! Cortex-M4F reports every field with `crc_match: true`, and a tree too
-//! big for the Cortex-M0 exits 2 saying which memory overflows and by how
-//! much. The QEMU part is skipped with a message when a tool is missing,
+//! Cortex-M4F reports every field with `crc_match: true`, and a tree and
+//! frame too big for the Cortex-M0 exit 2 saying which memories overflow
+//! and by how much. The QEMU part is skipped with a message when a tool is missing,
 //! and fails instead under `FPT_REQUIRE_FIRMWARE=1` (as in CI).
 
 mod common;
@@ -145,11 +145,15 @@ fn mcu_bench_runs_on_qemu() {
         let ram = j["ram_static"].as_u64().unwrap() + j["stack_peak"].as_u64().unwrap();
         assert!(ram <= j["ram_size"].as_u64().unwrap(), "{j}");
     }
-    // bench_city (173 KiB) and a full 240×240 frame (112.5 KiB) overflow
-    // the Cortex-M0's flash and RAM.
+    // A 7,200-quad torus (a 395 KiB tree) in a full 240×240 frame
+    // (112.5 KiB) overflows both the Cortex-M0's flash and its RAM.
+    let (obj, big) = (common::tmp("torus.obj"), common::tmp("torus.fpt"));
+    std::fs::write(&obj, torus_obj(120, 60)).expect("writing torus.obj");
+    let built = fpt(&["build", common::s(&obj), "-o", common::s(&big), "--closed"]);
+    assert!(built.status.success(), "{built:?}");
     let out = fpt(&[
         "mcu-bench",
-        &tree("bench_city.fpt"),
+        common::s(&big),
         "--cpu",
         "m0",
         "--band",
@@ -158,11 +162,39 @@ fn mcu_bench_runs_on_qemu() {
         "1",
     ]);
     let err = assert_error(&out, "too big for the M0");
-    assert!(err.contains("does not fit the m0"), "{err}");
-    for region in ["FLASH", "RAM"] {
-        assert!(
-            err.contains(&format!("its {region} ")) && err.contains("overflows by "),
-            "{err}"
-        );
+    assert!(err.contains("torus does not fit the m0"), "{err}");
+    for region in ["FLASH (256 KiB)", "RAM (16 KiB)"] {
+        let at = err
+            .find(&format!("its {region} overflows by "))
+            .unwrap_or_else(|| panic!("no {region} overflow: {err}"));
+        let bytes: String = err[at..]
+            .split("overflows by ")
+            .nth(1)
+            .unwrap_or_default()
+            .chars()
+            .take_while(char::is_ascii_digit)
+            .collect();
+        assert!(bytes.parse::<u64>().is_ok_and(|b| b > 1000), "{err}");
     }
+}
+
+/// A closed torus of `n × m` quads, as OBJ.
+fn torus_obj(n: usize, m: usize) -> String {
+    use std::f64::consts::TAU;
+    let mut s = String::new();
+    for i in 0..n {
+        for j in 0..m {
+            let (u, v) = (TAU * i as f64 / n as f64, TAU * j as f64 / m as f64);
+            let ring = 3.0 + v.cos();
+            s += &format!("v {} {} {}\n", ring * u.cos(), ring * u.sin(), v.sin());
+        }
+    }
+    let id = |i: usize, j: usize| (i % n) * m + (j % m) + 1;
+    for i in 0..n {
+        for j in 0..m {
+            let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            s += &format!("f {} {} {} {}\n", q[0], q[1], q[2], q[3]);
+        }
+    }
+    s
 }
