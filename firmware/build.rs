@@ -56,7 +56,10 @@ impl BenchConfig {
         let precision = env::var("FPT_BENCH_PRECISION").unwrap_or_else(|_| "f32-libm".into());
         let precision = OrbitPrecision::parse(&precision)
             .unwrap_or_else(|| panic!("FPT_BENCH_PRECISION={precision} is not a precision"));
-        let size = (number("FPT_BENCH_WIDTH", 240), number("FPT_BENCH_HEIGHT", 240));
+        let size = (
+            number("FPT_BENCH_WIDTH", 240),
+            number("FPT_BENCH_HEIGHT", 240),
+        );
         assert!(size.0 > 0 && size.1 > 0, "empty display");
         BenchConfig {
             tree: fs::canonicalize(&tree)
@@ -70,10 +73,10 @@ impl BenchConfig {
 
     /// The Rust source of `bench_config.rs`.
     fn source(&self) -> String {
-        let bytes = fs::read(&self.tree)
-            .unwrap_or_else(|e| panic!("reading {}: {e}", self.tree.display()));
-        let tree = Tree::from_bytes(&bytes)
-            .unwrap_or_else(|e| panic!("{}: {e}", self.tree.display()));
+        let bytes =
+            fs::read(&self.tree).unwrap_or_else(|e| panic!("reading {}: {e}", self.tree.display()));
+        let tree =
+            Tree::from_bytes(&bytes).unwrap_or_else(|e| panic!("{}: {e}", self.tree.display()));
         let name = self
             .tree
             .file_stem()

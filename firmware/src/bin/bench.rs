@@ -141,7 +141,11 @@ fn main() -> ! {
     let buf = buffer();
     for i in 0..FRAMES {
         let (crc, ticks) = frame(r, &tree, i, buf);
-        hprintln!("{} instr={}", OrbitLine { frame: i, crc }, clock.instr(ticks));
+        hprintln!(
+            "{} instr={}",
+            OrbitLine { frame: i, crc },
+            clock.instr(ticks)
+        );
         if stack::overflowed() {
             fail(format_args!(
                 "stack overflow: the stack reached the statics ({} B of RAM left for it)",
