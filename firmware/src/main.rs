@@ -1,5 +1,8 @@
-//! Feudal on a Cortex-M4 (QEMU `netduinoplus2`): renders the procedural
-//! scenes' trees from flash and reports each frame's checksum and cost.
+//! Feudal on a Cortex-M4 (QEMU `netduinoplus2`) or, with `--target
+//! thumbv6m-none-eabi` and feature `band`, a Cortex-M0 (QEMU `microbit`,
+//! 16 KiB of RAM; only the scenes whose trees fit its 256 KiB of flash):
+//! renders the procedural scenes' trees from flash and reports each
+//! frame's checksum and cost.
 //!
 //! `cargo run --release` (feature `full`: a 240×240 RGB565 framebuffer in
 //! RAM) or `cargo run --release --no-default-features --features band`
