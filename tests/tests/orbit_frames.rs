@@ -68,6 +68,10 @@ fn checksum_is_the_same_for_every_band_height() {
         let mut distinct = full.clone();
         distinct.sort_unstable();
         distinct.dedup();
-        assert_eq!(distinct.len(), full.len(), "{name}: frames repeat {full:08x?}");
+        assert_eq!(
+            distinct.len(),
+            full.len(),
+            "{name}: frames repeat {full:08x?}"
+        );
     }
 }
