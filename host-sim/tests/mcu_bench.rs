@@ -1,9 +1,9 @@
 //! `fpt mcu-bench`: bad options and missing tools are one `error:` line
 //! with exit status 2 (always checked); on a machine with QEMU and both
 //! thumb targets, a committed tree drawn on the emulated Cortex-M0 and
-//! Cortex-M4F reports every field with `crc_match: true`, and a tree and
-//! frame too big for the Cortex-M0 exit 2 saying which memories overflow
-//! and by how much. The QEMU part is skipped with a message when a tool is missing,
+//! Cortex-M4F reports every field with `crc_match: true`, and a stack, a
+//! tree and a frame too big for the Cortex-M0 exit 2 saying which
+//! memories overflow and by how much. The QEMU part is skipped with a message when a tool is missing,
 //! and fails instead under `FPT_REQUIRE_FIRMWARE=1` (as in CI).
 
 mod common;
@@ -145,6 +145,33 @@ fn mcu_bench_runs_on_qemu() {
         let ram = j["ram_static"].as_u64().unwrap() + j["stack_peak"].as_u64().unwrap();
         assert!(ram <= j["ram_size"].as_u64().unwrap(), "{j}");
     }
+    // 320×240 in 16-row bands: the statics fit the Cortex-M0's RAM, the
+    // stack does not; the overflow is measured on a machine with more RAM.
+    let out = fpt(&[
+        "mcu-bench",
+        &vise,
+        "--cpu",
+        "m0",
+        "--size",
+        "320x240",
+        "--band",
+        "16",
+        "--frames",
+        "1",
+    ]);
+    let err = assert_error(&out, "stack too big for the M0");
+    assert!(
+        err.contains("vise does not fit the m0's RAM (16 KiB)"),
+        "{err}"
+    );
+    let over: String = err
+        .split("over by ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no overflow amount: {err}"))
+        .chars()
+        .take_while(char::is_ascii_digit)
+        .collect();
+    assert!(over.parse::<u64>().is_ok_and(|b| b > 0), "{err}");
     // A 7,200-quad torus (a 395 KiB tree) in a full 240×240 frame
     // (112.5 KiB) overflows both the Cortex-M0's flash and its RAM.
     let (obj, big) = (common::tmp("torus.obj"), common::tmp("torus.fpt"));

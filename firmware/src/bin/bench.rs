@@ -58,11 +58,22 @@ use fail::fail;
 /// The renderer of the benchmark.
 type BenchRenderer = TreeRenderer<BenchPrecision, MAX_VERTS>;
 
-/// The band (or frame) buffer; call once.
+/// The band (or frame) buffer, zeroed; call once.
+///
+/// It is the last static (section `.uninit`, after `.bss`), right below the
+/// stack: a stack that outgrows its room scribbles over pixels before it
+/// reaches the renderer or the clock, so the run survives to report the
+/// overflow (checked after every frame) instead of hanging.
 fn buffer() -> &'static mut [u16] {
-    static mut BUF: [u16; BUF_WORDS] = [0; BUF_WORDS];
+    #[link_section = ".uninit.fpt_bench_buf"]
+    static mut BUF: MaybeUninit<[u16; BUF_WORDS]> = MaybeUninit::uninit();
     // SAFETY: called once, from `main`; no other reference to BUF exists.
-    unsafe { &mut *core::ptr::addr_of_mut!(BUF) }
+    // The words are zeroed in place before the slice is made.
+    unsafe {
+        let p = core::ptr::addr_of_mut!(BUF).cast::<u16>();
+        core::ptr::write_bytes(p, 0, BUF_WORDS);
+        core::slice::from_raw_parts_mut(p, BUF_WORDS)
+    }
 }
 
 /// The renderer, built in place in a static (its scratch buffers are a

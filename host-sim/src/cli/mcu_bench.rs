@@ -28,10 +28,12 @@
 //! Failures are one line `error: ...` and exit status 2: bad options, a
 //! tree that does not validate, QEMU or the Rust target missing (the
 //! message names the install command), a tree that does not fit the
-//! CPU's flash or RAM (which, and by how much when the linker can tell; a
-//! stack that outgrows the RAM left by the statics is detected by the
-//! firmware, which cannot tell by how much), or checksums that differ (the
-//! JSON is printed first).
+//! CPU's flash or RAM (which, and by how much: statics from the linker; a
+//! stack that outgrows the RAM the statics leave is detected by the
+//! firmware — after every frame, or by the hard fault it causes — and
+//! measured by relinking the same firmware with 1 MiB of RAM and running
+//! it on QEMU's `mps2-an385`, a Cortex-M3 that runs the same Thumb-1
+//! code), or checksums that differ (the JSON is printed first).
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -341,10 +343,21 @@ pub fn link_overflows(stderr: &str) -> Vec<(String, u64)> {
     out
 }
 
-/// Builds the benchmark firmware; returns a private copy of its ELF.
-fn build_firmware(b: &Bench, tree_name: &str) -> Result<PathBuf, CliError> {
+/// RAM of the layout that measures a Cortex-M0 stack too big for the
+/// nRF51 (run on QEMU's `mps2-an385`, whose Cortex-M3 runs the same
+/// Thumb-1 code with 4 MiB of RAM at the same address).
+const MEASURE_RAM_KIB: u32 = 1024;
+
+/// Builds the benchmark firmware (with `MEASURE_RAM_KIB` of RAM if
+/// `measure`); returns a private copy of its ELF.
+fn build_firmware(b: &Bench, tree_name: &str, measure: bool) -> Result<PathBuf, CliError> {
     let dir = firmware_dir();
-    let target_dir = dir.join("target").join("mcu-bench");
+    let sub = if measure {
+        "mcu-bench-measure"
+    } else {
+        "mcu-bench"
+    };
+    let target_dir = dir.join("target").join(sub);
     let tree = std::fs::canonicalize(&b.tree)?;
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let mut cmd = Command::new(cargo);
@@ -369,6 +382,11 @@ fn build_firmware(b: &Bench, tree_name: &str) -> Result<PathBuf, CliError> {
         .env_remove("CARGO_BUILD_TARGET")
         .env_remove("CARGO_ENCODED_RUSTFLAGS")
         .env_remove("RUSTFLAGS");
+    if measure {
+        cmd.env("FPT_BENCH_RAM_KIB", MEASURE_RAM_KIB.to_string());
+    } else {
+        cmd.env_remove("FPT_BENCH_RAM_KIB");
+    }
     let (ok, _, err) = run_captured(cmd, BUILD_TIMEOUT, "the firmware build")?;
     if !ok {
         let over = link_overflows(&err);
@@ -407,7 +425,7 @@ fn build_firmware(b: &Bench, tree_name: &str) -> Result<PathBuf, CliError> {
         .join("release")
         .join("bench");
     let copy = std::env::temp_dir().join(format!(
-        "fpt-mcu-bench-{}-{}.elf",
+        "fpt-mcu-bench-{}-{}-{sub}.elf",
         std::process::id(),
         b.cpu.name()
     ));
@@ -489,10 +507,77 @@ pub fn run(a: &McuBenchArgs) -> CliResult {
         frames: b.frames,
     })?;
     check_tools(b.cpu)?;
-    let elf = build_firmware(&b, &name)?;
+    let elf = build_firmware(&b, &name, false)?;
     let result = measure(&b, &name, &elf, &host, &tree);
     let _ = std::fs::remove_file(&elf);
     result
+}
+
+/// Runs `elf` under QEMU's `machine` (`-machine`, `-cpu` arguments) with
+/// `-icount shift=0` and semihosting: exit success and stdout.
+fn run_qemu(machine: [&str; 4], elf: &Path, frames: u32) -> Result<(bool, String), CliError> {
+    let mut cmd = Command::new("qemu-system-arm");
+    cmd.args(machine).args([
+        "-nographic",
+        "-semihosting-config",
+        "enable=on,target=native",
+        "-icount",
+        "shift=0",
+        "-kernel",
+    ]);
+    cmd.arg(elf);
+    // A Cortex-M0 frame takes a second or two of QEMU time; a run that
+    // takes far longer has hung (e.g. after a stack overflow).
+    let limit = (120 + 30 * u64::from(frames)).min(RUN_TIMEOUT.as_secs());
+    let (ok, out, _) = run_captured(cmd, Duration::from_secs(limit), "QEMU")?;
+    Ok((ok, out))
+}
+
+/// The error for a Cortex-M0 stack that overflowed, measured: the same
+/// firmware linked with more RAM, run on `mps2-an385`. It says by how much
+/// the statics and the stack exceed the RAM, or why that could not be
+/// measured.
+fn stack_overflow_error(b: &Bench, name: &str, why: &str) -> CliError {
+    let ram = b.cpu.ram();
+    let head = format!(
+        "{name} does not fit the {}'s RAM ({} KiB)",
+        b.cpu.name(),
+        ram / 1024
+    );
+    let measured = (|| {
+        if b.cpu != Cpu::M0 {
+            return Err(cli_err!("only the m0's stack is measured apart"));
+        }
+        let elf = build_firmware(b, name, true)?;
+        let run = run_qemu(
+            ["-machine", "mps2-an385", "-cpu", "cortex-m3"],
+            &elf,
+            b.frames,
+        );
+        let _ = std::fs::remove_file(&elf);
+        let (ok, out) = run?;
+        let r = parse_run(&out);
+        match (ok, r.static_ram, r.stack_peak) {
+            (true, Some(s), Some(p)) => Ok((s, p)),
+            _ => Err(cli_err!(
+                "{}",
+                r.error.as_deref().unwrap_or("no measurement")
+            )),
+        }
+    })();
+    match measured {
+        Ok((statics, peak)) => cli_err!(
+            "{head}: static {statics} B + stack {peak} B = {} B, over by {} bytes \
+             ({why}; stack measured with {MEASURE_RAM_KIB} KiB of RAM on QEMU mps2-an385); \
+             try a smaller --band or --size",
+            statics + peak,
+            (statics + peak).saturating_sub(ram)
+        ),
+        Err(CliError(e)) => cli_err!(
+            "{head}: the stack outgrew the RAM the statics leave ({why}), by an amount \
+             that could not be measured ({e}); try a smaller --band or --size"
+        ),
+    }
 }
 
 /// Runs the built firmware, checks it, prints the JSON.
@@ -510,17 +595,14 @@ fn measure(b: &Bench, name: &str, elf: &Path, host: &[u32], tree: &Tree<'_>) -> 
     };
     let (text, rodata) = (size_of(".text"), size_of(".rodata"));
     let flash_used = size_of(".vector_table") + text + rodata + size_of(".data");
-    let mut cmd = Command::new("qemu-system-arm");
-    cmd.args(b.cpu.qemu()).args([
-        "-nographic",
-        "-semihosting-config",
-        "enable=on,target=native",
-        "-icount",
-        "shift=0",
-        "-kernel",
-    ]);
-    cmd.arg(elf);
-    let (ok, out, _) = run_captured(cmd, RUN_TIMEOUT, "QEMU")?;
+    let (ok, out) = match run_qemu(b.cpu.qemu(), elf, b.frames) {
+        Ok(r) => r,
+        // A hang on the 16 KiB part is most likely a stack overflow.
+        Err(CliError(e)) if b.cpu == Cpu::M0 => {
+            return Err(stack_overflow_error(b, name, &e));
+        }
+        Err(e) => return Err(e),
+    };
     let run = parse_run(&out);
     let ram = b.cpu.ram();
     if let Some(e) = run
@@ -528,15 +610,7 @@ fn measure(b: &Bench, name: &str, elf: &Path, host: &[u32], tree: &Tree<'_>) -> 
         .as_deref()
         .filter(|e| e.contains("stack overflow") || e.contains("hard fault"))
     {
-        let statics = size_of(".data") + size_of(".bss") + size_of(".uninit");
-        return Err(cli_err!(
-            "{name} does not fit the {}'s RAM ({} KiB): the statics take {statics} B and the \
-             stack needs more than the {} B left, by an amount the firmware cannot measure \
-             ({e}); try a smaller --band or --size",
-            b.cpu.name(),
-            ram / 1024,
-            ram - statics
-        ));
+        return Err(stack_overflow_error(b, name, e));
     }
     if !ok || run.error.is_some() {
         return Err(cli_err!(
