@@ -1,5 +1,8 @@
-//! Feudal on a Cortex-M4 (QEMU `netduinoplus2`): renders the procedural
-//! scenes' trees from flash and reports each frame's checksum and cost.
+//! Feudal on a Cortex-M4 (QEMU `netduinoplus2`) or, with `--target
+//! thumbv6m-none-eabi` and feature `band`, a Cortex-M0 (QEMU `microbit`,
+//! 16 KiB of RAM; only the scenes whose trees fit its 256 KiB of flash):
+//! renders the procedural scenes' trees from flash and reports each
+//! frame's checksum and cost.
 //!
 //! `cargo run --release` (feature `full`: a 240×240 RGB565 framebuffer in
 //! RAM) or `cargo run --release --no-default-features --features band`
@@ -48,6 +51,8 @@ mod stack;
 compile_error!("enable exactly one of the features `full` and `band`");
 #[cfg(not(any(feature = "full", feature = "band")))]
 compile_error!("enable one of the features `full` and `band`");
+#[cfg(all(fpt_armv6m, feature = "full"))]
+compile_error!("the Cortex-M0's 16 KiB of RAM needs feature `band`");
 
 use core::mem::MaybeUninit;
 use cortex_m_rt::entry;
@@ -64,10 +69,19 @@ use fail::fail;
 use probe::{PhaseProbe, TotalProbe};
 
 /// The scenes' tree files, in the order of [`SCENES`].
+#[cfg(not(fpt_armv6m))]
 static TREES: [(&str, &[u8]); 3] = [
     ("vise", include_bytes!("../trees/vise.fpt")),
     ("house", include_bytes!("../trees/house.fpt")),
     ("bench_city", include_bytes!("../trees/bench_city.fpt")),
+];
+
+/// The scenes that fit the Cortex-M0's 256 KiB of flash with the code
+/// (`bench_city`, 173 KiB, does not), in the order of [`SCENES`].
+#[cfg(fpt_armv6m)]
+static TREES: [(&str, &[u8]); 2] = [
+    ("vise", include_bytes!("../trees/vise.fpt")),
+    ("house", include_bytes!("../trees/house.fpt")),
 ];
 
 /// The host's lines for the same frames.
@@ -289,6 +303,12 @@ fn main() -> ! {
         render_peak
     );
     hprintln!("stack_peak={}", init_peak.max(render_peak));
+    if stack::overflowed() {
+        fail(format_args!(
+            "stack overflow: the stack reached the statics ({} B of RAM left for it)",
+            stack::room()
+        ));
+    }
     if !ok {
         fail(format_args!("checksums differ from trees/frames.txt"));
     }

@@ -54,6 +54,8 @@ pub fn paint() {
     // SAFETY: writes whole words from `_stack_end` (4-aligned, asserted by
     // link.x) up to but excluding the current SP: memory that belongs to
     // no static and no live stack frame. Only registers are used.
+    // The Cortex-M0 (Thumb-1) has no post-indexed store: store, then add.
+    #[cfg(not(fpt_armv6m))]
     unsafe {
         core::arch::asm!(
             "mov {sp}, sp",
@@ -61,6 +63,24 @@ pub fn paint() {
             "cmp {p}, {sp}",
             "bhs 3f",
             "str {pat}, [{p}], #4",
+            "b 2b",
+            "3:",
+            p = inout(reg) bottom => _,
+            sp = out(reg) _,
+            pat = in(reg) PATTERN,
+            options(nostack),
+        );
+    }
+    // SAFETY: as above.
+    #[cfg(fpt_armv6m)]
+    unsafe {
+        core::arch::asm!(
+            "mov {sp}, sp",
+            "2:",
+            "cmp {p}, {sp}",
+            "bhs 3f",
+            "str {pat}, [{p}]",
+            "adds {p}, #4",
             "b 2b",
             "3:",
             p = inout(reg) bottom => _,
@@ -86,4 +106,17 @@ pub fn peak() -> usize {
         p += 4;
     }
     top - p
+}
+
+/// Bytes between the end of the statics and the top of RAM: the most the
+/// stack can take.
+pub fn room() -> usize {
+    stack_top() - stack_bottom()
+}
+
+/// Whether the stack has reached the end of the statics since [`paint`]
+/// (its lowest word is no longer the pattern): it may have overwritten
+/// them, and its peak is unknown.
+pub fn overflowed() -> bool {
+    peak() >= room()
 }

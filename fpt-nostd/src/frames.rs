@@ -429,6 +429,7 @@ pub(crate) fn parse_checksum_line<'a>(
 
 pub mod accuracy;
 pub mod effects;
+pub mod orbit;
 #[cfg(test)]
 mod tests;
 pub mod work;

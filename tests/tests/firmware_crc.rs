@@ -9,10 +9,16 @@
 //!   `band`) and compares its `frame scene=… view=… crc=…` lines with the
 //!   host's for the same trees, and checks that `full` prints an `effect`
 //!   line with the three costs for every effect, and runs the `accuracy`
-//!   binary, whose lines must be the host's too. Skipped, with a message, when
-//!   `qemu-system-arm` or the `thumbv7em-none-eabihf` target is missing —
-//!   unless `FPT_REQUIRE_FIRMWARE=1` is set (CI sets it), which turns a
-//!   missing tool into a failure.
+//!   binary, whose lines must be the host's too.
+//! * `m0_firmware_matches_host`: the same for the Cortex-M0 build
+//!   (`--target thumbv6m-none-eabi`, feature `band`, QEMU `microbit`),
+//!   which embeds the scenes that fit its flash (vise and house), and
+//!   checks that its statics and measured stack peak fit its 16 KiB of RAM.
+//!
+//! The firmware tests are skipped, with a message, when
+//! `qemu-system-arm` or the thumb target is missing — unless
+//! `FPT_REQUIRE_FIRMWARE=1` is set (CI sets it), which turns a missing
+//! tool into a failure.
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -92,8 +98,8 @@ fn committed_trees_are_fresh() {
     );
 }
 
-/// Why the firmware cannot run here, if it cannot.
-fn missing_tool() -> Option<String> {
+/// Why the firmware cannot run here for `target`, if it cannot.
+fn missing_tool(target: &str) -> Option<String> {
     let qemu = Command::new("qemu-system-arm")
         .arg("--version")
         .stdout(Stdio::null())
@@ -103,12 +109,7 @@ fn missing_tool() -> Option<String> {
         return Some("qemu-system-arm is not installed".into());
     }
     let libdir = Command::new("rustc")
-        .args([
-            "--print",
-            "target-libdir",
-            "--target",
-            "thumbv7em-none-eabihf",
-        ])
+        .args(["--print", "target-libdir", "--target", target])
         .output();
     let has_target = libdir.is_ok_and(|o| {
         let dir = String::from_utf8_lossy(&o.stdout).trim().to_string();
@@ -118,13 +119,24 @@ fn missing_tool() -> Option<String> {
             })
     });
     if !has_target {
-        return Some(
-            "the thumbv7em-none-eabihf target is not installed \
-             (rustup target add thumbv7em-none-eabihf)"
-                .into(),
-        );
+        return Some(format!(
+            "the {target} target is not installed (rustup target add {target})"
+        ));
     }
     None
+}
+
+/// Skips (with a message) or, under `FPT_REQUIRE_FIRMWARE=1`, fails when
+/// the firmware cannot run for `target`; `true` if it can.
+fn can_run(test: &str, target: &str) -> bool {
+    let Some(why) = missing_tool(target) else {
+        return true;
+    };
+    if std::env::var("FPT_REQUIRE_FIRMWARE").is_ok_and(|v| v == "1") {
+        panic!("FPT_REQUIRE_FIRMWARE=1 but {why}");
+    }
+    println!("SKIPPED {test}: {why}");
+    false
 }
 
 /// `cargo run --release ARGS` in `firmware/`: exit success and stdout.
@@ -170,11 +182,7 @@ fn run_firmware(args: &[&str]) -> (bool, String) {
 
 #[test]
 fn firmware_matches_host() {
-    if let Some(why) = missing_tool() {
-        if std::env::var("FPT_REQUIRE_FIRMWARE").is_ok_and(|v| v == "1") {
-            panic!("FPT_REQUIRE_FIRMWARE=1 but {why}");
-        }
-        println!("SKIPPED firmware_matches_host: {why}");
+    if !can_run("firmware_matches_host", "thumbv7em-none-eabihf") {
         return;
     }
     // The host draws the very trees the firmware embeds.
@@ -240,4 +248,51 @@ fn firmware_matches_host() {
         .filter(|l| l.starts_with("accuracy "))
         .all(|l| AccuracyLine::instr(l).is_some_and(|n| n > 0)));
     assert!(success, "accuracy firmware exited with failure:\n{out}");
+}
+
+/// The scenes the Cortex-M0 firmware embeds (those that fit its flash).
+const M0_SCENES: [&str; 2] = ["vise", "house"];
+/// The Cortex-M0's RAM (QEMU `microbit`, nRF51822).
+const M0_RAM: usize = 16 * 1024;
+
+/// The Cortex-M0 firmware (`--target thumbv6m-none-eabi`, feature `band`,
+/// QEMU `microbit`): the host's lines for the scenes it embeds, and its
+/// statics plus its measured stack peak within the 16 KiB of RAM.
+#[test]
+fn m0_firmware_matches_host() {
+    if !can_run("m0_firmware_matches_host", "thumbv6m-none-eabi") {
+        return;
+    }
+    let trees = ok(read_trees(&trees_dir()), "reading firmware/trees");
+    let host: Vec<String> = ok(frame_lines(&trees), "drawing the frames on the host")
+        .into_iter()
+        .filter(|l| FrameLine::parse(l).is_some_and(|f| M0_SCENES.contains(&f.scene)))
+        .collect();
+    assert_eq!(host.len(), M0_SCENES.len() * VIEWS.len());
+    let args = [
+        "--target",
+        "thumbv6m-none-eabi",
+        "--no-default-features",
+        "--features",
+        "band",
+    ];
+    let (success, out) = run_firmware(&args);
+    let firmware: Vec<String> = out
+        .lines()
+        .filter_map(FrameLine::parse)
+        .map(|l| l.to_string())
+        .collect();
+    assert_eq!(firmware, host, "M0 frames differ from the host's:\n{out}");
+    let value = |key: &str| {
+        out.lines()
+            .find_map(|l| l.strip_prefix(key))
+            .and_then(|v| v.trim().parse::<usize>().ok())
+            .unwrap_or_else(|| panic!("no {key} line:\n{out}"))
+    };
+    let (statics, stack) = (value("static_ram="), value("stack_peak="));
+    assert!(
+        statics + stack <= M0_RAM,
+        "M0 RAM: {statics} B static + {stack} B stack > {M0_RAM} B"
+    );
+    assert!(success, "M0 firmware exited with failure:\n{out}");
 }

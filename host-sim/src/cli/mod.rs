@@ -14,6 +14,7 @@ mod demo;
 mod display;
 pub mod frames;
 mod inspect;
+pub mod mcu_bench;
 mod render;
 
 /// A failure reported to the user as `error: MESSAGE`, exit status 2.
@@ -68,6 +69,9 @@ enum Command {
     Demo(demo::DemoArgs),
     /// Measure error against time of every arithmetic configuration.
     BenchAccuracy(accuracy::AccuracyArgs),
+    /// Draw a tree over the standard orbit on an emulated MCU (QEMU) and
+    /// print its cost, memory and checksum check as JSON.
+    McuBench(mcu_bench::McuBenchArgs),
 }
 
 /// Arguments of `fpt build`.
@@ -224,6 +228,7 @@ where
         Command::Render(a) => render::run(&a),
         Command::Demo(a) => demo::run(&a),
         Command::BenchAccuracy(a) => accuracy::run(&a),
+        Command::McuBench(a) => mcu_bench::run(&a),
     };
     match result {
         Ok(()) => 0,

@@ -1,0 +1,718 @@
+//! `fpt mcu-bench TREE`: draws a tree over the standard orbit
+//! ([`fpt_nostd::frames::orbit`]) on an emulated microcontroller and prints
+//! one JSON object with its cost, its memory and whether every frame's
+//! checksum equals the host's.
+//!
+//! ```text
+//! fpt mcu-bench TREE [--cpu m4f|m0] [--size WxH] [--band ROWS]
+//!                    [--precision NAME] [--frames N] [--clock MHZ]
+//! ```
+//!
+//! It builds the firmware's `bench` binary (`firmware/src/bin/bench.rs`)
+//! for the CPU's target with the tree and the settings handed to
+//! `firmware/build.rs` in `FPT_BENCH_*` variables (`cargo build --release`
+//! in `firmware/`, target directory `firmware/target/mcu-bench`; the
+//! firmware directory can be moved with `FPT_FIRMWARE_DIR`), runs it under
+//! QEMU with `-icount shift=0`, and draws the same frames on the host with
+//! the same `no_std` code. The CPUs ([`Cpu`]):
+//!
+//! | `--cpu` | target | QEMU machine | flash | RAM | default `--band` | default `--clock` |
+//! |---|---|---|---:|---:|---:|---:|
+//! | `m4f` | `thumbv7em-none-eabihf` | `netduinoplus2` (STM32F405) | 1 MiB | 128 KiB | 0 (full frame) | 168 MHz |
+//! | `m0` | `thumbv6m-none-eabi` | `microbit` (nRF51822) | 256 KiB | 16 KiB | 16 | 64 MHz (an STM32G0-class M0+; the nRF51 runs at 16) |
+//!
+//! Other defaults: `--size 240x240 --precision f32-libm --frames 100`.
+//! `fps_at_clock` is `clock / instr_median` at one instruction per cycle
+//! (an upper bound: loads, branches and multiplies can take more).
+//!
+//! Failures are one line `error: ...` and exit status 2: bad options, a
+//! tree that does not validate, QEMU or the Rust target missing (the
+//! message names the install command), a tree that does not fit the
+//! CPU's flash or RAM (which, and by how much: statics from the linker; a
+//! stack that outgrows the RAM the statics leave is detected by the
+//! firmware — after every frame, or by the hard fault it causes — and
+//! measured by relinking the same firmware with 1 MiB of RAM and running
+//! it on QEMU's `mps2-an385`, a Cortex-M3 that runs the same Thumb-1
+//! code), or checksums that differ (the JSON is printed first).
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use clap::Args;
+use fpt_nostd::frames::orbit::{
+    band_rows, band_words, frame_crc, OrbitLine, OrbitPrecision, PrecisionVisitor, MAX_VERTS,
+};
+use fpt_nostd::raster::Precision;
+use fpt_nostd::reader::Tree;
+use fpt_nostd::render::TreeRenderer;
+use serde_json::json;
+
+use super::{CliError, CliResult};
+use crate::cli_err;
+
+/// Walk stack of the host's check (the firmware's is the tree's depth).
+const HOST_DEPTH: usize = 256;
+/// Longest a firmware build may take.
+const BUILD_TIMEOUT: Duration = Duration::from_secs(1800);
+/// Longest a QEMU run may take.
+const RUN_TIMEOUT: Duration = Duration::from_secs(3600);
+
+/// Arguments of `fpt mcu-bench`.
+#[derive(Args, Debug)]
+pub struct McuBenchArgs {
+    /// Tree file.
+    pub tree: PathBuf,
+    /// The emulated CPU: m4f (Cortex-M4F, QEMU netduinoplus2) or m0
+    /// (Cortex-M0, QEMU microbit).
+    #[arg(long, default_value = "m4f", value_parser = ["m4f", "m0"])]
+    pub cpu: String,
+    /// Display size WxH.
+    #[arg(long, default_value = "240x240")]
+    pub size: String,
+    /// Rows per band, 0 for a full framebuffer [default: 0 on m4f, 16 on m0].
+    #[arg(long)]
+    pub band: Option<u32>,
+    /// Vertex arithmetic: f32-libm or fixed.
+    #[arg(long, default_value = "f32-libm", value_parser = OrbitPrecision::NAMES)]
+    pub precision: String,
+    /// Frames of the orbit.
+    #[arg(long, default_value_t = fpt_nostd::frames::orbit::DEFAULT_FRAMES,
+          value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub frames: u32,
+    /// Clock in MHz for fps_at_clock [default: 168 on m4f, 64 on m0].
+    #[arg(long)]
+    pub clock: Option<f64>,
+}
+
+/// An emulated microcontroller.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cpu {
+    /// Cortex-M4F: STM32F405-class, QEMU `netduinoplus2`.
+    M4f,
+    /// Cortex-M0: nRF51822, QEMU `microbit`.
+    M0,
+}
+
+impl Cpu {
+    /// The `--cpu` name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Cpu::M4f => "m4f",
+            Cpu::M0 => "m0",
+        }
+    }
+
+    fn parse(s: &str) -> Option<Cpu> {
+        [Cpu::M4f, Cpu::M0].into_iter().find(|c| c.name() == s)
+    }
+
+    /// The Rust target.
+    pub fn target(self) -> &'static str {
+        match self {
+            Cpu::M4f => "thumbv7em-none-eabihf",
+            Cpu::M0 => "thumbv6m-none-eabi",
+        }
+    }
+
+    /// QEMU's `-machine` and `-cpu`.
+    fn qemu(self) -> [&'static str; 4] {
+        match self {
+            Cpu::M4f => ["-machine", "netduinoplus2", "-cpu", "cortex-m4"],
+            Cpu::M0 => ["-machine", "microbit", "-cpu", "cortex-m0"],
+        }
+    }
+
+    /// Flash bytes (the firmware's memory layout).
+    pub fn flash(self) -> u64 {
+        match self {
+            Cpu::M4f => 1024 * 1024,
+            Cpu::M0 => 256 * 1024,
+        }
+    }
+
+    /// RAM bytes.
+    pub fn ram(self) -> u64 {
+        match self {
+            Cpu::M4f => 128 * 1024,
+            Cpu::M0 => 16 * 1024,
+        }
+    }
+
+    fn default_band(self) -> u32 {
+        match self {
+            Cpu::M4f => 0,
+            Cpu::M0 => 16,
+        }
+    }
+
+    fn default_clock(self) -> f64 {
+        match self {
+            Cpu::M4f => 168.0,
+            Cpu::M0 => 64.0,
+        }
+    }
+}
+
+/// `WxH` as two positive numbers.
+fn parse_size(s: &str) -> Result<(u32, u32), CliError> {
+    let bad = || cli_err!("--size wants WxH (e.g. 240x240), got '{s}'");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 || w > 4096 || h > 4096 {
+        return Err(cli_err!("--size {s}: each side must be 1 to 4096 pixels"));
+    }
+    Ok((w, h))
+}
+
+/// The settings of one run, checked.
+#[derive(Clone, Debug)]
+struct Bench {
+    tree: PathBuf,
+    cpu: Cpu,
+    size: (u32, u32),
+    band: u32,
+    precision: OrbitPrecision,
+    frames: u32,
+    clock: f64,
+}
+
+impl Bench {
+    fn from_args(a: &McuBenchArgs) -> Result<Bench, CliError> {
+        let cpu = Cpu::parse(&a.cpu).ok_or_else(|| cli_err!("unknown --cpu '{}'", a.cpu))?;
+        let precision = OrbitPrecision::parse(&a.precision)
+            .ok_or_else(|| cli_err!("unknown --precision '{}'", a.precision))?;
+        let clock = a.clock.unwrap_or(cpu.default_clock());
+        if !(clock.is_finite() && clock > 0.0) {
+            return Err(cli_err!("--clock must be a positive number of MHz"));
+        }
+        Ok(Bench {
+            tree: a.tree.clone(),
+            cpu,
+            size: parse_size(&a.size)?,
+            band: a.band.unwrap_or(cpu.default_band()),
+            precision,
+            frames: a.frames,
+            clock,
+        })
+    }
+}
+
+/// The host's checksums of every frame (the visitor of
+/// [`OrbitPrecision::visit`]).
+struct HostCrcs<'t> {
+    tree: &'t Tree<'t>,
+    size: (u32, u32),
+    band: u32,
+    frames: u32,
+}
+
+impl PrecisionVisitor for HostCrcs<'_> {
+    type Output = Result<Vec<u32>, CliError>;
+    fn visit<P: Precision>(self) -> Self::Output {
+        let (w, h) = self.size;
+        let mut r = TreeRenderer::<P, MAX_VERTS>::new(w, h)
+            .ok_or_else(|| cli_err!("the renderer cannot draw {w}x{h}"))?;
+        let mut buf = vec![0u16; band_words(w, h, self.band)];
+        (0..self.frames)
+            .map(|i| {
+                frame_crc::<P, MAX_VERTS, HOST_DEPTH>(
+                    &mut r,
+                    self.tree,
+                    (i, self.frames),
+                    &mut buf,
+                    self.band,
+                )
+                .map_err(|e| cli_err!("host frame {i}: {e}"))
+            })
+            .collect()
+    }
+}
+
+/// Why the firmware cannot be built or run here, as an error naming the
+/// install command.
+fn check_tools(cpu: Cpu) -> CliResult {
+    let qemu = Command::new("qemu-system-arm")
+        .arg("--version")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status();
+    if !qemu.is_ok_and(|s| s.success()) {
+        return Err(cli_err!(
+            "qemu-system-arm is not installed (install it with: sudo apt-get install qemu-system-arm)"
+        ));
+    }
+    if !target_installed(cpu.target()) {
+        return Err(cli_err!(
+            "the Rust target {t} is not installed (install it with: rustup target add {t})",
+            t = cpu.target()
+        ));
+    }
+    Ok(())
+}
+
+/// Whether `target`'s core library is installed.
+pub fn target_installed(target: &str) -> bool {
+    let libdir = Command::new("rustc")
+        .args(["--print", "target-libdir", "--target", target])
+        .output();
+    libdir.is_ok_and(|o| {
+        let dir = String::from_utf8_lossy(&o.stdout).trim().to_string();
+        o.status.success()
+            && std::fs::read_dir(&dir).is_ok_and(|mut d| {
+                d.any(|e| e.is_ok_and(|e| e.file_name().to_string_lossy().starts_with("libcore")))
+            })
+    })
+}
+
+/// The firmware's directory: `FPT_FIRMWARE_DIR`, or the repository's.
+fn firmware_dir() -> PathBuf {
+    std::env::var_os("FPT_FIRMWARE_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../firmware"))
+}
+
+/// Runs `cmd` to completion within `limit`: exit success, stdout, stderr.
+fn run_captured(
+    mut cmd: Command,
+    limit: Duration,
+    what: &str,
+) -> Result<(bool, String, String), CliError> {
+    let mut child = cmd
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| cli_err!("starting {what}: {e}"))?;
+    let reader = |s: Option<Box<dyn Read + Send>>| {
+        s.map(|mut s| {
+            std::thread::spawn(move || {
+                let mut text = String::new();
+                let _ = s.read_to_string(&mut text);
+                text
+            })
+        })
+    };
+    let out = reader(child.stdout.take().map(|s| Box::new(s) as _));
+    let err = reader(child.stderr.take().map(|s| Box::new(s) as _));
+    let start = Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait()? {
+            break s;
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(cli_err!("{what} did not finish in {} s", limit.as_secs()));
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let join = |h: Option<std::thread::JoinHandle<String>>| {
+        h.and_then(|h| h.join().ok()).unwrap_or_default()
+    };
+    Ok((status.success(), join(out), join(err)))
+}
+
+/// The largest overflow per memory region in a linker's messages
+/// (`... region 'FLASH' ... overflowed by N bytes`).
+pub fn link_overflows(stderr: &str) -> Vec<(String, u64)> {
+    let mut out: Vec<(String, u64)> = Vec::new();
+    for line in stderr.lines().filter(|l| l.contains("overflowed by")) {
+        let region = line
+            .split("region '")
+            .nth(1)
+            .and_then(|r| r.split('\'').next())
+            .or_else(|| {
+                line.split("region `")
+                    .nth(1)
+                    .and_then(|r| r.split('\'').next())
+            });
+        let bytes = line
+            .split("overflowed by ")
+            .nth(1)
+            .and_then(|r| r.split_whitespace().next())
+            .and_then(|n| n.parse::<u64>().ok());
+        if let (Some(region), Some(bytes)) = (region, bytes) {
+            match out.iter_mut().find(|(r, _)| r == region) {
+                Some((_, b)) => *b = (*b).max(bytes),
+                None => out.push((region.to_string(), bytes)),
+            }
+        }
+    }
+    out
+}
+
+/// RAM of the layout that measures a Cortex-M0 stack too big for the
+/// nRF51 (run on QEMU's `mps2-an385`, whose Cortex-M3 runs the same
+/// Thumb-1 code with 4 MiB of RAM at the same address).
+const MEASURE_RAM_KIB: u32 = 1024;
+
+/// Builds the benchmark firmware (with `MEASURE_RAM_KIB` of RAM if
+/// `measure`); returns a private copy of its ELF.
+fn build_firmware(b: &Bench, tree_name: &str, measure: bool) -> Result<PathBuf, CliError> {
+    let dir = firmware_dir();
+    let sub = if measure {
+        "mcu-bench-measure"
+    } else {
+        "mcu-bench"
+    };
+    let target_dir = dir.join("target").join(sub);
+    let tree = std::fs::canonicalize(&b.tree)?;
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let mut cmd = Command::new(cargo);
+    cmd.current_dir(&dir)
+        .args([
+            "build",
+            "--release",
+            "--locked",
+            "--bin",
+            "bench",
+            "--target",
+        ])
+        .arg(b.cpu.target())
+        .env("CARGO_TARGET_DIR", &target_dir)
+        .env("FPT_BENCH_TREE", &tree)
+        .env("FPT_BENCH_WIDTH", b.size.0.to_string())
+        .env("FPT_BENCH_HEIGHT", b.size.1.to_string())
+        .env("FPT_BENCH_BAND", b.band.to_string())
+        .env("FPT_BENCH_PRECISION", b.precision.name())
+        .env("FPT_BENCH_FRAMES", b.frames.to_string())
+        // The firmware's own target and linker flags must apply.
+        .env_remove("CARGO_BUILD_TARGET")
+        .env_remove("CARGO_ENCODED_RUSTFLAGS")
+        .env_remove("RUSTFLAGS");
+    if measure {
+        cmd.env("FPT_BENCH_RAM_KIB", MEASURE_RAM_KIB.to_string());
+    } else {
+        cmd.env_remove("FPT_BENCH_RAM_KIB");
+    }
+    let (ok, _, err) = run_captured(cmd, BUILD_TIMEOUT, "the firmware build")?;
+    if !ok {
+        let over = link_overflows(&err);
+        if !over.is_empty() {
+            let what: Vec<String> = over
+                .iter()
+                .map(|(region, n)| {
+                    let size = if region == "FLASH" {
+                        b.cpu.flash()
+                    } else {
+                        b.cpu.ram()
+                    };
+                    format!("its {region} ({} KiB) overflows by {n} bytes", size / 1024)
+                })
+                .collect();
+            return Err(cli_err!(
+                "{tree_name} does not fit the {}: {}{}",
+                b.cpu.name(),
+                what.join(", "),
+                if over.iter().any(|(r, _)| r == "RAM") {
+                    " (the RAM holds the band buffer and the renderer: try a smaller --band or --size)"
+                } else {
+                    ""
+                }
+            ));
+        }
+        let tail: Vec<&str> = err
+            .lines()
+            .filter(|l| l.contains("error"))
+            .take(3)
+            .collect();
+        return Err(cli_err!("the firmware build failed: {}", tail.join(" | ")));
+    }
+    let elf = target_dir
+        .join(b.cpu.target())
+        .join("release")
+        .join("bench");
+    let copy = std::env::temp_dir().join(format!(
+        "fpt-mcu-bench-{}-{}-{sub}.elf",
+        std::process::id(),
+        b.cpu.name()
+    ));
+    std::fs::copy(&elf, &copy).map_err(|e| cli_err!("copying {}: {e}", elf.display()))?;
+    Ok(copy)
+}
+
+/// Sizes of an ELF32 little-endian file's sections, by name.
+pub fn elf_sections(bytes: &[u8]) -> Option<Vec<(String, u64)>> {
+    let u16_at = |o: usize| Some(u16::from_le_bytes(bytes.get(o..o + 2)?.try_into().ok()?));
+    let u32_at = |o: usize| Some(u32::from_le_bytes(bytes.get(o..o + 4)?.try_into().ok()?));
+    if bytes.get(..6)? != b"\x7fELF\x01\x01" {
+        return None;
+    }
+    let shoff = u32_at(0x20)? as usize;
+    let shentsize = u16_at(0x2E)? as usize;
+    let shnum = u16_at(0x30)? as usize;
+    let shstrndx = u16_at(0x32)? as usize;
+    let header = |i: usize| shoff + i * shentsize;
+    let strtab = u32_at(header(shstrndx) + 16)? as usize;
+    let mut out = Vec::with_capacity(shnum);
+    for i in 0..shnum {
+        let h = header(i);
+        let name_at = strtab + u32_at(h)? as usize;
+        let name = bytes.get(name_at..)?;
+        let end = name.iter().position(|&c| c == 0)?;
+        let name = String::from_utf8_lossy(&name[..end]).into_owned();
+        out.push((name, u64::from(u32_at(h + 20)?)));
+    }
+    Some(out)
+}
+
+/// What the firmware printed.
+#[derive(Debug, Default)]
+struct Run {
+    frames: Vec<(OrbitLine, u64)>,
+    static_ram: Option<u64>,
+    stack_peak: Option<u64>,
+    error: Option<String>,
+}
+
+fn parse_run(out: &str) -> Run {
+    let mut run = Run::default();
+    let num = |l: &str, key: &str| l.strip_prefix(key).and_then(|v| v.trim().parse().ok());
+    for l in out.lines() {
+        if let Some((line, Some(instr))) = OrbitLine::parse(l) {
+            run.frames.push((line, instr));
+        } else if let Some(v) = num(l, "static_ram=") {
+            run.static_ram = Some(v);
+        } else if let Some(v) = num(l, "stack_peak=") {
+            run.stack_peak = Some(v);
+        } else if let Some(e) = l.strip_prefix("error: ") {
+            run.error.get_or_insert_with(|| e.trim().to_string());
+        }
+    }
+    run
+}
+
+/// Runs `fpt mcu-bench`.
+pub fn run(a: &McuBenchArgs) -> CliResult {
+    let b = Bench::from_args(a)?;
+    let bytes =
+        std::fs::read(&b.tree).map_err(|e| cli_err!("reading {}: {e}", b.tree.display()))?;
+    let tree = Tree::from_bytes(&bytes).map_err(|e| cli_err!("{}: {e}", b.tree.display()))?;
+    let name = b
+        .tree
+        .file_stem()
+        .map_or("the tree".into(), |s| s.to_string_lossy().into_owned());
+    if tree.max_depth() as usize > HOST_DEPTH {
+        return Err(cli_err!(
+            "{name} is {} deep; the host check walks at most {HOST_DEPTH}",
+            tree.max_depth()
+        ));
+    }
+    let host = b.precision.visit(HostCrcs {
+        tree: &tree,
+        size: b.size,
+        band: b.band,
+        frames: b.frames,
+    })?;
+    check_tools(b.cpu)?;
+    let elf = build_firmware(&b, &name, false)?;
+    let result = measure(&b, &name, &elf, &host, &tree);
+    let _ = std::fs::remove_file(&elf);
+    result
+}
+
+/// Runs `elf` under QEMU's `machine` (`-machine`, `-cpu` arguments) with
+/// `-icount shift=0` and semihosting: exit success and stdout.
+fn run_qemu(machine: [&str; 4], elf: &Path, frames: u32) -> Result<(bool, String), CliError> {
+    let mut cmd = Command::new("qemu-system-arm");
+    cmd.args(machine).args([
+        "-nographic",
+        "-semihosting-config",
+        "enable=on,target=native",
+        "-icount",
+        "shift=0",
+        "-kernel",
+    ]);
+    cmd.arg(elf);
+    // A Cortex-M0 frame takes a second or two of QEMU time; a run that
+    // takes far longer has hung (e.g. after a stack overflow).
+    let limit = (120 + 30 * u64::from(frames)).min(RUN_TIMEOUT.as_secs());
+    let (ok, out, _) = run_captured(cmd, Duration::from_secs(limit), "QEMU")?;
+    Ok((ok, out))
+}
+
+/// The error for a Cortex-M0 stack that overflowed, measured: the same
+/// firmware linked with more RAM, run on `mps2-an385`. It says by how much
+/// the statics and the stack exceed the RAM, or why that could not be
+/// measured.
+fn stack_overflow_error(b: &Bench, name: &str, why: &str) -> CliError {
+    let ram = b.cpu.ram();
+    let head = format!(
+        "{name} does not fit the {}'s RAM ({} KiB)",
+        b.cpu.name(),
+        ram / 1024
+    );
+    let measured = (|| {
+        if b.cpu != Cpu::M0 {
+            return Err(cli_err!("only the m0's stack is measured apart"));
+        }
+        let elf = build_firmware(b, name, true)?;
+        let run = run_qemu(
+            ["-machine", "mps2-an385", "-cpu", "cortex-m3"],
+            &elf,
+            b.frames,
+        );
+        let _ = std::fs::remove_file(&elf);
+        let (ok, out) = run?;
+        let r = parse_run(&out);
+        match (ok, r.static_ram, r.stack_peak) {
+            (true, Some(s), Some(p)) => Ok((s, p)),
+            _ => Err(cli_err!(
+                "{}",
+                r.error.as_deref().unwrap_or("no measurement")
+            )),
+        }
+    })();
+    match measured {
+        Ok((statics, peak)) => cli_err!(
+            "{head}: static {statics} B + stack {peak} B = {} B, over by {} bytes \
+             ({why}; stack measured with {MEASURE_RAM_KIB} KiB of RAM on QEMU mps2-an385); \
+             try a smaller --band or --size",
+            statics + peak,
+            (statics + peak).saturating_sub(ram)
+        ),
+        Err(CliError(e)) => cli_err!(
+            "{head}: the stack outgrew the RAM the statics leave ({why}), by an amount \
+             that could not be measured ({e}); try a smaller --band or --size"
+        ),
+    }
+}
+
+/// Runs the built firmware, checks it, prints the JSON.
+fn measure(b: &Bench, name: &str, elf: &Path, host: &[u32], tree: &Tree<'_>) -> CliResult {
+    let sections = std::fs::read(elf)
+        .ok()
+        .and_then(|bytes| elf_sections(&bytes))
+        .ok_or_else(|| cli_err!("cannot read the sections of {}", elf.display()))?;
+    let size_of = |n: &str| {
+        sections
+            .iter()
+            .filter(|(s, _)| s == n)
+            .map(|(_, v)| v)
+            .sum::<u64>()
+    };
+    let (text, rodata) = (size_of(".text"), size_of(".rodata"));
+    let flash_used = size_of(".vector_table") + text + rodata + size_of(".data");
+    let (ok, out) = match run_qemu(b.cpu.qemu(), elf, b.frames) {
+        Ok(r) => r,
+        // A hang on the 16 KiB part is most likely a stack overflow.
+        Err(CliError(e)) if b.cpu == Cpu::M0 => {
+            return Err(stack_overflow_error(b, name, &e));
+        }
+        Err(e) => return Err(e),
+    };
+    let run = parse_run(&out);
+    let ram = b.cpu.ram();
+    if let Some(e) = run
+        .error
+        .as_deref()
+        .filter(|e| e.contains("stack overflow") || e.contains("hard fault"))
+    {
+        return Err(stack_overflow_error(b, name, e));
+    }
+    if !ok || run.error.is_some() {
+        return Err(cli_err!(
+            "the firmware failed: {}",
+            run.error.as_deref().unwrap_or("no error message")
+        ));
+    }
+    let (Some(ram_static), Some(stack_peak)) = (run.static_ram, run.stack_peak) else {
+        return Err(cli_err!(
+            "the firmware's output has no static_ram/stack_peak"
+        ));
+    };
+    let crc_match = run.frames.len() == host.len()
+        && run
+            .frames
+            .iter()
+            .zip(host)
+            .enumerate()
+            .all(|(i, ((l, _), h))| l.frame == i as u32 && l.crc == *h);
+    let mut instr: Vec<u64> = run.frames.iter().map(|(_, n)| *n).collect();
+    instr.sort_unstable();
+    if instr.is_empty() {
+        return Err(cli_err!("the firmware printed no frames"));
+    }
+    let median = if instr.len() % 2 == 1 {
+        instr[instr.len() / 2] as f64
+    } else {
+        (instr[instr.len() / 2 - 1] + instr[instr.len() / 2]) as f64 / 2.0
+    };
+    let fps = b.clock * 1e6 / median;
+    let report = json!({
+        "tree": name,
+        "polygons": tree.polygon_count(),
+        "walk_depth": tree.max_depth(),
+        "cpu": b.cpu.name(),
+        "target": b.cpu.target(),
+        "width": b.size.0,
+        "height": b.size.1,
+        "band": b.band,
+        "band_rows": band_rows(b.band, b.size.1),
+        "precision": b.precision.name(),
+        "frames": b.frames,
+        "instr_median": median,
+        "instr_min": instr[0],
+        "instr_max": instr[instr.len() - 1],
+        "ram_static": ram_static,
+        "stack_peak": stack_peak,
+        "ram_total": ram_static + stack_peak,
+        "ram_size": ram,
+        "text": text,
+        "rodata": rodata,
+        "flash_used": flash_used,
+        "flash_size": b.cpu.flash(),
+        "clock_mhz": b.clock,
+        "fps_at_clock": (fps * 100.0).round() / 100.0,
+        "crc_match": crc_match,
+    });
+    println!("{}", serde_json::to_string_pretty(&report)?);
+    if !crc_match {
+        return Err(cli_err!(
+            "the firmware's checksums differ from the host's ({} frames printed, {} expected)",
+            run.frames.len(),
+            host.len()
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse_and_refuse() {
+        assert_eq!(parse_size("240x240").unwrap(), (240, 240));
+        assert_eq!(parse_size("320X200").unwrap(), (320, 200));
+        for bad in ["240", "0x10", "ax1", "10x", "5000x10"] {
+            assert!(parse_size(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn linker_overflows_are_read() {
+        let err = "rust-lld: error: section '.text' will not fit in region 'FLASH': overflowed by 100 bytes\n\
+                   rust-lld: error: section '.rodata' will not fit in region 'FLASH': overflowed by 5000 bytes\n\
+                   rust-lld: error: section '.bss' will not fit in region 'RAM': overflowed by 12 bytes\n";
+        assert_eq!(
+            link_overflows(err),
+            vec![("FLASH".to_string(), 5000), ("RAM".to_string(), 12)]
+        );
+        assert!(link_overflows("error: something else").is_empty());
+    }
+
+    #[test]
+    fn run_output_is_read() {
+        let out =
+            "calib x\norbit frame=0 crc=0000abcd instr=100\norbit frame=1 crc=00000001 instr=300\n\
+                   static_ram=11000\nstack_peak_startup=1 stack_peak_frames=2\nstack_peak=4000\n";
+        let r = parse_run(out);
+        assert_eq!(r.frames.len(), 2);
+        assert_eq!(r.frames[1].1, 300);
+        assert_eq!((r.static_ram, r.stack_peak), (Some(11000), Some(4000)));
+        assert!(r.error.is_none());
+    }
+}
