@@ -30,9 +30,12 @@ struct BenchConfig {
     precision: OrbitPrecision,
     /// `FPT_BENCH_FRAMES`: frames of the orbit (default 8).
     frames: u32,
+    /// `FPT_BENCH_MEMORY`: words of working memory (vertex cache and
+    /// display list; default 0).
+    memory: usize,
 }
 
-const VARS: [&str; 7] = [
+const VARS: [&str; 8] = [
     "FPT_BENCH_RAM_KIB",
     "FPT_BENCH_TREE",
     "FPT_BENCH_WIDTH",
@@ -40,6 +43,7 @@ const VARS: [&str; 7] = [
     "FPT_BENCH_BAND",
     "FPT_BENCH_PRECISION",
     "FPT_BENCH_FRAMES",
+    "FPT_BENCH_MEMORY",
 ];
 
 fn number(var: &str, default: u32) -> u32 {
@@ -71,6 +75,7 @@ impl BenchConfig {
             band: number("FPT_BENCH_BAND", 16),
             precision,
             frames: number("FPT_BENCH_FRAMES", 8).max(1),
+            memory: number("FPT_BENCH_MEMORY", 0) as usize,
         }
     }
 
@@ -104,6 +109,11 @@ impl BenchConfig {
              pub const WALK_DEPTH: usize = {depth};\n\
              /// The precision's name.\n\
              pub const PRECISION: &str = {pname:?};\n\
+             /// Words of working memory (vertex cache, display list).\n\
+             pub const MEMORY_WORDS: usize = {memory};\n\
+             /// Vertex capacity of the scratch: the tree's largest polygon\n\
+             /// twice, plus what clipping adds, at least 16.\n\
+             pub const VERTS: usize = {verts};\n\
              /// The vertex arithmetic.\n\
              pub type BenchPrecision = {ptype};\n",
             path = self.tree.display().to_string(),
@@ -112,6 +122,13 @@ impl BenchConfig {
             frames = self.frames,
             depth = tree.max_depth().max(1),
             pname = self.precision.name(),
+            memory = self.memory,
+            verts = (0..tree.polygon_count())
+                .filter_map(|i| tree.polygon(i))
+                .map(|p| 2 * p.vertex_count() + 8)
+                .max()
+                .unwrap_or(0)
+                .max(16),
             ptype = self.precision.type_path(),
         )
     }

@@ -45,18 +45,20 @@ use core::mem::MaybeUninit;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 
-use fpt_nostd::frames::orbit::{draw_band_frame, OrbitLine, MAX_VERTS};
+use fpt_nostd::frames::orbit::{draw_band_frame, OrbitLine};
 use fpt_nostd::frames::PixelCrc;
 use fpt_nostd::raster::{Camera, Mat4, Renderer, Scratch};
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{FaceIds, TreeRenderer};
 
 use clock::{now, Clock};
-use config::{BenchPrecision, BAND, BUF_WORDS, FRAMES, HEIGHT, WALK_DEPTH, WIDTH};
+use config::{
+    BenchPrecision, BAND, BUF_WORDS, FRAMES, HEIGHT, MEMORY_WORDS, VERTS, WALK_DEPTH, WIDTH,
+};
 use fail::fail;
 
 /// The renderer of the benchmark.
-type BenchRenderer = TreeRenderer<BenchPrecision, MAX_VERTS>;
+type BenchRenderer = TreeRenderer<BenchPrecision, VERTS>;
 
 /// The band (or frame) buffer, zeroed; call once.
 ///
@@ -74,6 +76,14 @@ fn buffer() -> &'static mut [u16] {
         core::ptr::write_bytes(p, 0, BUF_WORDS);
         core::slice::from_raw_parts_mut(p, BUF_WORDS)
     }
+}
+
+/// The frame's working memory (`FPT_BENCH_MEMORY` words); call once.
+fn memory() -> &'static mut [u32] {
+    static mut MEMORY: [u32; MEMORY_WORDS] = [0; MEMORY_WORDS];
+    // SAFETY: called once, from `main`; no other reference to MEMORY
+    // exists.
+    unsafe { &mut *core::ptr::addr_of_mut!(MEMORY) }
 }
 
 /// The renderer, built in place in a static (its scratch buffers are a
@@ -99,15 +109,20 @@ fn renderer() -> &'static mut BenchRenderer {
 /// Draws frame `i` and checksums it: the checksum and the ticks of the
 /// drawing alone (the checksumming of each band is taken out).
 #[inline(never)]
-fn frame(r: &mut BenchRenderer, tree: &Tree<'_>, i: u32, buf: &mut [u16]) -> (u32, u64) {
+fn frame(
+    r: &mut BenchRenderer,
+    tree: &Tree<'_>,
+    i: u32,
+    (buf, memory): (&mut [u16], &mut [u32]),
+) -> (u32, u64) {
     let mut crc = PixelCrc::new();
     let mut outside = 0;
     let t0 = now();
-    let drawn = draw_band_frame::<BenchPrecision, MAX_VERTS, WALK_DEPTH>(
+    let drawn = draw_band_frame::<BenchPrecision, VERTS, WALK_DEPTH>(
         r,
         tree,
         (i, FRAMES),
-        buf,
+        (buf, memory),
         BAND,
         |px| {
             let t = now();
@@ -150,8 +165,9 @@ fn main() -> ! {
     let init_peak = stack::peak();
     stack::paint();
     let buf = buffer();
+    let memory = memory();
     for i in 0..FRAMES {
-        let (crc, ticks) = frame(r, &tree, i, buf);
+        let (crc, ticks) = frame(r, &tree, i, (&mut *buf, &mut *memory));
         hprintln!(
             "{} instr={}",
             OrbitLine { frame: i, crc },

@@ -32,7 +32,10 @@ use embedded_graphics::pixelcolor::Rgb565;
 
 use super::PixelCrc;
 use crate::raster::framebuffer::Rgb565Format;
-use crate::raster::{FixedPrecision, FloatLibm, Libm, Light, Orbit, Precision, RenderStats};
+use crate::raster::{
+    FixedPrecision, FloatLibm, Framebuffer, IntPrecision, Libm, Light, Orbit, Precision,
+    RenderStats,
+};
 use crate::reader::Tree;
 use crate::render::{BandBuffer, Frame, RenderError, TreeRenderer};
 
@@ -88,6 +91,9 @@ pub enum OrbitPrecision {
     /// 16.16 fixed-point vertex path, 4 sub-pixel bits
     /// ([`FixedPrecision<4>`]).
     Fixed,
+    /// The integer path for cores without an FPU: 32-bit multiplies and
+    /// no division per vertex, 4 sub-pixel bits ([`IntPrecision<4>`]).
+    Int,
 }
 
 /// Something generic over the precision, for [`OrbitPrecision::visit`].
@@ -100,15 +106,20 @@ pub trait PrecisionVisitor {
 
 impl OrbitPrecision {
     /// Every precision, in the order of [`OrbitPrecision::NAMES`].
-    pub const ALL: [OrbitPrecision; 2] = [OrbitPrecision::F32Libm, OrbitPrecision::Fixed];
+    pub const ALL: [OrbitPrecision; 3] = [
+        OrbitPrecision::F32Libm,
+        OrbitPrecision::Fixed,
+        OrbitPrecision::Int,
+    ];
     /// Their names.
-    pub const NAMES: [&'static str; 2] = ["f32-libm", "fixed"];
+    pub const NAMES: [&'static str; 3] = ["f32-libm", "fixed", "int"];
 
     /// The name (`f32-libm`, `fixed`).
     pub fn name(self) -> &'static str {
         match self {
             OrbitPrecision::F32Libm => "f32-libm",
             OrbitPrecision::Fixed => "fixed",
+            OrbitPrecision::Int => "int",
         }
     }
 
@@ -123,6 +134,7 @@ impl OrbitPrecision {
         match self {
             OrbitPrecision::F32Libm => "fpt_nostd::raster::FloatLibm<4>",
             OrbitPrecision::Fixed => "fpt_nostd::raster::FixedPrecision<4>",
+            OrbitPrecision::Int => "fpt_nostd::raster::IntPrecision<4>",
         }
     }
 
@@ -131,6 +143,7 @@ impl OrbitPrecision {
         match self {
             OrbitPrecision::F32Libm => v.visit::<FloatLibm<4>>(),
             OrbitPrecision::Fixed => v.visit::<FixedPrecision<4>>(),
+            OrbitPrecision::Int => v.visit::<IntPrecision<4>>(),
         }
     }
 }
@@ -160,31 +173,41 @@ pub fn band_words(width: u32, height: u32, band: u32) -> usize {
 /// Draws frame `i` of `n` of `tree` into `r`'s viewport (its size is the
 /// display's) through `buf` (at least [`band_words`] words), `band` rows at
 /// a time (0: full frame), handing every finished band's pixels to `emit`
-/// top to bottom. The walk's stack holds `N` frames (at least the tree's
-/// `max_depth`). Returns the renderer's counters summed over the bands.
+/// top to bottom. `memory` is the frame's working memory (vertex cache and,
+/// for bands, display list: [`crate::render::memory_words`]; any length,
+/// the picture is the same). The walk's stack holds `N` frames (at least
+/// the tree's `max_depth`). Returns the renderer's counters.
 ///
 /// This is the one place that calls the renderer for the orbit frames.
 pub fn draw_band_frame<P: Precision, const V: usize, const N: usize>(
     r: &mut TreeRenderer<P, V>,
     tree: &Tree<'_>,
     (i, n): (u32, u32),
-    buf: &mut [u16],
+    (buf, memory): (&mut [u16], &mut [u32]),
     band: u32,
     mut emit: impl FnMut(&[u16]),
 ) -> Result<RenderStats, RenderError> {
     let vp = r.renderer.viewport();
     let (width, height) = (vp.width(), vp.height());
     let frame = frame(tree, i, n, width, height);
-    r.renderer.set_camera(&frame.camera);
     r.renderer
         .set_light(Light::new(frame.key_light(), AMBIENT, DIFFUSE));
-    r.renderer.reset_stats();
+    let rows = band_rows(band, height);
+    if rows >= height {
+        // A full frame: the vertex cache only (no display list to replay).
+        let mut fb =
+            Framebuffer::<Rgb565Format>::new(buf, width, height).map_err(RenderError::Band)?;
+        fb.fill_all(BACKGROUND);
+        let stats = r.render_cached::<_, N>(tree, &frame, memory, &mut fb)?;
+        emit(fb.data());
+        return Ok(stats);
+    }
     let band = BandBuffer::<Rgb565Format> {
         buf,
-        rows: band_rows(band, height),
+        rows,
         background: BACKGROUND,
     };
-    r.render_banded::<Rgb565Format, N>(tree, &frame, band, |_, fb| emit(fb.data()))
+    r.render_banded_in::<Rgb565Format, N>(tree, &frame, band, memory, |_, fb| emit(fb.data()))
 }
 
 /// The checksum of frame `i` of `n` (see [`draw_band_frame`]).
@@ -192,11 +215,11 @@ pub fn frame_crc<P: Precision, const V: usize, const N: usize>(
     r: &mut TreeRenderer<P, V>,
     tree: &Tree<'_>,
     (i, n): (u32, u32),
-    buf: &mut [u16],
+    bufs: (&mut [u16], &mut [u32]),
     band: u32,
 ) -> Result<u32, RenderError> {
     let mut crc = PixelCrc::new();
-    draw_band_frame::<P, V, N>(r, tree, (i, n), buf, band, |px| crc.update(px))?;
+    draw_band_frame::<P, V, N>(r, tree, (i, n), bufs, band, |px| crc.update(px))?;
     Ok(crc.finish())
 }
 

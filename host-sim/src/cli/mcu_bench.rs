@@ -84,6 +84,12 @@ pub struct McuBenchArgs {
     /// Clock in MHz for fps_at_clock [default: 168 on m4f, 64 on m0].
     #[arg(long)]
     pub clock: Option<f64>,
+    /// Words of working memory (vertex cache and display list; see the
+    /// README, "Working memory") [default: what a frame of the tree needs,
+    /// on m0 at most what the 16 KiB leave beside the band buffer, the
+    /// renderer and the stack].
+    #[arg(long)]
+    pub memory: Option<usize>,
 }
 
 /// An emulated microcontroller.
@@ -177,6 +183,8 @@ struct Bench {
     precision: OrbitPrecision,
     frames: u32,
     clock: f64,
+    /// Words of working memory; `None`: chosen from the tree.
+    memory: Option<usize>,
 }
 
 impl Bench {
@@ -196,6 +204,7 @@ impl Bench {
             precision,
             frames: a.frames,
             clock,
+            memory: a.memory,
         })
     }
 }
@@ -216,13 +225,16 @@ impl PrecisionVisitor for HostCrcs<'_> {
         let mut r = TreeRenderer::<P, MAX_VERTS>::new(w, h)
             .ok_or_else(|| cli_err!("the renderer cannot draw {w}x{h}"))?;
         let mut buf = vec![0u16; band_words(w, h, self.band)];
+        // The host draws with all the memory a frame needs (the picture
+        // does not depend on it).
+        let mut memory = vec![0u32; fpt_nostd::render::memory_words(self.tree)];
         (0..self.frames)
             .map(|i| {
                 frame_crc::<P, MAX_VERTS, HOST_DEPTH>(
                     &mut r,
                     self.tree,
                     (i, self.frames),
-                    &mut buf,
+                    (&mut buf, &mut memory),
                     self.band,
                 )
                 .map_err(|e| cli_err!("host frame {i}: {e}"))
@@ -378,6 +390,7 @@ fn build_firmware(b: &Bench, tree_name: &str, measure: bool) -> Result<PathBuf, 
         .env("FPT_BENCH_BAND", b.band.to_string())
         .env("FPT_BENCH_PRECISION", b.precision.name())
         .env("FPT_BENCH_FRAMES", b.frames.to_string())
+        .env("FPT_BENCH_MEMORY", b.memory.unwrap_or(0).to_string())
         // The firmware's own target and linker flags must apply.
         .env_remove("CARGO_BUILD_TARGET")
         .env_remove("CARGO_ENCODED_RUSTFLAGS")
@@ -484,12 +497,34 @@ fn parse_run(out: &str) -> Run {
     run
 }
 
+/// The working memory a run gets unless `--memory` says: what a frame of
+/// `tree` needs ([`fpt_nostd::render::memory_words`]), on the Cortex-M0 at
+/// most what its RAM leaves beside the band buffer, the renderer's scratch
+/// (as `build.rs` sizes it: 106 B a vertex) and 5 KiB for the stack and
+/// the other statics.
+fn default_memory(b: &Bench, tree: &Tree<'_>) -> usize {
+    let need = fpt_nostd::render::memory_words(tree);
+    if b.cpu != Cpu::M0 {
+        return need;
+    }
+    let verts = (0..tree.polygon_count())
+        .filter_map(|i| tree.polygon(i))
+        .map(|p| 2 * p.vertex_count() + 8)
+        .max()
+        .unwrap_or(0)
+        .max(16);
+    let band = 2 * band_words(b.size.0, b.size.1, b.band);
+    let left = (b.cpu.ram() as usize).saturating_sub(band + 106 * verts + 5 * 1024);
+    need.min(left / 4)
+}
+
 /// Runs `fpt mcu-bench`.
 pub fn run(a: &McuBenchArgs) -> CliResult {
-    let b = Bench::from_args(a)?;
+    let mut b = Bench::from_args(a)?;
     let bytes =
         std::fs::read(&b.tree).map_err(|e| cli_err!("reading {}: {e}", b.tree.display()))?;
     let tree = Tree::from_bytes(&bytes).map_err(|e| cli_err!("{}: {e}", b.tree.display()))?;
+    b.memory = Some(b.memory.unwrap_or_else(|| default_memory(&b, &tree)));
     let name = b
         .tree
         .file_stem()
@@ -653,6 +688,8 @@ fn measure(b: &Bench, name: &str, elf: &Path, host: &[u32], tree: &Tree<'_>) -> 
         "band_rows": band_rows(b.band, b.size.1),
         "precision": b.precision.name(),
         "frames": b.frames,
+        "memory_words": b.memory.unwrap_or(0),
+        "memory_needed": fpt_nostd::render::memory_words(tree),
         "instr_median": median,
         "instr_min": instr[0],
         "instr_max": instr[instr.len() - 1],
