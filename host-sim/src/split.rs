@@ -7,8 +7,21 @@
 //! plane, source face and colour, so pieces of one face stay exactly coplanar.
 //!
 //! Vertices within the tolerance of the cutting plane are "on" it (the very
-//! test the builder classifies with) and are snapped onto it, so that no
-//! piece is thinner than the tolerance: no slivers, no zero-area fragments.
+//! test the builder classifies with): the cut passes through them, so that
+//! no piece is thinner than the tolerance (no slivers, no zero-area
+//! fragments). They keep their position, and a crossing of an edge is the
+//! point interpolated on that edge. Nothing moves a vertex, because moving
+//! one would break the tiling: snapping an "on" vertex onto the line where
+//! the two planes meet, within the polygon's plane, moves it by
+//! `distance / sin(angle between the planes)`, which grows without bound as
+//! the planes become parallel (1.7e-3, ten thousand tolerances, on a
+//! curved face of `fandisk.obj`) and leaves the vertex on none of the
+//! polygon's edges, so the pieces no longer cover the polygon and the
+//! neighbouring face, which keeps the vertex, shows a pinhole between them.
+//! Unmoved, a piece's vertices are source vertices, points on its parent's
+//! edges or points on a cut (each within the tolerance of its plane, all
+//! that classification needs), and a neighbouring face cut by the same
+//! plane gets the very same crossing on their shared edge.
 //!
 //! How: a concave polygon may cross the cutting line many times. The
 //! crossings, sorted along the line, pair up into the segments of the line
@@ -65,31 +78,23 @@ pub fn split(poly: &Polygon, plane: &crate::geom::Plane, tol: Tolerance) -> Piec
     let n = poly.verts.len();
     let mut dist: Vec<f64> = Vec::with_capacity(n);
     let mut verts: Vec<DVec3> = Vec::with_capacity(n);
-    // In-plane direction along which the cutting plane's distance grows
-    // fastest: moving a vertex along it keeps the vertex in its own plane.
-    let u = plane.normal - poly.plane.normal * plane.normal.dot(poly.plane.normal);
-    let u2 = u.length_squared();
     let (mut any_front, mut any_back) = (false, false);
     for &v in &poly.verts {
         let d = plane.distance(v);
-        match plane.side_of(v, tol) {
+        verts.push(v);
+        // A vertex within the tolerance is on the plane: distance 0 makes
+        // the cut pass through it, where it is (see the module docs).
+        dist.push(match plane.side_of(v, tol) {
             PointSide::Front => {
                 any_front = true;
-                verts.push(v);
-                dist.push(d);
+                d
             }
             PointSide::Back => {
                 any_back = true;
-                verts.push(v);
-                dist.push(d);
+                d
             }
-            PointSide::On => {
-                // Snap onto the line where the two planes meet.
-                let snapped = if u2 > 1e-12 { v - u * (d / u2) } else { v };
-                verts.push(snapped);
-                dist.push(0.0);
-            }
-        }
+            PointSide::On => 0.0,
+        });
     }
     if !any_back {
         return Pieces {
@@ -104,23 +109,16 @@ pub fn split(poly: &Polygon, plane: &crate::geom::Plane, tol: Tolerance) -> Piec
         };
     }
     // Direction of the cutting line within the polygon's plane.
-    let dir = poly.plane.normal.cross(u).normalize_or_zero();
-    let snap = |p: DVec3| {
-        if u2 > 1e-12 {
-            p - u * (plane.distance(p) / u2)
-        } else {
-            p
-        }
-    };
+    let dir = poly.plane.normal.cross(plane.normal).normalize_or_zero();
     // Front pieces with on-plane vertices perturbed to the back, back pieces
     // with them perturbed to the front: either way the traced side never
     // touches itself at such a vertex.
     let front = {
-        let b = Boundary::new(&verts, &dist, false, dir, snap);
+        let b = Boundary::new(&verts, &dist, false, dir);
         b.trace(true, poly, tol)
     };
     let back = {
-        let b = Boundary::new(&verts, &dist, true, dir, snap);
+        let b = Boundary::new(&verts, &dist, true, dir);
         b.trace(false, poly, tol)
     };
     Pieces { front, back }
@@ -141,7 +139,6 @@ impl Boundary {
         dist: &[f64],
         on_front: bool,
         dir: DVec3,
-        snap: impl Fn(DVec3) -> DVec3,
     ) -> Boundary {
         let n = verts.len();
         let is_front = |d: f64| if on_front { d >= 0.0 } else { d > 0.0 };
@@ -165,8 +162,9 @@ impl Boundary {
                 } else if df == 0.0 {
                     f
                 } else {
-                    // Interpolate from the front end, then snap onto the line.
-                    snap(f + (g - f) * (df / (df - dg)))
+                    // Interpolated from the front end: a point of the edge,
+                    // the same for both faces that share it.
+                    f + (g - f) * (df / (df - dg))
                 };
                 // The crossing of the plane at d = ±δ lies at
                 // f + (df ∓ δ)/(df − dg)·(g − f): its motion along the line.
@@ -363,6 +361,60 @@ mod tests {
         assert_eq!(p.front.len(), 1);
         assert_eq!(p.back.len(), 2);
         assert!((total(&p.front) + total(&p.back) - area(&w.verts)).abs() < 1e-9);
+    }
+
+    /// Distance from `p` to the segment `a b`.
+    fn seg_distance(a: DVec3, b: DVec3, p: DVec3) -> f64 {
+        let ab = b - a;
+        let t = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+        (a + ab * t - p).length()
+    }
+
+    /// Whether `p` is within `eps` of an edge of `poly`, or inside it on
+    /// the line where `plane` meets the polygon's plane: the only places a
+    /// piece vertex may come from. (On the line but outside the parent is
+    /// not enough: moving a vertex along the cut can keep the area.)
+    fn from_parent_or_cut(poly: &Polygon, plane: &Plane, p: DVec3, eps: f64) -> bool {
+        let n = poly.verts.len();
+        let on_edge = (0..n).any(|i| seg_distance(poly.verts[i], poly.verts[(i + 1) % n], p) <= eps);
+        let on_cut = plane.distance(p).abs() <= 1e-12 && poly.plane.distance(p).abs() <= 1e-12;
+        on_edge || (on_cut && contains(&poly.verts, p))
+    }
+
+    #[test]
+    fn nearly_parallel_cut_keeps_on_vertices_in_place() {
+        // Fandisk face 2893: a cutting plane 8e-5 rad from the triangle's
+        // own plane passes within the tolerance of one vertex. Snapping
+        // that vertex onto the line where the two planes meet moved it
+        // d / sin(angle) = 1e-3 along the triangle's plane, off every edge,
+        // and left part of the triangle uncovered next to its neighbour.
+        let tri = poly(&[(0.0, 0.0), (1.0, 0.0), (0.3, 1.0)]);
+        let tol = Tolerance(1e-7);
+        let angle: f64 = 8e-5;
+        // Plane tilted by `angle` about a line parallel to y, shifted so that
+        // the apex (0.3, 1) is 0.8·tol in front of it (on, within the
+        // tolerance), (1, 0) in front and (0, 0) behind.
+        let normal = DVec3::new(angle.sin(), 0.0, angle.cos());
+        let apex = DVec3::new(0.3, 1.0, 0.0);
+        let plane = Plane {
+            normal,
+            d: 0.8 * tol.0 - normal.dot(apex),
+        };
+        assert_eq!(plane.side_of(apex, tol), PointSide::On);
+        assert_eq!(plane.relation(&tri.verts, tol), Relation::Cut);
+        let pieces = split(&tri, &plane, tol);
+        let all: Vec<&Polygon> = pieces.front.iter().chain(&pieces.back).collect();
+        assert!(!pieces.front.is_empty() && !pieces.back.is_empty());
+        for p in &all {
+            for &v in &p.verts {
+                assert!(
+                    from_parent_or_cut(&tri, &plane, v, tol.0),
+                    "piece vertex {v} is on no edge of the parent nor on the cut"
+                );
+            }
+        }
+        let sum: f64 = all.iter().map(|p| area(&p.verts)).sum();
+        assert!((sum - area(&tri.verts)).abs() < 1e-9, "{sum} vs {}", area(&tri.verts));
     }
 
     /// A random star-shaped (so simple, often concave) polygon.
