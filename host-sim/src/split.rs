@@ -27,12 +27,12 @@
 //! crossings, sorted along the line, pair up into the segments of the line
 //! that lie inside the polygon (Jordan). A piece is traced along the boundary
 //! on its side; where the boundary leaves that side, the piece follows the
-//! inside segment to its other end and goes on from there. Vertices exactly
-//! on the line are resolved by symbolic perturbation: they count as lying
-//! behind it (as if the plane were moved forward by an infinitesimal δ), which
-//! makes every crossing transversal; coinciding crossings are ordered by where
-//! they would move under that δ. Fragments of zero area that the perturbation
-//! creates on the back side are dropped.
+//! inside segment to its other end and goes on from there. Vertices on the
+//! plane are resolved by symbolic perturbation (see [`sides`]): each counts
+//! as lying on one side (as if the plane were moved by an infinitesimal δ),
+//! which makes every crossing transversal; coinciding crossings are ordered
+//! by where they would move under that δ. Fragments of zero area that the
+//! perturbation creates are dropped.
 
 use crate::geom::{PointSide, Polygon, Tolerance};
 use glam::DVec3;
@@ -110,18 +110,57 @@ pub fn split(poly: &Polygon, plane: &crate::geom::Plane, tol: Tolerance) -> Piec
     }
     // Direction of the cutting line within the polygon's plane.
     let dir = poly.plane.normal.cross(plane.normal).normalize_or_zero();
-    // Front pieces with on-plane vertices perturbed to the back, back pieces
-    // with them perturbed to the front: either way the traced side never
-    // touches itself at such a vertex.
     let front = {
-        let b = Boundary::new(&verts, &dist, false, dir);
+        let b = Boundary::new(&verts, &dist, &sides(&dist, true), false, dir);
         b.trace(true, poly, tol)
     };
     let back = {
-        let b = Boundary::new(&verts, &dist, true, dir);
+        let b = Boundary::new(&verts, &dist, &sides(&dist, false), true, dir);
         b.trace(false, poly, tol)
     };
     Pieces { front, back }
+}
+
+/// Which vertices count as front when the pieces on one side are traced
+/// (`front_trace`), given the distances with the "on" vertices at 0.
+///
+/// A run of on vertices where the boundary only touches the plane (a front
+/// or a back vertex on both ends) counts as the other side: moving the
+/// plane by an infinitesimal δ that way, the traced side never touches
+/// itself there (front pieces see the plane moved forward, back pieces
+/// moved back). A run where the boundary goes through (a front vertex on
+/// one end, a back vertex on the other) counts as front for both traces:
+/// its vertices keep their positions, so they are not collinear, and the
+/// two sides must cut it at the same vertex (the one next to the back
+/// vertex), or the wedge between their two cuts would belong to neither.
+fn sides(dist: &[f64], front_trace: bool) -> Vec<bool> {
+    let n = dist.len();
+    let mut out: Vec<bool> = dist.iter().map(|&d| d > 0.0).collect();
+    // Start right after a vertex off the plane, so that every run of on
+    // vertices is met whole.
+    let Some(start) = dist.iter().position(|&d| d != 0.0) else {
+        return out;
+    };
+    let mut k = 1;
+    while k <= n {
+        let i = (start + k) % n;
+        if dist[i] != 0.0 {
+            k += 1;
+            continue;
+        }
+        let before = dist[(start + k - 1) % n] > 0.0;
+        let mut len = 0;
+        while dist[(start + k + len) % n] == 0.0 {
+            len += 1;
+        }
+        let after = dist[(start + k + len) % n] > 0.0;
+        let front = if before == after { !front_trace } else { true };
+        for m in 0..len {
+            out[(start + k + m) % n] = front;
+        }
+        k += len;
+    }
+    out
 }
 
 /// The boundary with its crossings inserted and paired, for one perturbation.
@@ -132,23 +171,24 @@ struct Boundary {
 }
 
 impl Boundary {
-    /// `on_front`: whether vertices on the plane count as front (the plane
-    /// moved back by δ) or as back (moved forward by δ).
+    /// `front[i]`: whether vertex `i` counts as front (see [`sides`]);
+    /// `on_front`: the direction of the perturbation where a crossing has
+    /// no vertex on the plane (the plane moved back by δ, or forward).
     fn new(
         verts: &[DVec3],
         dist: &[f64],
+        front: &[bool],
         on_front: bool,
         dir: DVec3,
     ) -> Boundary {
         let n = verts.len();
-        let is_front = |d: f64| if on_front { d >= 0.0 } else { d > 0.0 };
         let mut nodes: Vec<Node> = Vec::with_capacity(n + 8);
         let mut crossings: Vec<Crossing> = Vec::new();
         for i in 0..n {
             let j = (i + 1) % n;
             let (a, b) = (verts[i], verts[j]);
             let (da, db) = (dist[i], dist[j]);
-            let (fa, fb) = (is_front(da), is_front(db));
+            let (fa, fb) = (front[i], front[j]);
             nodes.push(Node {
                 pos: a,
                 front: fa,
@@ -157,21 +197,27 @@ impl Boundary {
             if fa != fb {
                 // f: the front end, g: the back end.
                 let (f, df, g, dg) = if fa { (a, da, b, db) } else { (b, db, a, da) };
-                let pos = if dg == 0.0 {
-                    g
+                // Where an end is on the plane, the way it was perturbed.
+                let (front_g, front_f) = if fa { (fb, fa) } else { (fa, fb) };
+                let (pos, moved_back) = if dg == 0.0 {
+                    (g, front_g)
                 } else if df == 0.0 {
-                    f
+                    (f, front_f)
                 } else {
-                    // Interpolated from the front end: a point of the edge,
-                    // the same for both faces that share it.
-                    f + (g - f) * (df / (df - dg))
+                    (
+                        // Interpolated from the front end: a point of the
+                        // edge, the same for both faces that share it.
+                        f + (g - f) * (df / (df - dg)),
+                        on_front,
+                    )
                 };
+
                 // The crossing of the plane at d = ±δ lies at
                 // f + (df ∓ δ)/(df − dg)·(g − f): its motion along the line.
                 let motion = (g - f).dot(dir) / (df - dg);
                 crossings.push(Crossing {
                     t: pos.dot(dir),
-                    dt: if on_front { motion } else { -motion },
+                    dt: if moved_back { motion } else { -motion },
                     node: nodes.len(),
                     leaving_front: fa,
                 });
@@ -208,8 +254,8 @@ impl Boundary {
         let m = nodes.len();
         let mut used = vec![false; m];
         let mut pieces = Vec::new();
-        // A side's pieces start at its original vertices; a vertex exactly on the
-        // plane counts as back, so the back side may start there too.
+        // A side's pieces start at its original vertices (including those on
+        // the plane that count as that side).
         for start in 0..m {
             if used[start] || nodes[start].crossing.is_some() || nodes[start].front != front {
                 continue;
@@ -415,6 +461,41 @@ mod tests {
         }
         let sum: f64 = all.iter().map(|p| area(&p.verts)).sum();
         assert!((sum - area(&tri.verts)).abs() < 1e-9, "{sum} vs {}", area(&tri.verts));
+    }
+
+    #[test]
+    fn run_of_on_vertices_is_cut_at_one_vertex_by_both_sides() {
+        // A quad whose two top vertices are both within the tolerance of a
+        // nearly parallel cut, on either side of it and not collinear with
+        // the crossing on the left edge. The front side used to cut the run
+        // at its first vertex and the back side at its last, so the wedge
+        // between the two cuts belonged to neither.
+        let q = poly(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.9, 1.0)]);
+        let tol = Tolerance(1e-7);
+        // Distance 1e-6·x − 4.5e-7·y − 5e-7 (a plane 1e-6 rad from the
+        // quad's): (1, 1) at +0.5·tol and (0.9, 1) at −0.5·tol are on,
+        // (1, 0) is in front, (0, 0) behind; the cut crosses the bottom
+        // edge at x = 0.5.
+        let (a, b, c) = (1e-6, -4.5e-7, -5e-7);
+        let len = DVec3::new(a, b, 1.0).length();
+        let plane = Plane {
+            normal: DVec3::new(a, b, 1.0) / len,
+            d: c / len,
+        };
+        for (x, y) in [(1.0, 1.0), (0.9, 1.0)] {
+            assert_eq!(plane.side_of(DVec3::new(x, y, 0.0), tol), PointSide::On);
+        }
+        let pieces = split(&q, &plane, tol);
+        assert!(!pieces.front.is_empty() && !pieces.back.is_empty());
+        let all: Vec<&Polygon> = pieces.front.iter().chain(&pieces.back).collect();
+        let sum: f64 = all.iter().map(|p| area(&p.verts)).sum();
+        let want = area(&q.verts);
+        assert!((sum - want).abs() < 1e-12, "pieces cover {sum} of {want}");
+        for p in &all {
+            for &v in &p.verts {
+                assert!(from_parent_or_cut(&q, &plane, v, tol.0), "{v}");
+            }
+        }
     }
 
     /// A random star-shaped (so simple, often concave) polygon.
