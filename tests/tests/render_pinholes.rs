@@ -14,6 +14,15 @@
 //! where such pinholes sit (fandisk.obj showed 19–39 per 800×600 view,
 //! along the edge between two curved faces, when a split moved a vertex).
 //!
+//! One kind of background pixel inside the silhouette is not the
+//! builder's: a sample within the rounding displacement of a *silhouette*
+//! edge of the input (one whose neighbour across faces away, like the rim
+//! of a hole seen at a slant), where a sub-pixel gap between the rim and
+//! what lies behind it opens onto the background. Vertex snapping decides
+//! those whatever the tree, so such a pixel counts as a pinhole only when
+//! [`render_common::is_crack`] finds every edge near its sample shared with
+//! a drawn neighbour (an inner edge); the others are counted and printed.
+//!
 //! Each model is drawn from 20 views around it (alternately parallel and
 //! perspective, directions spread evenly over the sphere) at 320×240,
 //! 800×600 and 1024×768, from its static tree and its BSP tree, on two
@@ -31,7 +40,8 @@ use host_sim::geom::{bounds, Polygon};
 use host_sim::reference::{zbuffer_ids, Camera, Projection};
 use host_sim::serialize::{serialize, SerializeOptions};
 use host_sim::tree::Method;
-use render_common::{frame, render_polygon_ids};
+use fpt_nostd::raster::Precision;
+use render_common::{frame, is_crack, render_polygon_ids};
 use std::sync::Mutex;
 
 /// The closed shared models (see `../shared/models/README.md`; the loader
@@ -91,25 +101,25 @@ fn cameras(polys: &[Polygon], n: usize, aspect: f64) -> Vec<Camera> {
         .collect()
 }
 
-/// Pinholes of one picture: background in `ours` where `reference`
-/// covers the pixel and its eight neighbours. Returns the count and the
-/// first one.
-fn pinholes(reference: &[u32], ours: &[u32], w: usize, h: usize) -> (usize, Option<(usize, usize)>) {
-    let (mut count, mut first) = (0, None);
+/// The crack test's radius in pixels: the largest edge displacement by
+/// vertex snapping (half a sub-pixel step per axis), with a margin.
+const RHO: f64 = 0.05 + 0.75 / (1u32 << DefaultPrecision::SUB_BITS) as f64;
+
+/// Background pixels of `ours` where `reference` covers the pixel and its
+/// eight neighbours.
+fn background_inside(reference: &[u32], ours: &[u32], w: usize, h: usize) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
     for j in 1..h.saturating_sub(1) {
         for i in 1..w.saturating_sub(1) {
             if ours[j * w + i] != 0 {
                 continue;
             }
-            let inside = (j - 1..=j + 1)
-                .all(|y| (i - 1..=i + 1).all(|x| reference[y * w + x] != 0));
-            if inside {
-                count += 1;
-                first.get_or_insert((i, j));
+            if (j - 1..=j + 1).all(|y| (i - 1..=i + 1).all(|x| reference[y * w + x] != 0)) {
+                out.push((i, j));
             }
         }
     }
-    (count, first)
+    out
 }
 
 /// One model: its trees (`methods`) drawn from every view at every size.
@@ -130,6 +140,7 @@ fn check(file: &str, methods: &[Method]) -> Vec<String> {
         .collect();
     let mut failures = Vec::new();
     let mut totals = vec![0usize; trees.len()];
+    let mut at_silhouettes = vec![0usize; trees.len()];
     let mut covered = 0usize;
     for &(w, h) in &SIZES {
         for (k, cam) in cameras(&m.polygons, VIEWS, w as f64 / h as f64)
@@ -141,12 +152,16 @@ fn check(file: &str, methods: &[Method]) -> Vec<String> {
             for (t, (method, bytes)) in trees.iter().enumerate() {
                 let tree = Tree::from_bytes(bytes).expect("tree");
                 let ours = render_polygon_ids::<DefaultPrecision>(&tree, &frame(&tree, cam), w, h);
-                let (n, first) = pinholes(&reference, &ours, w, h);
-                totals[t] += n;
-                if let Some((i, j)) = first {
+                let (holes, rim): (Vec<_>, Vec<_>) = background_inside(&reference, &ours, w, h)
+                    .into_iter()
+                    .partition(|&px| is_crack(&m.polygons, true, cam, w, h, px, RHO));
+                totals[t] += holes.len();
+                at_silhouettes[t] += rim.len();
+                if let Some((i, j)) = holes.first() {
                     failures.push(format!(
-                        "{file} {} {w}x{h} view {k}: {n} pinholes, first at ({i}, {j})",
-                        method.name()
+                        "{file} {} {w}x{h} view {k}: {} pinholes, first at ({i}, {j})",
+                        method.name(),
+                        holes.len()
                     ));
                 }
             }
@@ -154,8 +169,8 @@ fn check(file: &str, methods: &[Method]) -> Vec<String> {
     }
     let counts: Vec<String> = trees
         .iter()
-        .zip(&totals)
-        .map(|((method, _), n)| format!("{} {n}", method.name()))
+        .zip(totals.iter().zip(&at_silhouettes))
+        .map(|((method, _), (n, r))| format!("{} {n} (+{r} at silhouettes)", method.name()))
         .collect();
     println!(
         "{file}: {} views x {} sizes, {covered} px covered; pinholes: {}; {:.1} s",
@@ -215,15 +230,15 @@ fn slow_static_trees_show_no_pinholes() {
 }
 
 #[test]
-fn pinholes_are_background_inside_the_reference_only() {
+fn background_inside_needs_the_pixel_and_its_neighbours_covered() {
     // 5×4 picture: the reference covers all but the right column.
     let (w, h) = (5, 4);
     let reference: Vec<u32> = (0..w * h).map(|p| u32::from(p % w != 4)).collect();
     let mut ours = vec![7u32; w * h];
-    assert_eq!(pinholes(&reference, &ours, w, h), (0, None));
-    // Background at (1, 1): all eight neighbours covered, a pinhole. At
-    // (3, 2): its right neighbours are outside the silhouette, not one.
+    assert!(background_inside(&reference, &ours, w, h).is_empty());
+    // Background at (1, 1): all eight neighbours covered. At (3, 2): its
+    // right neighbours are outside the silhouette.
     ours[w + 1] = 0;
     ours[2 * w + 3] = 0;
-    assert_eq!(pinholes(&reference, &ours, w, h), (1, Some((1, 1))));
+    assert_eq!(background_inside(&reference, &ours, w, h), vec![(1, 1)]);
 }
