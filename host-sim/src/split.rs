@@ -174,13 +174,7 @@ impl Boundary {
     /// `front[i]`: whether vertex `i` counts as front (see [`sides`]);
     /// `on_front`: the direction of the perturbation where a crossing has
     /// no vertex on the plane (the plane moved back by δ, or forward).
-    fn new(
-        verts: &[DVec3],
-        dist: &[f64],
-        front: &[bool],
-        on_front: bool,
-        dir: DVec3,
-    ) -> Boundary {
+    fn new(verts: &[DVec3], dist: &[f64], front: &[bool], on_front: bool, dir: DVec3) -> Boundary {
         let n = verts.len();
         let mut nodes: Vec<Node> = Vec::with_capacity(n + 8);
         let mut crossings: Vec<Crossing> = Vec::new();
@@ -422,7 +416,8 @@ mod tests {
     /// not enough: moving a vertex along the cut can keep the area.)
     fn from_parent_or_cut(poly: &Polygon, plane: &Plane, p: DVec3, eps: f64) -> bool {
         let n = poly.verts.len();
-        let on_edge = (0..n).any(|i| seg_distance(poly.verts[i], poly.verts[(i + 1) % n], p) <= eps);
+        let on_edge =
+            (0..n).any(|i| seg_distance(poly.verts[i], poly.verts[(i + 1) % n], p) <= eps);
         let on_cut = plane.distance(p).abs() <= 1e-12 && poly.plane.distance(p).abs() <= 1e-12;
         on_edge || (on_cut && contains(&poly.verts, p))
     }
@@ -460,7 +455,11 @@ mod tests {
             }
         }
         let sum: f64 = all.iter().map(|p| area(&p.verts)).sum();
-        assert!((sum - area(&tri.verts)).abs() < 1e-9, "{sum} vs {}", area(&tri.verts));
+        assert!(
+            (sum - area(&tri.verts)).abs() < 1e-9,
+            "{sum} vs {}",
+            area(&tri.verts)
+        );
     }
 
     #[test]

@@ -32,6 +32,7 @@
 mod render_common;
 
 use fpt_nostd::raster::DefaultPrecision;
+use fpt_nostd::raster::Precision;
 use fpt_nostd::reader::Tree;
 use fpt_tests::shared_mesh;
 use glam::DVec3;
@@ -40,7 +41,6 @@ use host_sim::geom::{bounds, Polygon};
 use host_sim::reference::{zbuffer_ids, Camera, Projection};
 use host_sim::serialize::{serialize, SerializeOptions};
 use host_sim::tree::Method;
-use fpt_nostd::raster::Precision;
 use render_common::{frame, is_crack, render_polygon_ids};
 use std::sync::Mutex;
 
@@ -81,7 +81,11 @@ fn cameras(polys: &[Polygon], n: usize, aspect: f64) -> Vec<Camera> {
             let a = golden * k as f64 + 0.3;
             let dir = DVec3::new(s * a.cos(), s * a.sin(), z);
             // Up: any axis far from the view direction.
-            let up = if dir.y.abs() < 0.9 { DVec3::Y } else { DVec3::X };
+            let up = if dir.y.abs() < 0.9 {
+                DVec3::Y
+            } else {
+                DVec3::X
+            };
             let projection = if k % 2 == 0 {
                 Projection::Parallel {
                     half_height: 1.05 * r,
@@ -202,7 +206,12 @@ fn run(jobs: Vec<(&'static str, Vec<Method>)>) {
         failures.is_empty(),
         "{} views with pinholes:\n{}",
         failures.len(),
-        failures.iter().take(20).cloned().collect::<Vec<_>>().join("\n")
+        failures
+            .iter()
+            .take(20)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join("\n")
     );
 }
 

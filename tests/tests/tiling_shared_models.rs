@@ -104,7 +104,11 @@ fn run(jobs: Vec<(&'static str, Method)>) {
         }
     });
     let failures = failures.into_inner().expect("failures");
-    assert!(failures.is_empty(), "tiling broken:\n{}", failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "tiling broken:\n{}",
+        failures.join("\n")
+    );
 }
 
 #[test]
