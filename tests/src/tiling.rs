@@ -218,18 +218,22 @@ mod tests {
         // Cut through the apex and the middle of the base.
         let left = tri([[0.0, 0.0], [0.5, 0.0], [0.3, 1.0]], 4);
         let right = tri([[0.5, 0.0], [1.0, 0.0], [0.3, 1.0]], 4);
-        let ok = check_tiling(&[face.clone()], &[left.clone(), right.clone()], 1e-9);
+        let ok = check_tiling(
+            std::slice::from_ref(&face),
+            &[left.clone(), right.clone()],
+            1e-9,
+        );
         assert_eq!((ok.faces, ok.failed), (1, 0), "{:?}", ok.failures);
         // The apex moved along the base's direction (a shear: same area).
         let sheared = [
             tri([[0.0, 0.0], [0.5, 0.0], [0.299, 1.0]], 4),
             tri([[0.5, 0.0], [1.0, 0.0], [0.299, 1.0]], 4),
         ];
-        let bad = check_tiling(&[face.clone()], &sheared, 1e-9);
+        let bad = check_tiling(std::slice::from_ref(&face), &sheared, 1e-9);
         assert_eq!(bad.failed, 1);
         assert!(bad.failures[0].contains("outside"), "{:?}", bad.failures);
         // A piece lost.
-        let lost = check_tiling(&[face.clone()], &[left], 1e-9);
+        let lost = check_tiling(std::slice::from_ref(&face), &[left], 1e-9);
         assert!(lost.failures[0].contains("area"), "{:?}", lost.failures);
         // A piece of a face that was not in the input.
         let stray = tri([[0.5, 0.0], [1.0, 0.0], [0.3, 1.0]], 9);
