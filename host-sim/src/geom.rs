@@ -3,7 +3,7 @@
 //! Contract: every classification of a point against a plane in the builder
 //! goes through [`Plane::side_of`] with the model's [`Tolerance`]; splitting
 //! uses the very same test, so a vertex within tolerance of a plane is "on" it
-//! for both, and is snapped onto the plane when a polygon is split. Planes are
+//! for both, and a split passes through it without moving it. Planes are
 //! computed with Newell's method over all vertices, never from three of them.
 
 use glam::DVec3;

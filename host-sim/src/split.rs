@@ -7,19 +7,32 @@
 //! plane, source face and colour, so pieces of one face stay exactly coplanar.
 //!
 //! Vertices within the tolerance of the cutting plane are "on" it (the very
-//! test the builder classifies with) and are snapped onto it, so that no
-//! piece is thinner than the tolerance: no slivers, no zero-area fragments.
+//! test the builder classifies with): the cut passes through them, so that
+//! no piece is thinner than the tolerance (no slivers, no zero-area
+//! fragments). They keep their position, and a crossing of an edge is the
+//! point interpolated on that edge. Nothing moves a vertex, because moving
+//! one would break the tiling: snapping an "on" vertex onto the line where
+//! the two planes meet, within the polygon's plane, moves it by
+//! `distance / sin(angle between the planes)`, which grows without bound as
+//! the planes become parallel (1.7e-3, ten thousand tolerances, on a
+//! curved face of `fandisk.obj`) and leaves the vertex on none of the
+//! polygon's edges, so the pieces no longer cover the polygon and the
+//! neighbouring face, which keeps the vertex, shows a pinhole between them.
+//! Unmoved, a piece's vertices are source vertices, points on its parent's
+//! edges or points on a cut (each within the tolerance of its plane, all
+//! that classification needs), and a neighbouring face cut by the same
+//! plane gets the very same crossing on their shared edge.
 //!
 //! How: a concave polygon may cross the cutting line many times. The
 //! crossings, sorted along the line, pair up into the segments of the line
 //! that lie inside the polygon (Jordan). A piece is traced along the boundary
 //! on its side; where the boundary leaves that side, the piece follows the
-//! inside segment to its other end and goes on from there. Vertices exactly
-//! on the line are resolved by symbolic perturbation: they count as lying
-//! behind it (as if the plane were moved forward by an infinitesimal δ), which
-//! makes every crossing transversal; coinciding crossings are ordered by where
-//! they would move under that δ. Fragments of zero area that the perturbation
-//! creates on the back side are dropped.
+//! inside segment to its other end and goes on from there. Vertices on the
+//! plane are resolved by symbolic perturbation (see [`sides`]): each counts
+//! as lying on one side (as if the plane were moved by an infinitesimal δ),
+//! which makes every crossing transversal; coinciding crossings are ordered
+//! by where they would move under that δ. Fragments of zero area that the
+//! perturbation creates are dropped.
 
 use crate::geom::{PointSide, Polygon, Tolerance};
 use glam::DVec3;
@@ -65,31 +78,23 @@ pub fn split(poly: &Polygon, plane: &crate::geom::Plane, tol: Tolerance) -> Piec
     let n = poly.verts.len();
     let mut dist: Vec<f64> = Vec::with_capacity(n);
     let mut verts: Vec<DVec3> = Vec::with_capacity(n);
-    // In-plane direction along which the cutting plane's distance grows
-    // fastest: moving a vertex along it keeps the vertex in its own plane.
-    let u = plane.normal - poly.plane.normal * plane.normal.dot(poly.plane.normal);
-    let u2 = u.length_squared();
     let (mut any_front, mut any_back) = (false, false);
     for &v in &poly.verts {
         let d = plane.distance(v);
-        match plane.side_of(v, tol) {
+        verts.push(v);
+        // A vertex within the tolerance is on the plane: distance 0 makes
+        // the cut pass through it, where it is (see the module docs).
+        dist.push(match plane.side_of(v, tol) {
             PointSide::Front => {
                 any_front = true;
-                verts.push(v);
-                dist.push(d);
+                d
             }
             PointSide::Back => {
                 any_back = true;
-                verts.push(v);
-                dist.push(d);
+                d
             }
-            PointSide::On => {
-                // Snap onto the line where the two planes meet.
-                let snapped = if u2 > 1e-12 { v - u * (d / u2) } else { v };
-                verts.push(snapped);
-                dist.push(0.0);
-            }
-        }
+            PointSide::On => 0.0,
+        });
     }
     if !any_back {
         return Pieces {
@@ -104,26 +109,58 @@ pub fn split(poly: &Polygon, plane: &crate::geom::Plane, tol: Tolerance) -> Piec
         };
     }
     // Direction of the cutting line within the polygon's plane.
-    let dir = poly.plane.normal.cross(u).normalize_or_zero();
-    let snap = |p: DVec3| {
-        if u2 > 1e-12 {
-            p - u * (plane.distance(p) / u2)
-        } else {
-            p
-        }
-    };
-    // Front pieces with on-plane vertices perturbed to the back, back pieces
-    // with them perturbed to the front: either way the traced side never
-    // touches itself at such a vertex.
+    let dir = poly.plane.normal.cross(plane.normal).normalize_or_zero();
     let front = {
-        let b = Boundary::new(&verts, &dist, false, dir, snap);
+        let b = Boundary::new(&verts, &dist, &sides(&dist, true), false, dir);
         b.trace(true, poly, tol)
     };
     let back = {
-        let b = Boundary::new(&verts, &dist, true, dir, snap);
+        let b = Boundary::new(&verts, &dist, &sides(&dist, false), true, dir);
         b.trace(false, poly, tol)
     };
     Pieces { front, back }
+}
+
+/// Which vertices count as front when the pieces on one side are traced
+/// (`front_trace`), given the distances with the "on" vertices at 0.
+///
+/// A run of on vertices where the boundary only touches the plane (a front
+/// or a back vertex on both ends) counts as the other side: moving the
+/// plane by an infinitesimal δ that way, the traced side never touches
+/// itself there (front pieces see the plane moved forward, back pieces
+/// moved back). A run where the boundary goes through (a front vertex on
+/// one end, a back vertex on the other) counts as front for both traces:
+/// its vertices keep their positions, so they are not collinear, and the
+/// two sides must cut it at the same vertex (the one next to the back
+/// vertex), or the wedge between their two cuts would belong to neither.
+fn sides(dist: &[f64], front_trace: bool) -> Vec<bool> {
+    let n = dist.len();
+    let mut out: Vec<bool> = dist.iter().map(|&d| d > 0.0).collect();
+    // Start right after a vertex off the plane, so that every run of on
+    // vertices is met whole.
+    let Some(start) = dist.iter().position(|&d| d != 0.0) else {
+        return out;
+    };
+    let mut k = 1;
+    while k <= n {
+        let i = (start + k) % n;
+        if dist[i] != 0.0 {
+            k += 1;
+            continue;
+        }
+        let before = dist[(start + k - 1) % n] > 0.0;
+        let mut len = 0;
+        while dist[(start + k + len) % n] == 0.0 {
+            len += 1;
+        }
+        let after = dist[(start + k + len) % n] > 0.0;
+        let front = if before == after { !front_trace } else { true };
+        for m in 0..len {
+            out[(start + k + m) % n] = front;
+        }
+        k += len;
+    }
+    out
 }
 
 /// The boundary with its crossings inserted and paired, for one perturbation.
@@ -134,24 +171,18 @@ struct Boundary {
 }
 
 impl Boundary {
-    /// `on_front`: whether vertices on the plane count as front (the plane
-    /// moved back by δ) or as back (moved forward by δ).
-    fn new(
-        verts: &[DVec3],
-        dist: &[f64],
-        on_front: bool,
-        dir: DVec3,
-        snap: impl Fn(DVec3) -> DVec3,
-    ) -> Boundary {
+    /// `front[i]`: whether vertex `i` counts as front (see [`sides`]);
+    /// `on_front`: the direction of the perturbation where a crossing has
+    /// no vertex on the plane (the plane moved back by δ, or forward).
+    fn new(verts: &[DVec3], dist: &[f64], front: &[bool], on_front: bool, dir: DVec3) -> Boundary {
         let n = verts.len();
-        let is_front = |d: f64| if on_front { d >= 0.0 } else { d > 0.0 };
         let mut nodes: Vec<Node> = Vec::with_capacity(n + 8);
         let mut crossings: Vec<Crossing> = Vec::new();
         for i in 0..n {
             let j = (i + 1) % n;
             let (a, b) = (verts[i], verts[j]);
             let (da, db) = (dist[i], dist[j]);
-            let (fa, fb) = (is_front(da), is_front(db));
+            let (fa, fb) = (front[i], front[j]);
             nodes.push(Node {
                 pos: a,
                 front: fa,
@@ -160,20 +191,27 @@ impl Boundary {
             if fa != fb {
                 // f: the front end, g: the back end.
                 let (f, df, g, dg) = if fa { (a, da, b, db) } else { (b, db, a, da) };
-                let pos = if dg == 0.0 {
-                    g
+                // Where an end is on the plane, the way it was perturbed.
+                let (front_g, front_f) = if fa { (fb, fa) } else { (fa, fb) };
+                let (pos, moved_back) = if dg == 0.0 {
+                    (g, front_g)
                 } else if df == 0.0 {
-                    f
+                    (f, front_f)
                 } else {
-                    // Interpolate from the front end, then snap onto the line.
-                    snap(f + (g - f) * (df / (df - dg)))
+                    (
+                        // Interpolated from the front end: a point of the
+                        // edge, the same for both faces that share it.
+                        f + (g - f) * (df / (df - dg)),
+                        on_front,
+                    )
                 };
+
                 // The crossing of the plane at d = ±δ lies at
                 // f + (df ∓ δ)/(df − dg)·(g − f): its motion along the line.
                 let motion = (g - f).dot(dir) / (df - dg);
                 crossings.push(Crossing {
                     t: pos.dot(dir),
-                    dt: if on_front { motion } else { -motion },
+                    dt: if moved_back { motion } else { -motion },
                     node: nodes.len(),
                     leaving_front: fa,
                 });
@@ -210,8 +248,8 @@ impl Boundary {
         let m = nodes.len();
         let mut used = vec![false; m];
         let mut pieces = Vec::new();
-        // A side's pieces start at its original vertices; a vertex exactly on the
-        // plane counts as back, so the back side may start there too.
+        // A side's pieces start at its original vertices (including those on
+        // the plane that count as that side).
         for start in 0..m {
             if used[start] || nodes[start].crossing.is_some() || nodes[start].front != front {
                 continue;
@@ -363,6 +401,100 @@ mod tests {
         assert_eq!(p.front.len(), 1);
         assert_eq!(p.back.len(), 2);
         assert!((total(&p.front) + total(&p.back) - area(&w.verts)).abs() < 1e-9);
+    }
+
+    /// Distance from `p` to the segment `a b`.
+    fn seg_distance(a: DVec3, b: DVec3, p: DVec3) -> f64 {
+        let ab = b - a;
+        let t = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+        (a + ab * t - p).length()
+    }
+
+    /// Whether `p` is within `eps` of an edge of `poly`, or inside it on
+    /// the line where `plane` meets the polygon's plane: the only places a
+    /// piece vertex may come from. (On the line but outside the parent is
+    /// not enough: moving a vertex along the cut can keep the area.)
+    fn from_parent_or_cut(poly: &Polygon, plane: &Plane, p: DVec3, eps: f64) -> bool {
+        let n = poly.verts.len();
+        let on_edge =
+            (0..n).any(|i| seg_distance(poly.verts[i], poly.verts[(i + 1) % n], p) <= eps);
+        let on_cut = plane.distance(p).abs() <= 1e-12 && poly.plane.distance(p).abs() <= 1e-12;
+        on_edge || (on_cut && contains(&poly.verts, p))
+    }
+
+    #[test]
+    fn nearly_parallel_cut_keeps_on_vertices_in_place() {
+        // Fandisk face 2893: a cutting plane 8e-5 rad from the triangle's
+        // own plane passes within the tolerance of one vertex. Snapping
+        // that vertex onto the line where the two planes meet moved it
+        // d / sin(angle) = 1e-3 along the triangle's plane, off every edge,
+        // and left part of the triangle uncovered next to its neighbour.
+        let tri = poly(&[(0.0, 0.0), (1.0, 0.0), (0.3, 1.0)]);
+        let tol = Tolerance(1e-7);
+        let angle: f64 = 8e-5;
+        // Plane tilted by `angle` about a line parallel to y, shifted so that
+        // the apex (0.3, 1) is 0.8·tol in front of it (on, within the
+        // tolerance), (1, 0) in front and (0, 0) behind.
+        let normal = DVec3::new(angle.sin(), 0.0, angle.cos());
+        let apex = DVec3::new(0.3, 1.0, 0.0);
+        let plane = Plane {
+            normal,
+            d: 0.8 * tol.0 - normal.dot(apex),
+        };
+        assert_eq!(plane.side_of(apex, tol), PointSide::On);
+        assert_eq!(plane.relation(&tri.verts, tol), Relation::Cut);
+        let pieces = split(&tri, &plane, tol);
+        let all: Vec<&Polygon> = pieces.front.iter().chain(&pieces.back).collect();
+        assert!(!pieces.front.is_empty() && !pieces.back.is_empty());
+        for p in &all {
+            for &v in &p.verts {
+                assert!(
+                    from_parent_or_cut(&tri, &plane, v, tol.0),
+                    "piece vertex {v} is on no edge of the parent nor on the cut"
+                );
+            }
+        }
+        let sum: f64 = all.iter().map(|p| area(&p.verts)).sum();
+        assert!(
+            (sum - area(&tri.verts)).abs() < 1e-9,
+            "{sum} vs {}",
+            area(&tri.verts)
+        );
+    }
+
+    #[test]
+    fn run_of_on_vertices_is_cut_at_one_vertex_by_both_sides() {
+        // A quad whose two top vertices are both within the tolerance of a
+        // nearly parallel cut, on either side of it and not collinear with
+        // the crossing on the left edge. The front side used to cut the run
+        // at its first vertex and the back side at its last, so the wedge
+        // between the two cuts belonged to neither.
+        let q = poly(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.9, 1.0)]);
+        let tol = Tolerance(1e-7);
+        // Distance 1e-6·x − 4.5e-7·y − 5e-7 (a plane 1e-6 rad from the
+        // quad's): (1, 1) at +0.5·tol and (0.9, 1) at −0.5·tol are on,
+        // (1, 0) is in front, (0, 0) behind; the cut crosses the bottom
+        // edge at x = 0.5.
+        let (a, b, c) = (1e-6, -4.5e-7, -5e-7);
+        let len = DVec3::new(a, b, 1.0).length();
+        let plane = Plane {
+            normal: DVec3::new(a, b, 1.0) / len,
+            d: c / len,
+        };
+        for (x, y) in [(1.0, 1.0), (0.9, 1.0)] {
+            assert_eq!(plane.side_of(DVec3::new(x, y, 0.0), tol), PointSide::On);
+        }
+        let pieces = split(&q, &plane, tol);
+        assert!(!pieces.front.is_empty() && !pieces.back.is_empty());
+        let all: Vec<&Polygon> = pieces.front.iter().chain(&pieces.back).collect();
+        let sum: f64 = all.iter().map(|p| area(&p.verts)).sum();
+        let want = area(&q.verts);
+        assert!((sum - want).abs() < 1e-12, "pieces cover {sum} of {want}");
+        for p in &all {
+            for &v in &p.verts {
+                assert!(from_parent_or_cut(&q, &plane, v, tol.0), "{v}");
+            }
+        }
     }
 
     /// A random star-shaped (so simple, often concave) polygon.

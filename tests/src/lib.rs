@@ -13,6 +13,8 @@
 //! a one-line change there. `order_scenes` also checks that the two emit the
 //! same classes.
 
+pub mod tiling;
+
 use fpt_nostd::order::{Order, View as NostdView};
 use fpt_nostd::reader::Tree;
 use host_sim::build::{build, NoProgress};

@@ -1,0 +1,253 @@
+//! No pinholes: the no_std render of every closed third-party model in
+//! `../shared/models` leaves no background pixel inside the silhouette of
+//! the input mesh. Skipped when the folder is absent, as in a fresh clone.
+//!
+//! The silhouette comes from the float64 reference z-buffer of the
+//! **input** polygons (not the tree's pieces, which would share any defect
+//! of the builder): a pixel is a pinhole when the reference covers it and
+//! its eight neighbours, yet our render leaves it as background. A closed
+//! mesh seen from outside covers every such pixel, whatever the rounding:
+//! the top-left rule fills each sample of the union of faces that share
+//! their edges exactly, so a background pixel there means that the tree's
+//! pieces do not tile the input faces or that two faces' seams no longer
+//! conform. Pixels next to inner edges are not excluded: that is exactly
+//! where such pinholes sit (fandisk.obj showed 19–39 per 800×600 view,
+//! along the edge between two curved faces, when a split moved a vertex).
+//!
+//! One kind of background pixel inside the silhouette is not the
+//! builder's: a sample within the rounding displacement of a *silhouette*
+//! edge of the input (one whose neighbour across faces away, like the rim
+//! of a hole seen at a slant), where a sub-pixel gap between the rim and
+//! what lies behind it opens onto the background. Vertex snapping decides
+//! those whatever the tree, so such a pixel counts as a pinhole only when
+//! [`render_common::is_crack`] finds every edge near its sample shared with
+//! a drawn neighbour (an inner edge); the others are counted and printed.
+//!
+//! Each model is drawn from 20 views around it (alternately parallel and
+//! perspective, directions spread evenly over the sphere) at 320×240,
+//! 800×600 and 1024×768, from its static tree and its BSP tree, on two
+//! threads. `rocker-arm.obj`'s static build takes about a minute, so its
+//! static tree has an `#[ignore]`d test of its own.
+
+mod render_common;
+
+use fpt_nostd::raster::DefaultPrecision;
+use fpt_nostd::raster::Precision;
+use fpt_nostd::reader::Tree;
+use fpt_tests::shared_mesh;
+use glam::DVec3;
+use host_sim::build::{build, NoProgress};
+use host_sim::geom::{bounds, Polygon};
+use host_sim::reference::{zbuffer_ids, Camera, Projection};
+use host_sim::serialize::{serialize, SerializeOptions};
+use host_sim::tree::Method;
+use render_common::{frame, is_crack, render_polygon_ids};
+use std::sync::Mutex;
+
+/// The closed shared models (see `../shared/models/README.md`; the loader
+/// also finds `wallhole.obj` closed once its faces are welded).
+const CLOSED: [&str; 8] = [
+    "shuttle.obj",
+    "socket.off",
+    "plate_holes.STL",
+    "rabbit.obj",
+    "wallhole.obj",
+    "violin_case.obj",
+    "fandisk.obj",
+    "rocker-arm.obj",
+];
+
+/// Models whose static build is too slow for the default run.
+const SLOW: [&str; 1] = ["rocker-arm.obj"];
+
+/// Image sizes, all 4:3.
+const SIZES: [(usize, usize); 3] = [(320, 240), (800, 600), (1024, 768)];
+
+/// Views per model and size.
+const VIEWS: usize = 20;
+
+/// `n` cameras around `polys` from outside its bounding sphere, none
+/// clipped by the near plane: directions on a Fibonacci sphere (evenly
+/// spread, none along an axis), even ones parallel, odd ones perspective.
+fn cameras(polys: &[Polygon], n: usize, aspect: f64) -> Vec<Camera> {
+    let (lo, hi) = bounds(polys);
+    let c = (lo + hi) * 0.5;
+    let r = ((hi - lo).length() * 0.5).max(f64::MIN_POSITIVE);
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..n)
+        .filter_map(|k| {
+            let z = 1.0 - (2.0 * k as f64 + 1.0) / n as f64;
+            let s = (1.0 - z * z).sqrt();
+            let a = golden * k as f64 + 0.3;
+            let dir = DVec3::new(s * a.cos(), s * a.sin(), z);
+            // Up: any axis far from the view direction.
+            let up = if dir.y.abs() < 0.9 {
+                DVec3::Y
+            } else {
+                DVec3::X
+            };
+            let projection = if k % 2 == 0 {
+                Projection::Parallel {
+                    half_height: 1.05 * r,
+                    near: 0.0,
+                    far: 6.0 * r,
+                }
+            } else {
+                Projection::Perspective {
+                    fov_y_deg: 55.0,
+                    near: 0.05 * r,
+                    far: 10.0 * r,
+                }
+            };
+            let dist = if k % 2 == 0 { 3.0 * r } else { 2.3 * r };
+            Camera::look_at(c + dir * dist, c, up, projection, aspect)
+        })
+        .collect()
+}
+
+/// The crack test's radius in pixels: the largest edge displacement by
+/// vertex snapping (half a sub-pixel step per axis), with a margin.
+const RHO: f64 = 0.05 + 0.75 / (1u32 << DefaultPrecision::SUB_BITS) as f64;
+
+/// Background pixels of `ours` where `reference` covers the pixel and its
+/// eight neighbours.
+fn background_inside(reference: &[u32], ours: &[u32], w: usize, h: usize) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    for j in 1..h.saturating_sub(1) {
+        for i in 1..w.saturating_sub(1) {
+            if ours[j * w + i] != 0 {
+                continue;
+            }
+            if (j - 1..=j + 1).all(|y| (i - 1..=i + 1).all(|x| reference[y * w + x] != 0)) {
+                out.push((i, j));
+            }
+        }
+    }
+    out
+}
+
+/// One model: its trees (`methods`) drawn from every view at every size.
+/// Returns the failures.
+fn check(file: &str, methods: &[Method]) -> Vec<String> {
+    let Some(m) = shared_mesh(file) else {
+        return Vec::new();
+    };
+    assert!(m.closed, "{file}: the loader finds it open");
+    let start = std::time::Instant::now();
+    let trees: Vec<(Method, Vec<u8>)> = methods
+        .iter()
+        .map(|&method| {
+            let t = build(m.polygons.clone(), true, method, 7, &mut NoProgress);
+            let bytes = serialize(&t, &SerializeOptions::default()).expect("serialize");
+            (method, bytes)
+        })
+        .collect();
+    let mut failures = Vec::new();
+    let mut totals = vec![0usize; trees.len()];
+    let mut at_silhouettes = vec![0usize; trees.len()];
+    let mut covered = 0usize;
+    for &(w, h) in &SIZES {
+        for (k, cam) in cameras(&m.polygons, VIEWS, w as f64 / h as f64)
+            .iter()
+            .enumerate()
+        {
+            let reference = zbuffer_ids(&m.polygons, cam, w, h, false);
+            covered += reference.iter().filter(|&&id| id != 0).count();
+            for (t, (method, bytes)) in trees.iter().enumerate() {
+                let tree = Tree::from_bytes(bytes).expect("tree");
+                let ours = render_polygon_ids::<DefaultPrecision>(&tree, &frame(&tree, cam), w, h);
+                let (holes, rim): (Vec<_>, Vec<_>) = background_inside(&reference, &ours, w, h)
+                    .into_iter()
+                    .partition(|&px| is_crack(&m.polygons, true, cam, w, h, px, RHO));
+                totals[t] += holes.len();
+                at_silhouettes[t] += rim.len();
+                if let Some((i, j)) = holes.first() {
+                    failures.push(format!(
+                        "{file} {} {w}x{h} view {k}: {} pinholes, first at ({i}, {j})",
+                        method.name(),
+                        holes.len()
+                    ));
+                }
+            }
+        }
+    }
+    let counts: Vec<String> = trees
+        .iter()
+        .zip(totals.iter().zip(&at_silhouettes))
+        .map(|((method, _), (n, r))| format!("{} {n} (+{r} at silhouettes)", method.name()))
+        .collect();
+    println!(
+        "{file}: {} views x {} sizes, {covered} px covered; pinholes: {}; {:.1} s",
+        VIEWS,
+        SIZES.len(),
+        counts.join(", "),
+        start.elapsed().as_secs_f64()
+    );
+    failures
+}
+
+/// Runs `jobs` on two threads and panics listing the failures, if any.
+fn run(jobs: Vec<(&'static str, Vec<Method>)>) {
+    let queue = Mutex::new(jobs);
+    let failures = Mutex::new(Vec::new());
+    std::thread::scope(|s| {
+        for _ in 0..2 {
+            s.spawn(|| loop {
+                let Some((file, methods)) = queue.lock().expect("queue").pop() else {
+                    break;
+                };
+                let f = check(file, &methods);
+                failures.lock().expect("failures").extend(f);
+            });
+        }
+    });
+    let failures = failures.into_inner().expect("failures");
+    assert!(
+        failures.is_empty(),
+        "{} views with pinholes:\n{}",
+        failures.len(),
+        failures
+            .iter()
+            .take(20)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+}
+
+#[test]
+fn closed_models_show_no_pinholes() {
+    // The queue pops from the back, where the largest models are.
+    let jobs = CLOSED
+        .iter()
+        .map(|&file| {
+            let methods = if SLOW.contains(&file) {
+                vec![Method::Bsp]
+            } else {
+                vec![Method::Static, Method::Bsp]
+            };
+            (file, methods)
+        })
+        .collect();
+    run(jobs);
+}
+
+#[test]
+#[ignore = "rocker-arm.obj's static build takes about a minute"]
+fn slow_static_trees_show_no_pinholes() {
+    run(SLOW.iter().map(|&f| (f, vec![Method::Static])).collect());
+}
+
+#[test]
+fn background_inside_needs_the_pixel_and_its_neighbours_covered() {
+    // 5×4 picture: the reference covers all but the right column.
+    let (w, h) = (5, 4);
+    let reference: Vec<u32> = (0..w * h).map(|p| u32::from(p % w != 4)).collect();
+    let mut ours = vec![7u32; w * h];
+    assert!(background_inside(&reference, &ours, w, h).is_empty());
+    // Background at (1, 1): all eight neighbours covered. At (3, 2): its
+    // right neighbours are outside the silhouette.
+    ours[w + 1] = 0;
+    ours[2 * w + 3] = 0;
+    assert_eq!(background_inside(&reference, &ours, w, h), vec![(1, 1)]);
+}
