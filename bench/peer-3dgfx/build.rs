@@ -228,8 +228,11 @@ fn env_usize(name: &str, default: usize) -> usize {
     }
 }
 
+/// Vertices and triangles of a mesh.
+type Mesh = (Vec<[f64; 3]>, Vec<[usize; 3]>);
+
 /// Vertices and triangles (polygons fanned) of an OFF file.
-fn parse_off(text: &str) -> Result<(Vec<[f64; 3]>, Vec<[usize; 3]>), String> {
+fn parse_off(text: &str) -> Result<Mesh, String> {
     let mut tokens = text
         .lines()
         .map(|l| l.split('#').next().unwrap_or(""))

@@ -100,7 +100,7 @@ fn main() -> ! {
     let mut covered_min = usize::MAX;
     let mut commands_max = 0;
     let mut crc = Crc32::new();
-    for i in 0..FRAMES {
+    for (i, instr) in INSTR.iter_mut().enumerate() {
         let t0 = clock::now();
         let light = set_camera(&mut engine, i);
         // The peer's flat Lambert mode: colour · (max(n·l, 0) + 0.1), one
@@ -129,7 +129,7 @@ fn main() -> ! {
             k += CHUNK;
         }
         let t1 = clock::now();
-        INSTR[i] = u32::try_from(clock.instr(t1 - t0)).unwrap_or(u32::MAX);
+        *instr = u32::try_from(clock.instr(t1 - t0)).unwrap_or(u32::MAX);
         // Not timed: a check that the model is drawn, and a checksum of
         // every frame (same as our frames': CRC-32 of little-endian RGB565).
         covered_min = covered_min.min(fb.covered(BACKGROUND));
