@@ -151,6 +151,21 @@ pub struct VertexDecoder<'a> {
 }
 
 impl VertexDecoder<'_> {
+    /// Vertex `v` of a q16 tree as stored (`i16` per axis, widened);
+    /// zero for another format or an index outside the section.
+    #[inline]
+    pub fn raw_q16(&self, v: usize) -> [i32; 3] {
+        let at = v.wrapping_mul(6);
+        match (self.format, self.section.get(at..at.wrapping_add(6))) {
+            (VertexFormat::Q16, Some(&[a, b, c, d, e, f])) => [
+                i32::from(i16::from_le_bytes([a, b])),
+                i32::from(i16::from_le_bytes([c, d])),
+                i32::from(i16::from_le_bytes([e, f])),
+            ],
+            _ => [0; 3],
+        }
+    }
+
     /// Vertex `v`, relative to the origin, decoded to `f32`.
     #[inline]
     pub fn get(&self, v: usize) -> [f32; 3] {

@@ -48,7 +48,7 @@
 //! ([`OrderError`]).
 
 use crate::effects::{AllEffects, Compiled, Effects};
-use crate::order::{LocalView, Order, OrderError, View};
+use crate::order::{LocalView, OrderError, View};
 use crate::raster::{
     Camera, Face, Framebuffer, FramebufferError, Mat4, PixelFormat, Precision, RenderStats,
     Renderer, Scratch, SpanSink,
@@ -425,28 +425,16 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
     ids: FaceIds,
     sink: &mut K,
 ) -> Result<RenderStats, OrderError> {
-    renderer.set_camera(&frame.camera);
-    renderer.reset_stats();
-    let fx = walk_effects(tree, renderer);
-    let mut order = Order::<N>::with_culling(tree, frame.view, fx.cull)?;
-    let view = order.view();
-    let scale = frame.vertex_scale;
-    // Ranges of ids straight from the walk: no class is built or copied,
-    // and no `Tree` is copied into an iterator per class.
-    while let Some(range) = order.next_range() {
-        for p in range.filter_map(|id| tree.polygon(id)) {
-            let id = match ids {
-                FaceIds::Source => p.source(),
-                FaceIds::Polygon => p.id(),
-            };
-            let face = face_of(&p, &view, fx, id);
-            let verts = scaled_vertices(&p, scale);
-            renderer.draw_polygon(scratch, verts, &face, sink);
-        }
-    }
-    let mut stats = renderer.stats();
-    stats.walks = 1;
-    Ok(stats)
+    cached::draw_direct::<P, E, K, NoProbe, N, V>(
+        tree,
+        frame,
+        renderer,
+        scratch,
+        ids,
+        &mut [],
+        sink,
+        &NoProbe,
+    )
 }
 
 /// What the walk of a frame needs from the effects (see

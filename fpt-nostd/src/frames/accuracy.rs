@@ -9,7 +9,7 @@
 //!   configuration's own trigonometry; the others with `libm`. `int` is
 //!   the integer vertex path ([`crate::raster::int_path`]) on the `f32`
 //!   tree; `int-q16` the same path on the q16 tree with its vertices
-//!   drawn as stored ([`draw_frame_q16`]: no decoding to `f32`), the
+//!   drawn as stored (`VertexPath::RAW_Q16_FRAC`: no decoding to `f32`), the
 //!   configuration of a core without an FPU.
 //! * **Frames**: [`ACCURACY_SCENE`] from every view of [`super::VIEWS`],
 //!   240×240 RGB565, cleared to [`super::BACKGROUND`], key light, the
@@ -25,7 +25,6 @@ use super::{clear, FrameError, PixelCrc, Probe, ViewSpec, AMBIENT, DIFFUSE, Z_UP
 use super::{Phase, HEIGHT, MAX_VERTS, WALK_DEPTH, WIDTH};
 use crate::effects::AllEffects;
 use crate::format::VertexFormat;
-use crate::raster::int_path::draw_frame_q16;
 use crate::raster::{
     Camera, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, FramebufferError,
     IntPrecision, Libm, Light, Mat4, MathFns, Precision, Renderer, Rgb565Framebuffer, Scratch,
@@ -75,11 +74,9 @@ pub fn render_config<Pr: Probe>(
     buf: &mut [u16],
     probe: &Pr,
 ) -> Result<u32, FrameError> {
-    let f = |raw: bool| Frame1 {
-        tree,
-        view,
-        raw_q16: raw,
-    };
+    // (`int-q16` gets the q16 tree: `vertex_format`; the integer path
+    // draws it as stored.)
+    let f = |_q16: bool| Frame1 { tree, view };
     match name {
         "vertex-f32" | "vertex-q16" | "vertex-q32" | "fixed" | "subpx-4" => {
             render_with::<FixedPrecision<4>, Libm, Pr>(f(false), buf, probe)
@@ -108,8 +105,6 @@ pub fn render_config<Pr: Probe>(
 struct Frame1<'t, 'b, 'v> {
     tree: &'t Tree<'b>,
     view: &'v ViewSpec,
-    /// Draw with [`draw_frame_q16`] (the integer path's `VB = 1`).
-    raw_q16: bool,
 }
 
 /// One frame with arithmetic `P` and orbit trigonometry `T`.
@@ -135,26 +130,16 @@ fn render_with<P: Precision, T: MathFns, Pr: Probe>(
     // A failure ends the measurement as well.
     let mut fb = Rgb565Framebuffer::new(buf, WIDTH, HEIGHT).inspect_err(|_| probe.stop())?;
     clear(&mut fb);
-    let drawn = if f.raw_q16 {
-        draw_frame_q16::<P, AllEffects, _, WALK_DEPTH, MAX_VERTS>(
-            tree,
-            &frame,
-            1,
-            &mut renderer,
-            &mut scratch,
-            FaceIds::Source,
-            &mut fb,
-        )
-    } else {
-        draw_frame::<P, AllEffects, _, WALK_DEPTH, MAX_VERTS>(
-            tree,
-            &frame,
-            &mut renderer,
-            &mut scratch,
-            FaceIds::Source,
-            &mut fb,
-        )
-    };
+    // A q16 tree with the integer path is drawn as stored (see
+    // `VertexPath::RAW_Q16_FRAC`).
+    let drawn = draw_frame::<P, AllEffects, _, WALK_DEPTH, MAX_VERTS>(
+        tree,
+        &frame,
+        &mut renderer,
+        &mut scratch,
+        FaceIds::Source,
+        &mut fb,
+    );
     probe.stop();
     drawn?;
     let mut crc = PixelCrc::new();

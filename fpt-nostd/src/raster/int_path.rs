@@ -157,6 +157,7 @@ impl<const VB: u32> IntPath<VB> {
 impl<const VB: u32> VertexPath for IntPath<VB> {
     type Scalar = i32;
     type Matrix = IntMatrix;
+    const RAW_Q16_FRAC: Option<u32> = Some(VB);
 
     /// Once a frame, in `f32` (see [`IntMatrix`]). A matrix with a
     /// non-finite entry becomes the zero matrix: every vertex gets `w = 0`,
@@ -446,59 +447,6 @@ pub fn q16_camera(
         matrix: m,
         near_w: camera.near_w,
     }
-}
-
-/// [`crate::render::draw_frame`] for a q16 tree, drawing its vertices as
-/// stored: the renderer's camera becomes [`q16_camera`] of the frame's
-/// (fraction bits `frac`: `VB` for [`IntPath<VB>`]), and every polygon
-/// goes through [`super::Renderer::draw_polygon_q`] with the raw `i16`
-/// values, so no vertex is decoded to `f32` (on a core without an FPU
-/// that decoding is three soft-float multiplies a vertex). Trees in
-/// another vertex format are drawn by [`crate::render::draw_frame`].
-/// Counters are zeroed first and returned, as there.
-pub fn draw_frame_q16<P, E, K, const N: usize, const V: usize>(
-    tree: &crate::reader::Tree<'_>,
-    frame: &crate::render::Frame,
-    frac: u32,
-    renderer: &mut super::Renderer<P, E>,
-    scratch: &mut super::Scratch<P, V>,
-    ids: crate::render::FaceIds,
-    sink: &mut K,
-) -> Result<super::RenderStats, crate::order::OrderError>
-where
-    P: super::Precision,
-    E: crate::effects::Compiled,
-    K: super::SpanSink,
-{
-    use crate::reader::RawVertex;
-    use crate::render::{face_of, walk_effects, FaceIds};
-    if tree.vertex_format() != crate::format::VertexFormat::Q16 {
-        return crate::render::draw_frame::<P, E, K, N, V>(
-            tree, frame, renderer, scratch, ids, sink,
-        );
-    }
-    let cam = q16_camera(&frame.camera, frame.vertex_scale, tree.half_extent(), frac);
-    renderer.set_camera(&cam);
-    renderer.reset_stats();
-    let fx = walk_effects(tree, renderer);
-    let mut order = crate::order::Order::<N>::with_culling(tree, frame.view, fx.cull)?;
-    let view = order.view();
-    while let Some(range) = order.next_range() {
-        for p in range.filter_map(|id| tree.polygon(id)) {
-            let id = match ids {
-                FaceIds::Source => p.source(),
-                FaceIds::Polygon => p.id(),
-            };
-            let face = face_of(&p, &view, fx, id);
-            let verts = (0..p.vertex_count()).map(|i| match p.vertex_raw(i) {
-                RawVertex::Q16(q) => q.map(i32::from),
-                // Not in a q16 tree (checked above).
-                RawVertex::F32(_) | RawVertex::Q32(_) => [0; 3],
-            });
-            renderer.draw_polygon_q(scratch, verts, frac, &face, sink);
-        }
-    }
-    Ok(renderer.stats())
 }
 
 #[cfg(test)]

@@ -428,6 +428,32 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         P::Path::transform(&self.matrix, v)
     }
 
+    /// [`Renderer::transform`] of integer vertices with `frac` fraction
+    /// bits ([`VertexPath::transform_q`]).
+    #[inline]
+    pub(crate) fn transform_q(&self, v: [i32; 3], frac: u32) -> Option<ClipVert<Scalar<P>>> {
+        P::Path::transform_q(&self.matrix, v, frac)
+    }
+
+    /// [`Renderer::prepare_verts`] for integer vertices with `frac`
+    /// fraction bits (as [`Renderer::draw_polygon_q`] takes them).
+    #[inline(always)]
+    pub(crate) fn prepare_verts_q<I, const N: usize>(
+        &mut self,
+        scratch: &mut Scratch<P, N>,
+        verts: I,
+        frac: u32,
+        face: &Face,
+        reach: &SpanBounds,
+    ) -> Result<Ready, Outcome>
+    where
+        I: IntoIterator<Item = [i32; 3]>,
+    {
+        let m = self.matrix;
+        let loaded = self.load(scratch, verts, |v| P::Path::transform_q(&m, v, frac));
+        self.prepare(scratch, loaded, face, reach)
+    }
+
     /// Transforms, clips and projects the polygon `verts` (model-space
     /// `f32`, as [`Renderer::draw_polygon`] takes them) and shades it:
     /// everything but the fill, for rows `reach`.

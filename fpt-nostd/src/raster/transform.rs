@@ -131,6 +131,13 @@ pub trait VertexPath {
     type Scalar: ClipNum;
     /// The per-frame matrix in this path's format.
     type Matrix: Copy + Debug;
+    /// `Some(frac)` when the path prefers a q16 tree's vertices as stored
+    /// (raw `i16` through [`VertexPath::transform_q`] with `frac` fraction
+    /// bits, the camera folding in the per-axis scale:
+    /// [`super::int_path::q16_camera`]) to decoding them to `f32`: a path
+    /// for cores without an FPU. The tree walks of [`crate::render`] then
+    /// draw q16 trees that way.
+    const RAW_Q16_FRAC: Option<u32> = None;
     /// Converts a matrix (once per frame).
     fn prepare(m: &Mat4) -> Self::Matrix;
     /// `M · [v, 1]`; `None` if `v` or the result is not finite.

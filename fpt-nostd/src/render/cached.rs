@@ -40,10 +40,13 @@ use core::cell::Cell;
 use super::probe::{Phase, Probe};
 use super::{face_of, scaled_vertices, walk_effects, BandBuffer, FaceIds, Frame, RenderError};
 use crate::effects::{Compiled, Effects};
+use crate::format::VertexFormat;
 use crate::order::{Order, OrderError};
+use crate::raster::int_path::q16_camera;
 use crate::raster::list::{DisplayList, Entry, Points};
 use crate::raster::renderer::Ready;
 use crate::raster::scan::Bbox;
+use crate::raster::transform::VertexPath;
 use crate::raster::vcache::{Slot, VertexCache};
 use crate::raster::{
     Band, Face, Framebuffer, Outcome, PixelFormat, Precision, RenderStats, Renderer, Scratch,
@@ -101,8 +104,41 @@ enum Step {
 struct Walk<'t, 'a, 'c> {
     tree: &'a Tree<'t>,
     frame: &'a Frame,
+    source: Source,
     ids: FaceIds,
     cache: &'a mut VertexCache<'c>,
+}
+
+/// How vertices reach the transform.
+#[derive(Clone, Copy, Debug)]
+enum Source {
+    /// Decoded to `f32` and multiplied by the frame's vertex scale (the
+    /// renderer has the frame's camera).
+    Scaled(f32),
+    /// A q16 tree's `i16` values as stored, with this many fraction bits
+    /// (the renderer has the frame's camera with the per-axis scale
+    /// folded in: `VertexPath::RAW_Q16_FRAC`).
+    Q16(u32),
+}
+
+/// Sets the renderer's camera for `frame` and says how vertices reach it:
+/// raw q16 values when the tree stores them and the path prefers them.
+fn begin_frame<P: Precision, E: Compiled>(
+    r: &mut Renderer<P, E>,
+    tree: &Tree<'_>,
+    frame: &Frame,
+) -> Source {
+    match <P::Path as VertexPath>::RAW_Q16_FRAC {
+        Some(frac) if tree.vertex_format() == VertexFormat::Q16 => {
+            let cam = q16_camera(&frame.camera, frame.vertex_scale, tree.half_extent(), frac);
+            r.set_camera(&cam);
+            Source::Q16(frac)
+        }
+        _ => {
+            r.set_camera(&frame.camera);
+            Source::Scaled(frame.vertex_scale)
+        }
+    }
 }
 
 impl Walk<'_, '_, '_> {
@@ -133,7 +169,6 @@ impl Walk<'_, '_, '_> {
         let fx = walk_effects(self.tree, r);
         let mut order = Order::<N>::with_culling(self.tree, self.frame.view, fx.cull)?;
         let view = order.view();
-        let scale = self.frame.vertex_scale;
         while let Some(range) = order.next_range() {
             for p in range.filter_map(|id| self.tree.polygon(id)) {
                 probe.polygon(&p);
@@ -146,7 +181,7 @@ impl Walk<'_, '_, '_> {
                 let clipped = r.stats_mut().clipped;
                 loop {
                     probe.enter(Phase::Xform);
-                    let (ready, by_index) = self.prepare(r, scratch, &p, scale, &face, &reach());
+                    let (ready, by_index) = self.prepare(r, scratch, &p, &face, &reach());
                     if !first {
                         // Prepared again: count its clipping once.
                         let now = r.stats_mut();
@@ -182,24 +217,36 @@ impl Walk<'_, '_, '_> {
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
         p: &PolygonRef<'_>,
-        scale: f32,
         face: &Face,
         reach: &SpanBounds,
     ) -> (Result<Ready, Outcome>, bool) {
+        let dec = self.tree.vertex_decoder();
         if self.cache.capacity() > 0 {
-            let dec = self.tree.vertex_decoder();
-            let xform = |v: u32| {
-                let x = dec.get(v as usize);
-                r.transform([x[0] * scale, x[1] * scale, x[2] * scale])
+            let loaded = match self.source {
+                Source::Scaled(s) => {
+                    let xform = |v: u32| {
+                        let x = dec.get(v as usize);
+                        r.transform([x[0] * s, x[1] * s, x[2] * s])
+                    };
+                    r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
+                }
+                Source::Q16(frac) => {
+                    let xform = |v: u32| r.transform_q(dec.raw_q16(v as usize), frac);
+                    r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
+                }
             };
-            if let Some((n, by_index)) =
-                r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
-            {
+            if let Some((n, by_index)) = loaded {
                 return (r.prepare_screen(scratch, n, face, reach), by_index);
             }
         }
-        let verts = scaled_vertices(p, scale);
-        (r.prepare_verts(scratch, verts, face, reach), false)
+        let ready = match self.source {
+            Source::Scaled(s) => r.prepare_verts(scratch, scaled_vertices(p, s), face, reach),
+            Source::Q16(frac) => {
+                let raw = p.vertex_indices().map(|v| dec.raw_q16(v as usize));
+                r.prepare_verts_q(scratch, raw, frac, face, reach)
+            }
+        };
+        (ready, false)
     }
 }
 
@@ -245,7 +292,7 @@ where
     K: SpanSink,
     Pr: Probe,
 {
-    r.set_camera(&frame.camera);
+    let source = begin_frame(r, tree, frame);
     r.reset_stats();
     walk_effects(tree, r);
     let want = if cacheable(r) {
@@ -261,6 +308,7 @@ where
     let mut walk = Walk {
         tree,
         frame,
+        source,
         ids,
         cache: &mut cache,
     };
@@ -406,7 +454,7 @@ where
 {
     // The caller has started the probe (before its own set-up).
     probe.enter(Phase::Xform);
-    r.set_camera(&frame.camera);
+    let source = begin_frame(r, tree, frame);
     r.reset_stats();
     walk_effects(tree, r);
     let outlines = r.effects().contains(Effects::OUTLINE);
@@ -435,6 +483,7 @@ where
         let mut walk = Walk {
             tree,
             frame,
+            source,
             ids,
             cache: &mut cache,
         };

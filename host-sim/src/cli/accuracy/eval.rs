@@ -33,14 +33,14 @@ use fpt_nostd::effects::AllEffects;
 use fpt_nostd::format::VertexFormat;
 use fpt_nostd::raster::clip::ClipVert;
 use fpt_nostd::raster::framebuffer::Rgb565Format;
-use fpt_nostd::raster::int_path::{draw_frame_q16, q16_camera};
+use fpt_nostd::raster::int_path::q16_camera;
 use fpt_nostd::raster::transform::{VertexPath, Viewport};
 use fpt_nostd::raster::{
     FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, Framebuffer, IdBuffer, IntPrecision,
     Light, Precision, ShadeMode, SpanSink,
 };
 use fpt_nostd::reader::{PolygonRef, RawVertex, Tree};
-use fpt_nostd::render::{FaceIds, Frame, TreeRenderer};
+use fpt_nostd::render::{draw_frame, FaceIds, Frame, TreeRenderer};
 use glam::DVec3;
 use std::time::Instant;
 
@@ -61,7 +61,7 @@ pub struct Config {
     /// (`fpt render --yaw --pitch`) instead of the exact matrix (`--mvp`).
     pub orbit_trig: bool,
     /// The q16 tree's vertices are drawn as stored, not decoded to `f32`
-    /// ([`draw_frame_q16`], integer path only): not a `fpt render` mode.
+    /// (the integer path's raw q16 input, `VertexPath::RAW_Q16_FRAC`): not a `fpt render` mode.
     pub raw_q16: bool,
 }
 
@@ -410,7 +410,8 @@ pub fn view_counts(
 type RawQ16 = IntPrecision<4>;
 
 /// [`render_job`] for a `raw_q16` row (rgb565 only, full frame): the
-/// picture with the q16 tree's vertices as stored ([`draw_frame_q16`]);
+/// picture with the q16 tree's vertices as stored (the integer path's
+/// `VertexPath::RAW_Q16_FRAC`);
 /// returns the ids when the job asks for them.
 pub fn render_raw_q16(tree: &Tree<'_>, job: &Job) -> Result<Vec<u32>, CliError> {
     type P = RawQ16;
@@ -433,10 +434,11 @@ pub fn render_raw_q16(tree: &Tree<'_>, job: &Job) -> Result<Vec<u32>, CliError> 
         frame: &Frame,
         sink: &mut K,
     ) -> Result<(), CliError> {
-        draw_frame_q16::<RawQ16, AllEffects, _, RAW_STACK, RAW_VERTS>(
+        // The integer path draws a q16 tree's vertices as stored
+        // (`VertexPath::RAW_Q16_FRAC`).
+        draw_frame::<RawQ16, AllEffects, _, RAW_STACK, RAW_VERTS>(
             tree,
             frame,
-            1,
             &mut tr.renderer,
             &mut tr.scratch,
             FaceIds::Source,
