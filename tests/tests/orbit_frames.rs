@@ -43,7 +43,9 @@ fn crcs<P: Precision>(tree: &Tree<'_>, band: u32, n: u32) -> Vec<u32> {
     let mut buf = vec![0u16; (w * rows) as usize];
     (0..n)
         .map(|i| {
-            frame_crc::<P, MAX_VERTS, 64>(&mut r, tree, (i, n), (&mut buf, &mut []), band).unwrap()
+            frame_crc::<P, MAX_VERTS, 64>(&mut r, tree, (i, n), (&mut buf, &mut []), band)
+                .unwrap()
+                .0
         })
         .collect()
 }

@@ -210,17 +210,18 @@ pub fn draw_band_frame<P: Precision, const V: usize, const N: usize>(
     r.render_banded_in::<Rgb565Format, N>(tree, &frame, band, memory, |_, fb| emit(fb.data()))
 }
 
-/// The checksum of frame `i` of `n` (see [`draw_band_frame`]).
+/// The checksum of frame `i` of `n` and the renderer's counters (see
+/// [`draw_band_frame`]).
 pub fn frame_crc<P: Precision, const V: usize, const N: usize>(
     r: &mut TreeRenderer<P, V>,
     tree: &Tree<'_>,
     (i, n): (u32, u32),
     bufs: (&mut [u16], &mut [u32]),
     band: u32,
-) -> Result<u32, RenderError> {
+) -> Result<(u32, RenderStats), RenderError> {
     let mut crc = PixelCrc::new();
-    draw_band_frame::<P, V, N>(r, tree, (i, n), bufs, band, |px| crc.update(px))?;
-    Ok(crc.finish())
+    let stats = draw_band_frame::<P, V, N>(r, tree, (i, n), bufs, band, |px| crc.update(px))?;
+    Ok((crc.finish(), stats))
 }
 
 /// The line the benchmark firmware prints per frame:

@@ -100,11 +100,13 @@ impl<T: SpanSink> SpanSink for Band<'_, T> {
             ..b
         }
     }
+    /// Frame row `y` is the buffer's row `y − y0`. Rows outside the band
+    /// are the buffer's own out-of-bounds rows, which a sink ignores (the
+    /// fill never sends them: it clips to [`SpanSink::bounds`]); testing
+    /// them here again cost a bounds computation per span.
+    #[inline]
     fn span(&mut self, y: i32, x0: i32, x1: i32, color: T::Color) {
-        let b = self.bounds();
-        if y >= b.y0 && y < b.y1 {
-            self.inner.span(y - self.y0, x0, x1, color);
-        }
+        self.inner.span(y.wrapping_sub(self.y0), x0, x1, color);
     }
 }
 

@@ -84,7 +84,20 @@ pub struct DisplayList<'m> {
     peak: usize,
     ids: bool,
     outlines: bool,
+    /// Groups in the table at the top of `buf` (see [`GROUP`]).
+    groups: usize,
+    /// Records in the last group.
+    in_group: usize,
 }
+
+/// Records per group. Every [`GROUP`] consecutive records share an entry
+/// of 4 words at the top of the storage (growing down): the rows they
+/// touch together and where they start. A band skips the groups that miss
+/// its rows without reading their records: the walk visits the tree's
+/// subtrees, which are spatially compact, one after the other, so a group
+/// covers few rows. (Scanning every record in every band cost a third of
+/// the bands' overhead.)
+pub const GROUP: usize = 16;
 
 impl<'m> DisplayList<'m> {
     /// An empty list over `buf`, storing ids and outline masks only when
@@ -96,12 +109,71 @@ impl<'m> DisplayList<'m> {
             peak: 0,
             ids,
             outlines,
+            groups: 0,
+            in_group: 0,
         }
     }
 
     /// Empties the list (the storage is kept).
     pub fn clear(&mut self) {
         self.len = 0;
+        self.groups = 0;
+        self.in_group = 0;
+    }
+
+    /// Where group `g`'s entry starts.
+    fn group_at(&self, g: usize) -> usize {
+        self.buf.len().wrapping_sub(4 * (g + 1))
+    }
+
+    /// Adds the record at `at` (rows `first..end`) to the group table;
+    /// `false` when a new entry does not fit below the records' end `top`.
+    fn note(&mut self, at: usize, first: u16, end: u16, top: usize) -> bool {
+        if self.in_group == 0 {
+            let g = self.groups;
+            let e = self.group_at(g);
+            if e < top || e > self.buf.len() {
+                return false;
+            }
+            if let Some(w) = self.buf.get_mut(e..e + 4) {
+                w.copy_from_slice(&[first, end, at as u16, (at >> 16) as u16]);
+            }
+            self.groups += 1;
+        } else if let Some(w) = self.buf.get_mut(self.group_at(self.groups - 1)..) {
+            w[0] = w[0].min(first);
+            w[1] = w[1].max(end);
+        }
+        self.in_group = (self.in_group + 1) % GROUP;
+        true
+    }
+
+    /// Number of groups (see [`GROUP`]).
+    pub fn groups(&self) -> usize {
+        self.groups
+    }
+
+    /// Group `g`: the rows `(first, end)` its records touch together, and
+    /// the words `start..stop` they take.
+    #[inline]
+    pub fn group(&self, g: usize) -> Option<(i32, i32, usize, usize)> {
+        if g >= self.groups {
+            return None;
+        }
+        let e = self.group_at(g);
+        let &[first, end, lo, hi] = self.buf.get(e..e + 4)? else {
+            return None;
+        };
+        let start = usize::from(lo) | usize::from(hi) << 16;
+        let stop = if g + 1 < self.groups {
+            let n = self.group_at(g + 1);
+            match self.buf.get(n + 2..n + 4) {
+                Some(&[lo, hi]) => usize::from(lo) | usize::from(hi) << 16,
+                _ => self.len,
+            }
+        } else {
+            self.len
+        };
+        Some((i32::from(first), i32::from(end), start, stop))
     }
 
     /// Words in use.
@@ -140,6 +212,10 @@ impl<'m> DisplayList<'m> {
             return false;
         }
         let words = self.record_words(n, inline);
+        let table = 4 * (self.groups + usize::from(self.in_group == 0));
+        if self.len + words + table > self.buf.len() {
+            return false;
+        }
         let Some(out) = self.buf.get_mut(self.len..self.len + words) else {
             return false;
         };
@@ -175,8 +251,11 @@ impl<'m> DisplayList<'m> {
                 }
             }
         }
+        let at = self.len;
         self.len += words;
-        self.peak = self.peak.max(self.len);
+        // Room for the entry was checked above.
+        self.note(at, e.first as u16, e.end as u16, self.len);
+        self.peak = self.peak.max(self.len + 4 * self.groups);
         true
     }
 
@@ -289,6 +368,15 @@ impl<'m> DisplayList<'m> {
             read = r.next;
         }
         self.len = write;
+        // The groups again, over the records kept (fewer entries than
+        // before, so they fit).
+        self.groups = 0;
+        self.in_group = 0;
+        let mut at = 0;
+        while let Some((first, end, next)) = self.rows_at(at) {
+            self.note(at, first as u16, end as u16, self.len);
+            at = next;
+        }
     }
 }
 
@@ -347,13 +435,45 @@ mod tests {
 
     #[test]
     fn a_full_list_refuses_whole_records() {
-        let mut buf = [0u16; 10];
+        // A triangle takes 7 words, and its group's entry 4.
+        let mut buf = [0u16; 11];
         let mut l = DisplayList::new(&mut buf, false, false);
         assert!(l.push(&entry(0, 1), Points::Indices(&[1, 2, 3])));
         assert!(!l.push(&entry(0, 1), Points::Indices(&[1, 2, 3])));
         assert!(!l.push(&entry(-1, 1), Points::Indices(&[1])));
         assert!(!l.push(&entry(0, 1 << 15), Points::Indices(&[1])));
-        assert_eq!((l.len(), l.peak()), (7, 7));
+        assert_eq!((l.len(), l.peak(), l.groups()), (7, 11, 1));
+    }
+
+    #[test]
+    fn groups_cover_their_records() {
+        let mut buf = [0u16; 1024];
+        let mut l = DisplayList::new(&mut buf, false, false);
+        let n = 2 * GROUP + 3;
+        for i in 0..n as i32 {
+            assert!(l.push(&entry(i, i + 2), Points::Indices(&[1, 2, 3])));
+        }
+        assert_eq!(l.groups(), 3);
+        let mut seen = 0;
+        for g in 0..l.groups() {
+            let (first, end, start, stop) = l.group(g).unwrap();
+            let mut at = start;
+            while at < stop {
+                let (f, e, next) = l.rows_at(at).unwrap();
+                assert!(f >= first && e <= end);
+                seen += 1;
+                at = next;
+            }
+        }
+        assert_eq!(seen, n);
+        assert_eq!(l.group(0).map(|g| (g.0, g.1)), Some((0, GROUP as i32 + 1)));
+        // Compaction rebuilds the groups over what is kept.
+        l.retain_rows_below(GROUP as i32 + 2);
+        assert_eq!(l.groups(), 2);
+        assert_eq!(
+            l.group(1).map(|g| (g.0, g.1)),
+            Some((GROUP as i32, GROUP as i32 + 3))
+        );
     }
 
     #[test]

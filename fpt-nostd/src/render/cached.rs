@@ -341,10 +341,20 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
     sink: &mut K,
 ) -> u64 {
     let mut spans = 0;
-    let mut at = 0;
-    while let Some((first, end, next)) = list.rows_at(at) {
-        let here = at;
-        at = next;
+    // Whole groups of records that miss the band are skipped unread.
+    let groups = (0..list.groups()).filter_map(|g| list.group(g));
+    let mut records = groups
+        .filter(|&(first, end, _, _)| end > y0 && first < y1)
+        .flat_map(|(_, _, start, stop)| {
+            let mut at = start;
+            core::iter::from_fn(move || {
+                let (first, end, next) = list.rows_at(at).filter(|_| at < stop)?;
+                let here = at;
+                at = next;
+                Some((first, end, here))
+            })
+        });
+    while let Some((first, end, here)) = records.next() {
         if end <= y0 || first >= y1 {
             continue;
         }

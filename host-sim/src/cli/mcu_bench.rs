@@ -185,6 +185,9 @@ struct Bench {
     clock: f64,
     /// Words of working memory; `None`: chosen from the tree.
     memory: Option<usize>,
+    /// The most working memory a frame used on the host (with all it
+    /// could want).
+    needed: usize,
 }
 
 impl Bench {
@@ -205,6 +208,7 @@ impl Bench {
             frames: a.frames,
             clock,
             memory: a.memory,
+            needed: 0,
         })
     }
 }
@@ -219,7 +223,8 @@ struct HostCrcs<'t> {
 }
 
 impl PrecisionVisitor for HostCrcs<'_> {
-    type Output = Result<Vec<u32>, CliError>;
+    /// Every frame's checksum and the most working memory a frame used.
+    type Output = Result<(Vec<u32>, usize), CliError>;
     fn visit<P: Precision>(self) -> Self::Output {
         let (w, h) = self.size;
         let mut r = TreeRenderer::<P, MAX_VERTS>::new(w, h)
@@ -228,7 +233,8 @@ impl PrecisionVisitor for HostCrcs<'_> {
         // The host draws with all the memory a frame needs (the picture
         // does not depend on it).
         let mut memory = vec![0u32; fpt_nostd::render::memory_words(self.tree)];
-        (0..self.frames)
+        let mut used = 0;
+        let crcs = (0..self.frames)
             .map(|i| {
                 frame_crc::<P, MAX_VERTS, HOST_DEPTH>(
                     &mut r,
@@ -237,9 +243,14 @@ impl PrecisionVisitor for HostCrcs<'_> {
                     (&mut buf, &mut memory),
                     self.band,
                 )
+                .map(|(crc, stats)| {
+                    used = used.max(stats.memory_used as usize);
+                    crc
+                })
                 .map_err(|e| cli_err!("host frame {i}: {e}"))
             })
-            .collect()
+            .collect::<Result<Vec<u32>, CliError>>()?;
+        Ok((crcs, used))
     }
 }
 
@@ -497,15 +508,14 @@ fn parse_run(out: &str) -> Run {
     run
 }
 
-/// The working memory a run gets unless `--memory` says: what a frame of
-/// `tree` needs ([`fpt_nostd::render::memory_words`]), on the Cortex-M0 at
-/// most what its RAM leaves beside the band buffer, the renderer's scratch
-/// (as `build.rs` sizes it: 106 B a vertex) and 5 KiB for the stack and
-/// the other statics.
-fn default_memory(b: &Bench, tree: &Tree<'_>) -> usize {
-    let need = fpt_nostd::render::memory_words(tree);
+/// The working memory a run gets unless `--memory` says: the most any
+/// frame of the orbit used on the host with all it could want (`used`),
+/// on the Cortex-M0 at most what its RAM leaves beside the band buffer,
+/// the renderer's scratch (as `build.rs` sizes it: 106 B a vertex) and
+/// 5 KiB for the stack and the other statics.
+fn default_memory(b: &Bench, tree: &Tree<'_>, used: usize) -> usize {
     if b.cpu != Cpu::M0 {
-        return need;
+        return used;
     }
     let verts = (0..tree.polygon_count())
         .filter_map(|i| tree.polygon(i))
@@ -515,7 +525,7 @@ fn default_memory(b: &Bench, tree: &Tree<'_>) -> usize {
         .max(16);
     let band = 2 * band_words(b.size.0, b.size.1, b.band);
     let left = (b.cpu.ram() as usize).saturating_sub(band + 106 * verts + 5 * 1024);
-    need.min(left / 4)
+    used.min(left / 4)
 }
 
 /// Runs `fpt mcu-bench`.
@@ -524,7 +534,7 @@ pub fn run(a: &McuBenchArgs) -> CliResult {
     let bytes =
         std::fs::read(&b.tree).map_err(|e| cli_err!("reading {}: {e}", b.tree.display()))?;
     let tree = Tree::from_bytes(&bytes).map_err(|e| cli_err!("{}: {e}", b.tree.display()))?;
-    b.memory = Some(b.memory.unwrap_or_else(|| default_memory(&b, &tree)));
+
     let name = b
         .tree
         .file_stem()
@@ -535,12 +545,14 @@ pub fn run(a: &McuBenchArgs) -> CliResult {
             tree.max_depth()
         ));
     }
-    let host = b.precision.visit(HostCrcs {
+    let (host, used) = b.precision.visit(HostCrcs {
         tree: &tree,
         size: b.size,
         band: b.band,
         frames: b.frames,
     })?;
+    b.memory = Some(b.memory.unwrap_or_else(|| default_memory(&b, &tree, used)));
+    b.needed = used;
     check_tools(b.cpu)?;
     let elf = build_firmware(&b, &name, false)?;
     let result = measure(&b, &name, &elf, &host, &tree);
@@ -689,7 +701,7 @@ fn measure(b: &Bench, name: &str, elf: &Path, host: &[u32], tree: &Tree<'_>) -> 
         "precision": b.precision.name(),
         "frames": b.frames,
         "memory_words": b.memory.unwrap_or(0),
-        "memory_needed": fpt_nostd::render::memory_words(tree),
+        "memory_needed": b.needed,
         "instr_median": median,
         "instr_min": instr[0],
         "instr_max": instr[instr.len() - 1],
