@@ -12,7 +12,7 @@
 //!   binary, whose lines must be the host's too.
 //! * `m0_firmware_matches_host`: the same for the Cortex-M0 build
 //!   (`--target thumbv6m-none-eabi`, feature `band`, QEMU `microbit`),
-//!   which embeds the scenes that fit its flash (vise and house), and
+//!   which embeds the scene that fits its flash (vise), and
 //!   checks that its statics and measured stack peak fit its 16 KiB of RAM.
 //!
 //! The firmware tests are skipped, with a message, when
@@ -251,7 +251,7 @@ fn firmware_matches_host() {
 }
 
 /// The scenes the Cortex-M0 firmware embeds (those that fit its flash).
-const M0_SCENES: [&str; 2] = ["vise", "house"];
+const M0_SCENES: [&str; 1] = ["vise"];
 /// The Cortex-M0's RAM (QEMU `microbit`, nRF51822).
 const M0_RAM: usize = 16 * 1024;
 

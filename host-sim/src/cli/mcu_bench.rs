@@ -162,7 +162,7 @@ impl Cpu {
 }
 
 /// `WxH` as two positive numbers.
-fn parse_size(s: &str) -> Result<(u32, u32), CliError> {
+pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), CliError> {
     let bad = || cli_err!("--size wants WxH (e.g. 240x240), got '{s}'");
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
     let w: u32 = w.trim().parse().map_err(|_| bad())?;

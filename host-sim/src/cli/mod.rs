@@ -9,6 +9,7 @@ use std::ffi::OsString;
 use std::path::PathBuf;
 
 pub mod accuracy;
+mod bench_memory;
 mod build;
 mod demo;
 mod display;
@@ -72,6 +73,9 @@ enum Command {
     /// Draw a tree over the standard orbit on an emulated MCU (QEMU) and
     /// print its cost, memory and checksum check as JSON.
     McuBench(mcu_bench::McuBenchArgs),
+    /// Measure the working memory a tree's banded frames need and the walks
+    /// that less memory costs (standard orbit, host).
+    BenchMemory(bench_memory::BenchMemoryArgs),
 }
 
 /// Arguments of `fpt build`.
@@ -229,6 +233,7 @@ where
         Command::Demo(a) => demo::run(&a),
         Command::BenchAccuracy(a) => accuracy::run(&a),
         Command::McuBench(a) => mcu_bench::run(&a),
+        Command::BenchMemory(a) => bench_memory::run(&a),
     };
     match result {
         Ok(()) => 0,
