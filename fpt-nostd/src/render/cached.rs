@@ -343,7 +343,7 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
     let mut spans = 0;
     // Whole groups of records that miss the band are skipped unread.
     let groups = (0..list.groups()).filter_map(|g| list.group(g));
-    let mut records = groups
+    let records = groups
         .filter(|&(first, end, _, _)| end > y0 && first < y1)
         .flat_map(|(_, _, start, stop)| {
             let mut at = start;
@@ -354,7 +354,7 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
                 Some((first, end, here))
             })
         });
-    while let Some((first, end, here)) = records.next() {
+    for (first, end, here) in records {
         if end <= y0 || first >= y1 {
             continue;
         }
