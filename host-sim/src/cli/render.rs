@@ -44,8 +44,9 @@ use embedded_graphics::geometry::{Point, Size};
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics::prelude::DrawTarget;
 use embedded_graphics::Pixel;
-use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
+use embedded_graphics_simulator::SimulatorDisplay;
 use fpt_nostd::effects::Effects;
+use fpt_nostd::order::View;
 use fpt_nostd::raster::framebuffer::{BinaryFormat, Gray8Format, Rgb565Format, Rgb888Format};
 use fpt_nostd::raster::transform::MAX_DIM;
 use fpt_nostd::raster::{
@@ -54,7 +55,7 @@ use fpt_nostd::raster::{
     RenderStats, ShadeMode,
 };
 use fpt_nostd::reader::Tree;
-use fpt_nostd::render::{near_w_for, BandBuffer, FaceIds, Frame, TreeRenderer};
+use fpt_nostd::render::{near_w_for, BandBuffer, FaceIds, Frame, MatrixView, TreeRenderer};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -162,10 +163,10 @@ pub struct RenderArgs {
     #[arg(long, allow_hyphen_values = true, requires = "yaw")]
     pub pitch: Option<f64>,
     /// Orbit: distance from the bounding-sphere centre (default 3× radius).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub distance: Option<f64>,
     /// Orbit: vertical field of view, degrees; 0 is a parallel projection.
-    #[arg(long, default_value_t = 40.0)]
+    #[arg(long, default_value_t = 40.0, allow_negative_numbers = true)]
     pub fov: f64,
     /// Orbit: the model's up axis (y, or z for z-up models).
     #[arg(long, default_value = "y", value_parser = ["y", "z"])]
@@ -178,7 +179,7 @@ pub struct RenderArgs {
     #[arg(long, default_value = "rgb888", value_parser = ["rgb565", "rgb888", "gray8", "mono"])]
     pub format: String,
     /// Draw in bands of N rows through one band buffer.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub band: Option<u32>,
     /// Arithmetic configuration (vertex path, math library, sub-pixel bits).
     #[arg(long, default_value = "fixed-subpx-4", value_parser = PRECISION_NAMES)]
@@ -192,7 +193,7 @@ pub struct RenderArgs {
     pub effects: Option<String>,
     /// Grey levels of a gray8 panel (2..=256; default 256, or 16 when
     /// dithering).
-    #[arg(long = "gray-levels")]
+    #[arg(long = "gray-levels", allow_negative_numbers = true)]
     pub gray_levels: Option<u16>,
     /// How the PNG shows the display: plain, or a panel look (oled-blue,
     /// oled-white, lcd-green, lcd-white, lcd-blue).
@@ -226,7 +227,13 @@ impl CameraSpec {
     pub fn frame<M: MathFns>(&self, tree: &Tree<'_>, w: u32, h: u32) -> Frame {
         match *self {
             CameraSpec::Mvp(rows) => {
-                Frame::from_f64(tree, &rows, f64::from(near_w_for(&rows, tree)))
+                let mut frame = Frame::from_f64(tree, &rows, f64::from(near_w_for(&rows, tree)));
+                if MatrixView::of(&rows, tree.origin()) == MatrixView::Degenerate {
+                    if let Some(view) = normalised_view(&rows, tree) {
+                        frame.view = view;
+                    }
+                }
+                frame
             }
             CameraSpec::Orbit {
                 yaw,
@@ -235,14 +242,24 @@ impl CameraSpec {
                 fov,
                 z_up,
             } => {
-                let r = tree.bounding_radius();
+                let r = f64::from(tree.bounding_radius());
                 let r = if r.is_finite() && r > 0.0 { r } else { 1.0 };
-                let d = distance.map_or(3.0 * r, |d| d as f32);
+                // The orbit is composed in units of `u = 2^e ≤ r` (so the
+                // model's radius is in [1, 2)) and scaled back to model
+                // units after: composed in model units, a model of radius
+                // 1e20 or more overflows `f32` inside the projection
+                // (2·far·near is 2·distance²) and one below 1e-20
+                // underflows, and nothing is drawn. Scaling by powers of
+                // two is exact, so for any radius whose matrix is
+                // representable the frame is bit for bit the one composed
+                // in model units.
+                let e = log2_floor(r);
+                let d = distance.unwrap_or(3.0 * r) * pow2(-e);
                 let o = Orbit::new(
                     [0.0; 3],
                     yaw.to_radians() as f32,
                     pitch.to_radians() as f32,
-                    d,
+                    d as f32,
                     fov.to_radians() as f32,
                 );
                 let mut cam = o.camera::<M>(w as f32 / h as f32);
@@ -253,10 +270,88 @@ impl CameraSpec {
                         *row = [row[0], -row[2], row[1], row[3]];
                     }
                 }
-                Frame::relative(tree, &cam)
+                let unit_view = MatrixView::of(&fpt_nostd::render::rows_f64(&cam.matrix), [0.0; 3]);
+                // Model units: M · S(2^−e). The renderer normalises the
+                // matrix's scale itself (a homogeneous factor changes no
+                // projected point), so it is multiplied by 2^(e/2) too,
+                // which keeps every entry far inside the `f32` range:
+                // the x, y, z columns get 2^(e/2 − e), the translation
+                // column and the near threshold 2^(e/2).
+                let half = e / 2;
+                let (sx, st) = (pow2(half - e) as f32, pow2(half) as f32);
+                for row in cam.matrix.0.iter_mut() {
+                    *row = [row[0] * sx, row[1] * sx, row[2] * sx, row[3] * st];
+                }
+                cam.near_w *= st;
+                let mut frame = Frame::relative(tree, &cam);
+                // The walk's view from the matrix in units of `u`, where its
+                // columns are balanced (see `normalised_view`); for a model
+                // of ordinary size this is bit for bit the view derived
+                // from the matrix in model units.
+                if let Some(view) = scaled_view(unit_view, pow2(e)) {
+                    frame.view = view;
+                }
+                frame
             }
         }
     }
+}
+
+/// The walk's view of the model → clip matrix `rows`, derived from the
+/// matrix in the units of the tree (origin-relative, radius in [1, 2)),
+/// or `None` when that matrix is degenerate too.
+///
+/// Why: [`MatrixView::of`] calls a matrix degenerate when its centre of
+/// projection is tiny against the product of its rows' lengths. For a
+/// model of radius 1e10 the x, y, z columns of a matrix that frames it are
+/// 1e-10 of its translation column, the centre of projection shrinks by
+/// 1e-20 while the rows do not, and a perfectly good camera is taken for a
+/// degenerate one (the walk then sorts for the wrong view and faces vanish).
+/// In the tree's units the columns are balanced again; the eye found there
+/// is scaled back by the exact power of two.
+fn normalised_view(rows: &[[f64; 4]; 4], tree: &Tree<'_>) -> Option<View> {
+    let u = pow2(log2_floor(f64::from(tree.bounding_radius())));
+    let o = tree.origin();
+    let a = rows.map(|r| {
+        let t = r[0] * o[0] + r[1] * o[1] + r[2] * o[2] + r[3];
+        [r[0] * u, r[1] * u, r[2] * u, t]
+    });
+    scaled_view(MatrixView::of(&a, [0.0; 3]), u)
+}
+
+/// The walk's view for a view found in origin-relative coordinates in
+/// units of `u` (a power of two): the eye scaled back to model units, a
+/// direction as it is; `None` for a degenerate view.
+fn scaled_view(view: MatrixView, u: f64) -> Option<View> {
+    match view {
+        MatrixView::Perspective { eye } => Some(View::PerspectiveRelative {
+            eye: eye.map(|v| (v * u) as f32),
+        }),
+        MatrixView::Parallel { dir } => Some(View::Parallel {
+            dir: dir.map(|v| v as f32),
+        }),
+        MatrixView::Degenerate => None,
+    }
+}
+
+/// `floor(log2(x))` for a finite `x > 0` (0 otherwise), within ±126 so
+/// that `2^e` and `2^−e` are normal `f32` numbers.
+fn log2_floor(x: f64) -> i32 {
+    if !(x.is_finite() && x > 0.0) {
+        return 0;
+    }
+    let mut e = ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    // A subnormal `f64` is far below any `f32` radius; `log2` is exact
+    // enough for it.
+    if e == -1023 {
+        e = x.log2().floor() as i32;
+    }
+    e.clamp(-126, 126)
+}
+
+/// `2^e` as `f64`, exactly (`e` within ±1000).
+fn pow2(e: i32) -> f64 {
+    f64::from_bits(((e.clamp(-1000, 1000) + 1023) as u64) << 52)
 }
 
 /// Pixel format of the framebuffer.
@@ -424,7 +519,7 @@ fn render_with<P: Precision>(tree: &Tree<'_>, job: &Job) -> Result<Rendered, Cli
     if job.ids {
         ids = vec![0u32; job.w as usize * job.h as usize];
         let mut sink =
-            IdBuffer::new(&mut ids, job.w, job.h).map_err(|e| cli_err!("id buffer: {e:?}"))?;
+            IdBuffer::new(&mut ids, job.w, job.h).map_err(|e| cli_err!("id buffer: {e}"))?;
         tr.ids = FaceIds::Source;
         tr.render::<_, WALK_STACK>(tree, &frame, &mut sink)?;
     }
@@ -451,7 +546,7 @@ where
     let stats = match job.band {
         None => {
             let mut fb = Framebuffer::<F>::new(&mut out, job.w, job.h)
-                .map_err(|e| cli_err!("framebuffer: {e:?}"))?;
+                .map_err(|e| cli_err!("framebuffer: {e}"))?;
             fb.fill_all(background);
             tr.render::<_, WALK_STACK>(tree, frame, &mut fb)?
         }
@@ -497,8 +592,8 @@ where
     let mut total = RenderStats::default();
     for y0 in band_starts(job.h, rows) {
         let n = rows.min(job.h - y0 as u32);
-        let mut fb = Framebuffer::<F>::new(&mut buf, job.w, n)
-            .map_err(|e| cli_err!("framebuffer: {e:?}"))?;
+        let mut fb =
+            Framebuffer::<F>::new(&mut buf, job.w, n).map_err(|e| cli_err!("framebuffer: {e}"))?;
         let mut sink = Dither::band(&mut fb, y0, levels);
         if !ordered {
             sink = sink.rounding();
@@ -531,7 +626,7 @@ fn to_display<F: PixelFormat>(
 where
     F::Color: PixelColor,
 {
-    let fb = Framebuffer::<F>::new(data, w, h).map_err(|e| cli_err!("framebuffer: {e:?}"))?;
+    let fb = Framebuffer::<F>::new(data, w, h).map_err(|e| cli_err!("framebuffer: {e}"))?;
     let base = fb.pixel(0, 0).ok_or_else(|| cli_err!("empty image"))?;
     let mut d = SimulatorDisplay::with_default_color(Size::new(w, h), base);
     let pixels = (0..h).flat_map(|y| (0..w).map(move |x| (x, y)));
@@ -545,30 +640,16 @@ where
 /// Saves `image` (`w × h`) as a PNG through the simulator, atomically,
 /// one image pixel per display pixel.
 pub fn save_png(image: &Image, w: u32, h: u32, path: &Path) -> CliResult {
-    save_png_as(image, w, h, path, &OutputSettings::default())
+    save_png_as(image, w, h, path, Panel::Plain)
 }
 
-/// [`save_png`] with the simulator's output `settings` (a panel look).
-pub fn save_png_as(
-    image: &Image,
-    w: u32,
-    h: u32,
-    path: &Path,
-    settings: &OutputSettings,
-) -> CliResult {
+/// [`save_png`] with a panel look ([`Panel::output`]).
+pub fn save_png_as(image: &Image, w: u32, h: u32, path: &Path, panel: Panel) -> CliResult {
     let out = match image.clone() {
-        Image::Rgb565(mut v) => {
-            to_display::<Rgb565Format>(&mut v, w, h)?.to_rgb_output_image(settings)
-        }
-        Image::Rgb888(mut v) => {
-            to_display::<Rgb888Format>(&mut v, w, h)?.to_rgb_output_image(settings)
-        }
-        Image::Gray8(mut v) => {
-            to_display::<Gray8Format>(&mut v, w, h)?.to_rgb_output_image(settings)
-        }
-        Image::Mono(mut v) => {
-            to_display::<BinaryFormat>(&mut v, w, h)?.to_rgb_output_image(settings)
-        }
+        Image::Rgb565(mut v) => panel.output(&to_display::<Rgb565Format>(&mut v, w, h)?),
+        Image::Rgb888(mut v) => panel.output(&to_display::<Rgb888Format>(&mut v, w, h)?),
+        Image::Gray8(mut v) => panel.output(&to_display::<Gray8Format>(&mut v, w, h)?),
+        Image::Mono(mut v) => panel.output(&to_display::<BinaryFormat>(&mut v, w, h)?),
     };
     let name = path
         .file_name()
@@ -693,7 +774,7 @@ pub fn run(a: &RenderArgs) -> CliResult {
     }
     let bytes = std::fs::read(&a.tree).map_err(|e| cli_err!("{}: {e}", a.tree.display()))?;
     let tree = Tree::from_bytes(&bytes)
-        .map_err(|e| cli_err!("{}: not a valid tree file: {e:?}", a.tree.display()))?;
+        .map_err(|e| cli_err!("{}: not a valid tree file: {e}", a.tree.display()))?;
     let job = Job {
         w,
         h,
@@ -711,7 +792,7 @@ pub fn run(a: &RenderArgs) -> CliResult {
         let raw: Vec<u8> = r.ids.iter().flat_map(|v| v.to_le_bytes()).collect();
         write_atomic(path, &raw).map_err(|e| cli_err!("{}: {e}", path.display()))?;
     }
-    save_png_as(&r.image, w, h, &a.output, &panel.settings())?;
+    save_png_as(&r.image, w, h, &a.output, panel)?;
     let s = r.stats;
     println!(
         "{}: {w}x{h} {}, {} polygons drawn ({} clipped, {} invisible, {} skipped), {} spans, {:.2} ms",

@@ -159,7 +159,7 @@ impl Case {
             DEFAULT_SEED,
             &mut NoProgress,
         );
-        let order = polygon_order(&tree).map_err(|e| cli_err!("{name}: {e:?}"))?;
+        let order = polygon_order(&tree).map_err(|e| cli_err!("{name}: {e}"))?;
         let exact = order
             .iter()
             .map(|&t| {
@@ -175,7 +175,7 @@ impl Case {
                 vertex_format,
                 ..SerializeOptions::default()
             };
-            let bytes = serialize(&tree, &opts).map_err(|e| cli_err!("{name}: {e:?}"))?;
+            let bytes = serialize(&tree, &opts).map_err(|e| cli_err!("{name}: {e}"))?;
             trees.push((vertex_format, bytes));
         }
         Ok(Case {
@@ -193,7 +193,7 @@ impl Case {
             .iter()
             .find(|(g, _)| *g == f)
             .map(|(_, b)| b.as_slice())
-            .ok_or_else(|| cli_err!("{}: no {f:?} tree", self.name))
+            .ok_or_else(|| cli_err!("{}: no {} tree", self.name, f.name()))
     }
 }
 
@@ -373,7 +373,7 @@ pub fn view_counts(
 ) -> Result<(Counts, Vec<u32>), CliError> {
     let (w, h) = (reference.w as u32, reference.h as u32);
     let bytes = case.tree_bytes(config.vertex)?;
-    let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e:?}", case.name))?;
+    let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e}", case.name))?;
     let spec = camera_spec(config, &tree, view, w, h);
     let r = render_job(&tree, &job(spec, w, h, true), config.precision)?;
     let mut c = compare_ids(reference, &r.ids)?;
@@ -492,7 +492,7 @@ pub fn host_seconds(
         let mut jobs = Vec::new();
         for case in cases {
             let bytes = case.tree_bytes(config.vertex)?;
-            let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e:?}", case.name))?;
+            let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e}", case.name))?;
             for &v in views {
                 let spec = camera_spec(config, &tree, v, w, h);
                 jobs.push((tree, job(spec, w, h, false)));
