@@ -13,7 +13,7 @@ use glam::DVec3;
 use host_sim::mesh::{load_bytes, ImportOptions, MeshFormat};
 use host_sim::reference::{zbuffer, Camera, Projection, RefOptions};
 use std::collections::HashSet;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Output;
 
 fn write(name: &str, text: &str) -> PathBuf {
@@ -77,7 +77,7 @@ fn three_cubes_one_inverted() -> String {
     )
 }
 
-fn build(mesh: &PathBuf, tree: &PathBuf, extra: &[&str]) -> Output {
+fn build(mesh: &Path, tree: &Path, extra: &[&str]) -> Output {
     let mut args = vec!["build", s(mesh), "-o", s(tree)];
     args.extend_from_slice(extra);
     fpt(&args)
@@ -93,7 +93,7 @@ fn warnings(out: &Output) -> Vec<String> {
 
 /// Renders `tree` through `mvp` (16 row-major numbers) and returns its
 /// source-id buffer.
-fn render_ids(tree: &PathBuf, extra: &[&str], w: usize, h: usize) -> Vec<u32> {
+fn render_ids(tree: &Path, extra: &[&str], w: usize, h: usize) -> Vec<u32> {
     let ids = tmp(&format!(
         "{}-ids.bin",
         tree.file_name().unwrap().to_string_lossy()
@@ -247,7 +247,7 @@ fn mixed_open_and_closed_parts_and_forced_closed_are_warned() {
 }
 
 /// The colours of a PNG.
-fn colours(path: &PathBuf) -> HashSet<Rgb888> {
+fn colours(path: &Path) -> HashSet<Rgb888> {
     let d = SimulatorDisplay::<Rgb888>::load_png(path).unwrap();
     let size = d.size();
     (0..size.height)

@@ -10,7 +10,7 @@ mod common;
 use common::{fpt, s, tmp};
 use glam::DVec3;
 use host_sim::reference::{Camera, Projection};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 const W: usize = 96;
 const H: usize = 72;
@@ -43,7 +43,7 @@ fn build(name: &str, scale: f64, offset: DVec3) -> Result<PathBuf, std::process:
 }
 
 /// The id buffer of a render of `tree` with camera arguments `camera`.
-fn ids(tree: &PathBuf, camera: &[String]) -> Vec<u32> {
+fn ids(tree: &Path, camera: &[String]) -> Vec<u32> {
     let ids = tmp("scale-ids.bin");
     let png = tmp("scale.png");
     let size = format!("{W}x{H}");
