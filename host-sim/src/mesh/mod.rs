@@ -13,7 +13,10 @@
 //! - Each output polygon's `source` is the index of its face among the faces
 //!   of the input (from 0, in file order), also for pieces of a split face.
 //! - Windings are kept: a face counter-clockwise seen from outside gets an
-//!   outward plane normal.
+//!   outward plane normal. The exception: a closed connected part whose
+//!   faces all wind inward (negative volume; not a cavity inside another
+//!   part) is turned outward, and counted in the [`ImportReport`], unless
+//!   [`ImportOptions::keep_orientation`] (see `parts`).
 //! - Vertices of every output polygon lie on its plane (they are snapped onto
 //!   it), so the builder's tighter tolerance sees them as exactly coplanar.
 

@@ -15,6 +15,10 @@
 //! everything else (an edge of one face, an edge of three faces, two faces
 //! winding the same way across it) is a *boundary edge*. A part is closed
 //! when all its edges are closed.
+//!
+//! A closed part with a negative volume is not inverted when it lies inside
+//! an outward closed part: it is then a cavity (the inner wall of a hollow
+//! solid), which must wind inward.
 
 use glam::DVec3;
 use std::collections::HashMap;
@@ -124,11 +128,15 @@ pub(crate) fn analyse(loops: &[Vec<u32>], positions: &[DVec3]) -> Parts {
             }
         }
     }
-    let inverted = signed_volumes(loops, positions, &part_of, parts)
+    let boxes = bounding_boxes(loops, positions, &part_of, parts);
+    let mut inverted: Vec<bool> = signed_volumes(loops, positions, &part_of, &boxes)
         .iter()
         .zip(&closed)
         .map(|(&(volume, magnitude), &c)| c && volume < -VOLUME_REL * magnitude)
         .collect();
+    if inverted.contains(&true) {
+        keep_cavities(loops, positions, &part_of, &boxes, &mut inverted, &closed);
+    }
     Parts {
         part_of,
         closed,
@@ -144,46 +152,152 @@ pub(crate) fn analyse(loops: &[Vec<u32>], positions: &[DVec3]) -> Parts {
 /// left alone).
 const VOLUME_REL: f64 = 1e-9;
 
-/// Per part: six times the signed volume enclosed by its loops (each loop
-/// fanned from its first vertex; positive when the faces wind
-/// counter-clockwise seen from outside), and the sum of the absolute values
-/// of the terms. Positions are taken relative to a vertex of the part and
-/// divided by the part's size first, so neither the distance from the
-/// coordinate origin nor the model's scale costs precision or overflows.
-fn signed_volumes(
+/// The position of vertex `i` (the origin for an index out of range, which
+/// [`super::prepare`] never passes).
+fn at(positions: &[DVec3], i: u32) -> DVec3 {
+    positions.get(i as usize).copied().unwrap_or(DVec3::ZERO)
+}
+
+/// Per part: the corners of its bounding box, and the factor that scales
+/// its size to 1 (for sums that must not depend on the model's scale).
+type Box3 = (DVec3, DVec3, f64);
+
+fn bounding_boxes(
     loops: &[Vec<u32>],
     positions: &[DVec3],
     part_of: &[u32],
     parts: usize,
-) -> Vec<(f64, f64)> {
-    let at = |i: u32| positions.get(i as usize).copied().unwrap_or(DVec3::ZERO);
-    let mut lo = vec![DVec3::splat(f64::INFINITY); parts];
-    let mut hi = vec![DVec3::splat(f64::NEG_INFINITY); parts];
+) -> Vec<Box3> {
+    let mut out = vec![
+        (
+            DVec3::splat(f64::INFINITY),
+            DVec3::splat(f64::NEG_INFINITY),
+            1.0
+        );
+        parts
+    ];
     for (l, &p) in loops.iter().zip(part_of) {
+        let b = &mut out[p as usize];
         for &i in l {
-            lo[p as usize] = lo[p as usize].min(at(i));
-            hi[p as usize] = hi[p as usize].max(at(i));
+            b.0 = b.0.min(at(positions, i));
+            b.1 = b.1.max(at(positions, i));
         }
     }
-    let mut out = vec![(0.0, 0.0); parts];
-    for (l, &p) in loops.iter().zip(part_of) {
-        let p = p as usize;
-        let size = (hi[p] - lo[p]).max_element();
-        let inv = if size.is_finite() && size > 0.0 {
-            1.0 / size
-        } else {
-            1.0
-        };
-        let rel = |i: u32| (at(i) - lo[p]) * inv;
-        let Some(&first) = l.first() else { continue };
-        let p0 = rel(first);
-        for w in l.get(1..).unwrap_or(&[]).windows(2) {
-            let t = p0.dot(rel(w[0]).cross(rel(w[1])));
-            out[p].0 += t;
-            out[p].1 += t.abs();
+    for b in &mut out {
+        let size = (b.1 - b.0).max_element();
+        if size.is_finite() && size > 0.0 {
+            b.2 = 1.0 / size;
         }
     }
     out
+}
+
+/// The triangles of a loop fanned from its first vertex.
+fn fan(l: &[u32]) -> impl Iterator<Item = (u32, u32, u32)> + '_ {
+    let first = l.first().copied().unwrap_or(0);
+    l.get(1..)
+        .unwrap_or(&[])
+        .windows(2)
+        .map(move |w| (first, w[0], w[1]))
+}
+
+/// Per part: six times the signed volume enclosed by its loops (positive
+/// when the faces wind counter-clockwise seen from outside), and the sum of
+/// the absolute values of the terms. Positions are taken relative to the
+/// part's box and divided by its size first, so neither the distance from
+/// the coordinate origin nor the model's scale costs precision or
+/// overflows.
+fn signed_volumes(
+    loops: &[Vec<u32>],
+    positions: &[DVec3],
+    part_of: &[u32],
+    boxes: &[Box3],
+) -> Vec<(f64, f64)> {
+    let mut out = vec![(0.0, 0.0); boxes.len()];
+    for (l, &p) in loops.iter().zip(part_of) {
+        let (lo, _, inv) = boxes[p as usize];
+        let rel = |i: u32| (at(positions, i) - lo) * inv;
+        for (a, b, c) in fan(l) {
+            let t = rel(a).dot(rel(b).cross(rel(c)));
+            out[p as usize].0 += t;
+            out[p as usize].1 += t.abs();
+        }
+    }
+    out
+}
+
+/// Clears `inverted` for the parts that are cavities: an inward-winding
+/// closed part inside an outward one is the inner wall of a hollow solid,
+/// modelled right. Inside means a vertex of it has winding number about 1
+/// with respect to the outer part (the sum of the solid angles of the outer
+/// part's triangles seen from it, over 4π); only parts whose box holds the
+/// inverted part's box are tried, so unrelated parts cost nothing.
+fn keep_cavities(
+    loops: &[Vec<u32>],
+    positions: &[DVec3],
+    part_of: &[u32],
+    boxes: &[Box3],
+    inverted: &mut [bool],
+    closed: &[bool],
+) {
+    let mut loops_of: Vec<Vec<usize>> = vec![Vec::new(); boxes.len()];
+    for (k, &p) in part_of.iter().enumerate() {
+        loops_of[p as usize].push(k);
+    }
+    let holds =
+        |outer: &Box3, inner: &Box3| outer.0.cmple(inner.0).all() && inner.1.cmple(outer.1).all();
+    for i in 0..boxes.len() {
+        if !inverted[i] {
+            continue;
+        }
+        let Some(&q) = loops_of[i].first().and_then(|&k| loops[k].first()) else {
+            continue;
+        };
+        let q = at(positions, q);
+        let inside = (0..boxes.len()).any(|j| {
+            j != i
+                && closed[j]
+                && !inverted[j]
+                && holds(&boxes[j], &boxes[i])
+                && winding_number(
+                    q,
+                    loops_of[j].iter().map(|&k| &loops[k][..]),
+                    positions,
+                    &boxes[j],
+                ) > 0.5
+        });
+        if inside {
+            inverted[i] = false;
+        }
+    }
+}
+
+/// The winding number of the closed surface `loops` around `q` (1 inside
+/// an outward surface, 0 outside), with positions scaled by `b` first.
+fn winding_number<'a>(
+    q: DVec3,
+    loops: impl Iterator<Item = &'a [u32]>,
+    positions: &[DVec3],
+    b: &Box3,
+) -> f64 {
+    let (lo, _, inv) = *b;
+    let rel = |i: u32| (at(positions, i) - q) * inv;
+    let q_lo = (q - lo) * inv;
+    if !q_lo.is_finite() {
+        return 0.0;
+    }
+    let mut total = 0.0;
+    for l in loops {
+        for (a, b, c) in fan(l) {
+            let (a, b, c) = (rel(a), rel(b), rel(c));
+            let (la, lb, lc) = (a.length(), b.length(), c.length());
+            // Van Oosterom and Strackee: tan(Ω/2) = det / denominator.
+            let det = a.dot(b.cross(c));
+            let den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+            total += 2.0 * det.atan2(den);
+        }
+    }
+    total / (4.0 * std::f64::consts::PI)
 }
 
 #[cfg(test)]
@@ -240,6 +354,33 @@ mod tests {
             assert_eq!(p.inverted_count(), 1);
             assert_eq!(p.part_of[6..12], [1; 6]);
         }
+    }
+
+    #[test]
+    fn a_cavity_winding_inward_inside_a_solid_is_left_alone() {
+        // A 3×3×3 box (outward) with a unit cube hole inside (inward), and
+        // apart, an inward unit cube that really is inside out.
+        let (mut v, mut loops) = cube(DVec3::ZERO, 0);
+        v.iter_mut().for_each(|p| *p *= 3.0);
+        let (cv, mut cl) = cube(DVec3::ONE, 8);
+        cl.iter_mut().for_each(|l| l.reverse());
+        let (fv, mut fl) = cube(DVec3::new(10.0, 0.0, 0.0), 16);
+        fl.iter_mut().for_each(|l| l.reverse());
+        v.extend(cv.into_iter().chain(fv));
+        loops.extend(cl.into_iter().chain(fl));
+        let p = analyse(&loops, &v);
+        assert_eq!(p.closed, vec![true; 3]);
+        assert_eq!(p.inverted, vec![false, false, true]);
+    }
+
+    #[test]
+    fn winding_number_is_one_inside_and_zero_outside() {
+        let (v, l) = cube(DVec3::ZERO, 0);
+        let v: Vec<DVec3> = v.into_iter().map(|p| p * 1e20).collect();
+        let b = bounding_boxes(&l, &v, &[0; 6], 1)[0];
+        let w = |q: DVec3| winding_number(q, l.iter().map(|l| &l[..]), &v, &b);
+        assert!((w(DVec3::new(0.5, 0.3, 0.9) * 1e20) - 1.0).abs() < 1e-9);
+        assert!(w(DVec3::new(2.0, 0.5, 0.5) * 1e20).abs() < 1e-9);
     }
 
     #[test]
