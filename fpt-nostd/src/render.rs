@@ -88,7 +88,7 @@ impl core::fmt::Display for RenderError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             RenderError::Order(e) => write!(f, "{e}"),
-            RenderError::Band(e) => write!(f, "band buffer: {e:?}"),
+            RenderError::Band(e) => write!(f, "band buffer: {e}"),
         }
     }
 }

@@ -107,6 +107,10 @@ fn cameras(scale: f64, offset: DVec3) -> Vec<(&'static str, Vec<String>)> {
             "f32-libm",
             args(&["--yaw", "30", "--pitch", "20", "--precision", "f32-libm"]),
         ),
+        (
+            "up-z",
+            args(&["--yaw", "30", "--pitch", "20", "--up", "z", "--band", "16"]),
+        ),
         ("mvp", vec!["--mvp".to_string(), mvp(scale, offset)]),
     ]
 }
@@ -172,6 +176,24 @@ fn every_scale_and_offset_draws_like_the_unit_cube() {
     }
     assert!(models >= 30, "{models} models swept");
     println!("{models} models, {} camera forms each", reference.len());
+}
+
+#[test]
+fn an_orbit_proof_does_not_depend_on_the_scale() {
+    for (scale, at) in [(1.0, 0.0), (1e38, 0.0), (1e-30, 1e-25)] {
+        let mesh = tmp(&format!("orbit-{scale:e}.obj"));
+        std::fs::write(&mesh, cube_obj(scale, at * OFFSET_DIR)).unwrap();
+        let tree = tmp(&format!("orbit-{scale:e}.fpt"));
+        for (orbit, says) in [
+            ("4,40", "no view needs clipping"),
+            ("1.2,40", "some views may need clipping"),
+        ] {
+            let out = fpt(&["build", s(&mesh), "-o", s(&tree), "--orbit", orbit]);
+            let text = String::from_utf8_lossy(&out.stdout);
+            assert!(out.status.success(), "{scale:e}");
+            assert!(text.contains(says), "{scale:e} {orbit}: {text}");
+        }
+    }
 }
 
 #[test]

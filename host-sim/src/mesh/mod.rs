@@ -89,7 +89,8 @@ pub struct ImportOptions {
 /// A number as a person writes it: plain when moderate, else `1e30`.
 fn short(v: f64) -> String {
     if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
-        format!("{v}")
+        // Four decimals say enough about a size in a message.
+        format!("{}", (v * 1e4).round() / 1e4)
     } else {
         format!("{v:e}")
     }
