@@ -204,4 +204,16 @@ fn a_cube_the_input_cannot_hold_is_refused_at_build_time() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.starts_with("error: "), "{err}");
+    // Beyond 1e38 the renderer's camera would overflow f32: refused too,
+    // and so are sizes whose squares overflow f64.
+    for scale in [2e38, 1e39, 1e100, 1e200] {
+        let out = build("huge", scale, DVec3::ZERO).unwrap_err();
+        assert_eq!(out.status.code(), Some(2), "{scale:e}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.contains("error: ") && err.contains("the model is too large"),
+            "{err}"
+        );
+    }
 }

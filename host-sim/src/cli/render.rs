@@ -775,6 +775,16 @@ pub fn run(a: &RenderArgs) -> CliResult {
     let bytes = std::fs::read(&a.tree).map_err(|e| cli_err!("{}: {e}", a.tree.display()))?;
     let tree = Tree::from_bytes(&bytes)
         .map_err(|e| cli_err!("{}: not a valid tree file: {e}", a.tree.display()))?;
+    // `fpt build` refuses such models ([`crate::mesh::MAX_SIZE`]); a file
+    // from elsewhere would be drawn blank (the orbit's eye overflows f32).
+    let radius = f64::from(tree.bounding_radius());
+    if radius > 0.5 * crate::mesh::MAX_SIZE {
+        return Err(cli_err!(
+            "{}: the model is too large to render: its bounding radius is {radius:e}, more than {:e}",
+            a.tree.display(),
+            0.5 * crate::mesh::MAX_SIZE
+        ));
+    }
     let job = Job {
         w,
         h,

@@ -78,6 +78,12 @@ pub struct ImportReport {
     pub boundary_edges: usize,
 }
 
+/// The largest bounding-box diagonal a model may have: trees store sizes
+/// in `f32`, and the renderer's default camera stands three bounding radii
+/// from the centre, a position that must be an `f32` too (3 × 1e38 is just
+/// below `f32::MAX`).
+pub const MAX_SIZE: f64 = 2e38;
+
 /// Choices of the import.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ImportOptions {
@@ -234,6 +240,11 @@ pub enum MeshError {
         /// them: a text of some other kind is recognisable by this.
         unknown_lines: usize,
     },
+    /// The model is larger than [`MAX_SIZE`].
+    TooLarge {
+        /// Its bounding-box diagonal.
+        diag: f64,
+    },
     /// One vertex is so far from all the others that, at the scale it
     /// gives the model, the others weld into one point.
     FarVertex {
@@ -246,8 +257,7 @@ pub enum MeshError {
     },
     /// The file extension names no known format.
     UnknownFormat(String),
-    /// A vertex used by a face has a NaN or infinite coordinate, or the
-    /// model is too large for its size to be a finite number.
+    /// A vertex used by a face has a NaN or infinite coordinate.
     NonFinite,
     /// A face refers to a vertex that does not exist.
     BadIndex {
@@ -307,6 +317,19 @@ impl fmt::Display for MeshError {
                 "no faces found in the {format} file ({} not understood)",
                 count(*unknown_lines, "line")
             ),
+            MeshError::TooLarge { diag } if !diag.is_finite() => write!(
+                f,
+                "the model is too large: its size overflows f64 (at most {} across); \
+                 scale it down",
+                short(MAX_SIZE)
+            ),
+            MeshError::TooLarge { diag } => write!(
+                f,
+                "the model is too large: its bounding box is {} across, more than {} \
+                 (a camera three radii away must fit in f32); scale it down",
+                short(*diag),
+                short(MAX_SIZE)
+            ),
             MeshError::FarVertex {
                 index,
                 position: [x, y, z],
@@ -325,10 +348,12 @@ impl fmt::Display for MeshError {
                 f,
                 "unknown mesh format {ext:?} (expected a .obj, .off, .stl or .ply file)"
             ),
-            MeshError::NonFinite => write!(
-                f,
-                "the mesh has a vertex coordinate that is NaN or infinite, or is too large"
-            ),
+            MeshError::NonFinite => {
+                write!(
+                    f,
+                    "the mesh has a vertex coordinate that is NaN or infinite"
+                )
+            }
             MeshError::BadIndex {
                 face,
                 index,
@@ -494,6 +519,10 @@ mod tests {
                 index: 8,
                 position: [0.0, 1e30, -2.5],
                 rest: 1.7,
+            },
+            MeshError::TooLarge { diag: 1e100 },
+            MeshError::TooLarge {
+                diag: f64::INFINITY,
             },
         ];
         for e in errors {

@@ -43,9 +43,11 @@ pub const PLANAR_REL: f64 = 1e-6;
 /// widen the model's size nor have to be finite).
 ///
 /// Errors: [`MeshError::BadIndex`] for an index past the vertex list,
-/// [`MeshError::NonFinite`] for a NaN/infinite used coordinate (or a model
-/// whose size overflows), [`MeshError::Empty`] when no face with area is
-/// left.
+/// [`MeshError::NonFinite`] for a NaN/infinite used coordinate,
+/// [`MeshError::TooLarge`] for a model larger than [`super::MAX_SIZE`],
+/// [`MeshError::FarVertex`] when one vertex alone stretches the model so
+/// far that the others weld into a point, [`MeshError::Empty`] when no
+/// face with area is left otherwise.
 pub fn from_faces(
     vertices: &[[f64; 3]],
     faces: &[Vec<u32>],
@@ -89,8 +91,9 @@ pub fn from_faces_with(
         return Err(MeshError::Empty);
     }
     let diag = (hi - lo).length();
-    if !diag.is_finite() {
-        return Err(MeshError::NonFinite);
+    // Finite coordinates whose span overflows are a model too large too.
+    if !diag.is_finite() || diag > super::MAX_SIZE {
+        return Err(MeshError::TooLarge { diag });
     }
     // A model that is one point still gets non-zero tolerances; all its faces
     // are then degenerate and the result is `Empty`.
@@ -600,7 +603,12 @@ mod tests {
         v[3] = [f64::MAX, -f64::MAX, 0.0];
         assert!(matches!(
             from_faces(&v, &f, None),
-            Err(MeshError::NonFinite)
+            Err(MeshError::TooLarge { .. })
+        ));
+        let big: Vec<[f64; 3]> = cube().0.iter().map(|p| p.map(|c| c * 1e100)).collect();
+        assert!(matches!(
+            from_faces(&big, &f, None),
+            Err(MeshError::TooLarge { .. })
         ));
         assert!(matches!(from_faces(&v, &[], None), Err(MeshError::Empty)));
         let same = vec![[1.0, 2.0, 3.0]; 3];
