@@ -64,7 +64,7 @@ pub struct ImportReport {
     /// Referenced vertices merged into another vertex by welding.
     pub welded_vertices: usize,
     /// Connected parts whose every edge is shared by two faces in opposite
-    /// directions (see [`parts`]).
+    /// directions (see the `parts` module).
     pub closed_parts: usize,
     /// The other connected parts.
     pub open_parts: usize,

@@ -57,7 +57,7 @@ pub fn from_faces(
 }
 
 /// [`from_faces`] with options: closed parts that wind inward are turned
-/// outward unless `options.keep_orientation` (see [`super::parts`]; the
+/// outward unless `options.keep_orientation` (see the `parts` module; the
 /// report counts them either way).
 pub fn from_faces_with(
     vertices: &[[f64; 3]],
