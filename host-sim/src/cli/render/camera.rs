@@ -167,3 +167,59 @@ fn log2_floor(x: f64) -> i32 {
 fn pow2(e: i32) -> f64 {
     f64::from_bits(((e.clamp(-1000, 1000) + 1023) as u64) << 52)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::build::{build, NoProgress};
+    use crate::serialize::{serialize, SerializeOptions};
+    use fpt_nostd::raster::{FixedPrecision, Libm, Precision};
+
+    /// The frame as `fpt render` composed an orbit before it worked in
+    /// radius units: in model units throughout.
+    fn model_units<M: MathFns>(tree: &Tree<'_>, yaw: f64, pitch: f64, fov: f64) -> Frame {
+        let r = tree.bounding_radius();
+        let o = Orbit::new(
+            [0.0; 3],
+            yaw.to_radians() as f32,
+            pitch.to_radians() as f32,
+            3.0 * r,
+            fov.to_radians() as f32,
+        );
+        Frame::relative(tree, &o.camera::<M>(4.0 / 3.0))
+    }
+
+    #[test]
+    fn orbit_frames_of_ordinary_models_are_those_composed_in_model_units() {
+        let s = crate::scenes::house();
+        let t = build(
+            s.polygons,
+            s.closed,
+            crate::tree::Method::Static,
+            1,
+            &mut NoProgress,
+        );
+        let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+        let tree = Tree::from_bytes(&bytes).unwrap();
+        assert!(tree.bounding_radius() > 2.0, "not a power-of-two-free case");
+        for (yaw, pitch, fov) in [(30.0, 20.0, 40.0), (-115.0, 62.0, 75.0), (10.0, -5.0, 0.0)] {
+            let spec = CameraSpec::Orbit {
+                yaw,
+                pitch,
+                distance: None,
+                fov,
+                z_up: false,
+            };
+            type M = <FixedPrecision<4> as Precision>::Math;
+            assert_eq!(
+                spec.frame::<M>(&tree, 320, 240),
+                model_units::<M>(&tree, yaw, pitch, fov),
+                "{yaw} {pitch} {fov}"
+            );
+            assert_eq!(
+                spec.frame::<Libm>(&tree, 320, 240),
+                model_units::<Libm>(&tree, yaw, pitch, fov)
+            );
+        }
+    }
+}
