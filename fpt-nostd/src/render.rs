@@ -88,7 +88,7 @@ impl core::fmt::Display for RenderError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             RenderError::Order(e) => write!(f, "{e}"),
-            RenderError::Band(e) => write!(f, "band buffer: {e:?}"),
+            RenderError::Band(e) => write!(f, "band buffer: {e}"),
         }
     }
 }
@@ -334,9 +334,11 @@ impl Frame {
                 dir: [0.0, 0.0, -1.0],
             },
         };
-        // S(s): s = 2^e with radius / s in [2^13, 2^14] (module docs).
+        // S(s): s = 2^e with radius / s in [2^13, 2^14] (module docs),
+        // for every finite `f32` radius: `e` only needs clamping where
+        // `2^−e` would stop being a normal `f32` (a radius below 2^−112).
         let e = log2_floor(f64::from(tree.bounding_radius()))
-            .map_or(0, |e| (e + 1 - 14).clamp(-110, 110));
+            .map_or(0, |e| (e + 1 - 14).clamp(-126, 126));
         let s = pow2(e);
         let a = r.map(|row| [row[0] * s, row[1] * s, row[2] * s, eval_row(row, o)]);
         let big = a.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));

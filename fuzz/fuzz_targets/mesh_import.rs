@@ -20,5 +20,9 @@ fuzz_target!(|data: &[u8]| {
             assert!((p.source as usize) < model.report.faces_read);
             assert!(p.verts.iter().all(|v| v.is_finite()));
         }
+        // Part counts agree with closedness (see host_sim::mesh::ImportReport).
+        let r = &model.report;
+        assert!(r.inverted_parts <= r.closed_parts);
+        assert!(!model.closed || (r.open_parts == 0 && r.boundary_edges == 0));
     }
 });

@@ -178,6 +178,17 @@ pub enum FramebufferError {
     BufferTooSmall,
 }
 
+impl core::fmt::Display for FramebufferError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            FramebufferError::BadSize => {
+                write!(f, "a side is zero or larger than {MAX_DIM} pixels")
+            }
+            FramebufferError::BufferTooSmall => f.write_str("the pixel storage is too small"),
+        }
+    }
+}
+
 /// An image of `F`-format pixels in borrowed storage (see module docs).
 #[derive(Debug)]
 pub struct Framebuffer<'a, F: PixelFormat> {

@@ -80,6 +80,17 @@ pub enum IdBufferError {
     BadSize,
 }
 
+impl core::fmt::Display for IdBufferError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            IdBufferError::BadSize => write!(
+                f,
+                "a side is zero or larger than {MAX_DIM} pixels, or the storage is too small"
+            ),
+        }
+    }
+}
+
 /// One `u32` per pixel holding `id + 1` of the last polygon drawn there
 /// (ids saturate at `u32::MAX − 1`).
 #[derive(Debug)]

@@ -163,7 +163,7 @@ pub fn rows_for(
     for case in cases {
         let f32_tree = case.tree_bytes(fpt_nostd::format::VertexFormat::F32)?;
         let tree = fpt_nostd::reader::Tree::from_bytes(f32_tree)
-            .map_err(|e| cli_err!("{}: {e:?}", case.name))?;
+            .map_err(|e| cli_err!("{}: {e}", case.name))?;
         for &v in views {
             let cam = reference_camera(&orbit_rows(&tree, v, w, h))?;
             let reference = reference_frame(case, &cam, w, h);

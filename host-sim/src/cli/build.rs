@@ -129,8 +129,8 @@ pub fn parse_orbit(s: &str) -> Result<(f32, f32, f32), CliError> {
 
 /// The effects `fpt build` stores: `--effects` as given, or the defaults
 /// of the tree's kind, without clipping when `--orbit` proves it is never
-/// needed ([`fpt_nostd::raster::Orbit::never_clips`], checked on the
-/// bounding sphere the file will store). Prints what the orbit proves.
+/// needed ([`fpt_nostd::raster::Orbit::never_clips`], which depends only on
+/// the distance in bounding radii). Prints what the orbit proves.
 fn scene_effects(a: &BuildArgs, tree: &FpTree) -> Result<Effects, CliError> {
     let given = match &a.effects {
         Some(list) => Some(Effects::parse(list).map_err(|e| cli_err!("--effects: {e}"))?),
@@ -139,14 +139,11 @@ fn scene_effects(a: &BuildArgs, tree: &FpTree) -> Result<Effects, CliError> {
     let mut effects = given.unwrap_or(Effects::defaults(tree.closed));
     if let Some(o) = &a.orbit {
         let (d, fov, aspect) = parse_orbit(o)?;
-        // The radius as stored (rounded up), from a serialization of the
-        // tree: the orbit turns around that sphere's centre.
-        let bytes = crate::serialize::serialize(tree, &Default::default())?;
-        let t = fpt_nostd::reader::Tree::from_bytes(&bytes)
-            .map_err(|e| cli_err!("internal: serialized tree invalid: {e:?}"))?;
-        let r = t.bounding_radius();
-        let orbit = Orbit::new([0.0; 3], 0.0, 0.0, d * r, fov.to_radians());
-        if orbit.never_clips::<Libm>(r, aspect) {
+        // The proof depends only on the distance in radii, so it is made
+        // for a sphere of radius 1: in model units `d × radius` overflows
+        // `f32` for a model of radius 1e38.
+        let orbit = Orbit::new([0.0; 3], 0.0, 0.0, d, fov.to_radians());
+        if orbit.never_clips::<Libm>(1.0, aspect) {
             println!("orbit {d},{fov},{aspect}: no view needs clipping");
             if given.is_none() {
                 effects = effects.without(Effects::CLIPPING);
@@ -158,15 +155,38 @@ fn scene_effects(a: &BuildArgs, tree: &FpTree) -> Result<Effects, CliError> {
     Ok(effects)
 }
 
+/// The warning for `--closed` on a mesh with boundary edges: the tree culls
+/// back faces, which is right only for a closed volume; through a hole the
+/// viewer sees the inside, whose faces point away and are culled, so the
+/// background shows through.
+fn forced_closed_line(report: &crate::mesh::ImportReport) -> Option<String> {
+    let n = report.boundary_edges;
+    (n > 0).then(|| {
+        format!(
+            "warning: --closed on a mesh with {n} boundary edge{}: back faces are culled, \
+             so wherever the inside shows (through a hole, or an open part's far side) \
+             the background shows instead",
+            if n == 1 { "" } else { "s" }
+        )
+    })
+}
+
 /// `fpt build`.
 pub fn run(a: &BuildArgs) -> CliResult {
     let method = parse_method(&a.method)?;
     let vertex_format = parse_vertex_format(&a.vertex_format)?;
-    let model = crate::mesh::load(&a.mesh).map_err(|e| cli_err!("{}: {e}", a.mesh.display()))?;
-    if let Some(w) = model.report.warning_line() {
+    let options = crate::mesh::ImportOptions {
+        keep_orientation: a.keep_orientation,
+    };
+    let model = crate::mesh::load_with(&a.mesh, &options)
+        .map_err(|e| cli_err!("{}: {e}", a.mesh.display()))?;
+    for w in model.report.warning_lines() {
         eprintln!("{w}");
     }
     let closed = if a.closed {
+        if let Some(w) = forced_closed_line(&model.report) {
+            eprintln!("{w}");
+        }
         true
     } else if a.open {
         false

@@ -105,7 +105,7 @@ fn demo_scene(show: &Show, out: &Path) -> CliResult {
     );
     let bytes = serialize(&tree, &SerializeOptions::default())?;
     let t = Tree::from_bytes(&bytes)
-        .map_err(|e| cli_err!("{}: the serialized tree does not validate: {e:?}", s.name))?;
+        .map_err(|e| cli_err!("{}: the serialized tree does not validate: {e}", s.name))?;
     let tree_path = out.join(format!("{}.fpt", s.name));
     write_atomic(&tree_path, &bytes).map_err(|e| cli_err!("{}: {e}", tree_path.display()))?;
     let st = &tree.stats;
@@ -175,7 +175,7 @@ type Shot = (
 fn demo_effects(out: &Path) -> CliResult {
     let path = out.join("vise.fpt");
     let bytes = std::fs::read(&path).map_err(|e| cli_err!("{}: {e}", path.display()))?;
-    let t = Tree::from_bytes(&bytes).map_err(|e| cli_err!("{}: {e:?}", path.display()))?;
+    let t = Tree::from_bytes(&bytes).map_err(|e| cli_err!("{}: {e}", path.display()))?;
     let base = Effects::from_bits(t.effects());
     println!("effects (the vise declares {base}):");
     let shots: [Shot; 4] = [
@@ -233,7 +233,7 @@ fn demo_effects(out: &Path) -> CliResult {
         };
         let r = render_job(&t, &job, PRECISION)?;
         let png = out.join(format!("vise_{name}.png"));
-        save_png_as(&r.image, w, h, &png, &panel.settings())?;
+        save_png_as(&r.image, w, h, &png, panel)?;
         println!("  {}  {w}x{h} {effects}", png.display());
     }
     Ok(())

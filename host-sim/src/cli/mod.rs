@@ -90,7 +90,7 @@ pub struct BuildArgs {
     #[arg(long, default_value = "static")]
     pub method: String,
     /// Seed of the random choices of dynamic preprocessing and BSP.
-    #[arg(long, default_value_t = crate::build::DEFAULT_SEED)]
+    #[arg(long, default_value_t = crate::build::DEFAULT_SEED, allow_negative_numbers = true)]
     pub seed: u64,
     /// Treat the mesh as a closed volume (back faces culled).
     #[arg(long, conflicts_with = "open")]
@@ -98,6 +98,10 @@ pub struct BuildArgs {
     /// Treat the mesh as an open volume (both sides drawn).
     #[arg(long)]
     pub open: bool,
+    /// Leave closed parts whose faces wind inward as they are (by default
+    /// they are turned outward, with a warning).
+    #[arg(long = "keep-orientation")]
+    pub keep_orientation: bool,
     /// Write the build statistics to this JSON file.
     #[arg(long)]
     pub stats: Option<PathBuf>,
@@ -151,7 +155,7 @@ pub struct BenchBuildArgs {
     /// Mesh files (default: the shared models in ../shared/models).
     pub meshes: Vec<PathBuf>,
     /// Builds per method and model; times are averaged.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     pub runs: u32,
     /// Instead of meshes: build faceted tori of 750 to 12,000 polygons and
     /// show how build time grows with the polygon count.
@@ -165,10 +169,14 @@ pub struct BenchOrderArgs {
     /// Tree file.
     pub tree: PathBuf,
     /// Number of view directions spread over the sphere.
-    #[arg(long, default_value_t = 1000)]
+    #[arg(long, default_value_t = 1000, allow_negative_numbers = true)]
     pub views: u32,
     /// Repeat the walks over all views until this many seconds have passed.
-    #[arg(long = "min-seconds", default_value_t = 0.5)]
+    #[arg(
+        long = "min-seconds",
+        default_value_t = 0.5,
+        allow_negative_numbers = true
+    )]
     pub min_seconds: f64,
 }
 

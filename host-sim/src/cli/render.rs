@@ -44,19 +44,21 @@ use embedded_graphics::geometry::{Point, Size};
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics::prelude::DrawTarget;
 use embedded_graphics::Pixel;
-use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
+use embedded_graphics_simulator::SimulatorDisplay;
 use fpt_nostd::effects::Effects;
 use fpt_nostd::raster::framebuffer::{BinaryFormat, Gray8Format, Rgb565Format, Rgb888Format};
 use fpt_nostd::raster::transform::MAX_DIM;
 use fpt_nostd::raster::{
     band_starts, DepthCue, Dither, DitherFormat, FixedMicromath, FixedPrecision, FloatLibm,
-    FloatMicromath, Framebuffer, IdBuffer, IntPrecision, Light, MathFns, Orbit, PixelFormat,
-    Precision, RenderStats, ShadeMode,
+    FloatMicromath, Framebuffer, IdBuffer, IntPrecision, Light, PixelFormat, Precision,
+    RenderStats, ShadeMode,
 };
 use fpt_nostd::reader::Tree;
-use fpt_nostd::render::{near_w_for, BandBuffer, FaceIds, Frame, TreeRenderer};
+use fpt_nostd::render::{BandBuffer, FaceIds, Frame, TreeRenderer};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+pub use camera::CameraSpec;
 
 /// The names `--precision` accepts: vertex path and math library, then
 /// the sub-pixel bits.
@@ -169,10 +171,10 @@ pub struct RenderArgs {
     #[arg(long, allow_hyphen_values = true, requires = "yaw")]
     pub pitch: Option<f64>,
     /// Orbit: distance from the bounding-sphere centre (default 3× radius).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub distance: Option<f64>,
     /// Orbit: vertical field of view, degrees; 0 is a parallel projection.
-    #[arg(long, default_value_t = 40.0)]
+    #[arg(long, default_value_t = 40.0, allow_negative_numbers = true)]
     pub fov: f64,
     /// Orbit: the model's up axis (y, or z for z-up models).
     #[arg(long, default_value = "y", value_parser = ["y", "z"])]
@@ -185,7 +187,7 @@ pub struct RenderArgs {
     #[arg(long, default_value = "rgb888", value_parser = ["rgb565", "rgb888", "gray8", "mono"])]
     pub format: String,
     /// Draw in bands of N rows through one band buffer.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub band: Option<u32>,
     /// Arithmetic configuration (vertex path, math library, sub-pixel bits).
     #[arg(long, default_value = "fixed-subpx-4", value_parser = PRECISION_NAMES)]
@@ -199,71 +201,12 @@ pub struct RenderArgs {
     pub effects: Option<String>,
     /// Grey levels of a gray8 panel (2..=256; default 256, or 16 when
     /// dithering).
-    #[arg(long = "gray-levels")]
+    #[arg(long = "gray-levels", allow_negative_numbers = true)]
     pub gray_levels: Option<u16>,
     /// How the PNG shows the display: plain, or a panel look (oled-blue,
     /// oled-white, lcd-green, lcd-white, lcd-blue).
     #[arg(long, default_value = "plain", value_parser = PANELS)]
     pub display: String,
-}
-
-/// The camera of a render.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum CameraSpec {
-    /// A model → clip matrix, row-major.
-    Mvp([[f64; 4]; 4]),
-    /// An orbit around the bounding-sphere centre; angles in degrees,
-    /// distance `None` for 3× the bounding radius, fov 0 for parallel.
-    Orbit {
-        /// Degrees about the y axis.
-        yaw: f64,
-        /// Degrees of elevation.
-        pitch: f64,
-        /// Distance from the centre.
-        distance: Option<f64>,
-        /// Vertical field of view, degrees.
-        fov: f64,
-        /// The model is z-up (the orbit itself is y-up).
-        z_up: bool,
-    },
-}
-
-impl CameraSpec {
-    /// The frame for `tree` in a `w × h` image, with `M`'s trigonometry.
-    pub fn frame<M: MathFns>(&self, tree: &Tree<'_>, w: u32, h: u32) -> Frame {
-        match *self {
-            CameraSpec::Mvp(rows) => {
-                Frame::from_f64(tree, &rows, f64::from(near_w_for(&rows, tree)))
-            }
-            CameraSpec::Orbit {
-                yaw,
-                pitch,
-                distance,
-                fov,
-                z_up,
-            } => {
-                let r = tree.bounding_radius();
-                let r = if r.is_finite() && r > 0.0 { r } else { 1.0 };
-                let d = distance.map_or(3.0 * r, |d| d as f32);
-                let o = Orbit::new(
-                    [0.0; 3],
-                    yaw.to_radians() as f32,
-                    pitch.to_radians() as f32,
-                    d,
-                    fov.to_radians() as f32,
-                );
-                let mut cam = o.camera::<M>(w as f32 / h as f32);
-                if z_up {
-                    // M · R with R taking model (x, y, z) to orbit space
-                    // (x, z, −y), a rotation: an exact column permutation.
-                    for row in cam.matrix.0.iter_mut() {
-                        *row = [row[0], -row[2], row[1], row[3]];
-                    }
-                }
-                Frame::relative(tree, &cam)
-            }
-        }
-    }
 }
 
 /// Pixel format of the framebuffer.
@@ -436,7 +379,7 @@ fn render_with<P: Precision>(tree: &Tree<'_>, job: &Job) -> Result<Rendered, Cli
     if job.ids {
         ids = vec![0u32; job.w as usize * job.h as usize];
         let mut sink =
-            IdBuffer::new(&mut ids, job.w, job.h).map_err(|e| cli_err!("id buffer: {e:?}"))?;
+            IdBuffer::new(&mut ids, job.w, job.h).map_err(|e| cli_err!("id buffer: {e}"))?;
         tr.ids = FaceIds::Source;
         tr.render::<_, WALK_STACK>(tree, &frame, &mut sink)?;
     }
@@ -463,7 +406,7 @@ where
     let stats = match job.band {
         None => {
             let mut fb = Framebuffer::<F>::new(&mut out, job.w, job.h)
-                .map_err(|e| cli_err!("framebuffer: {e:?}"))?;
+                .map_err(|e| cli_err!("framebuffer: {e}"))?;
             fb.fill_all(background);
             tr.render::<_, WALK_STACK>(tree, frame, &mut fb)?
         }
@@ -509,8 +452,8 @@ where
     let mut total = RenderStats::default();
     for y0 in band_starts(job.h, rows) {
         let n = rows.min(job.h - y0 as u32);
-        let mut fb = Framebuffer::<F>::new(&mut buf, job.w, n)
-            .map_err(|e| cli_err!("framebuffer: {e:?}"))?;
+        let mut fb =
+            Framebuffer::<F>::new(&mut buf, job.w, n).map_err(|e| cli_err!("framebuffer: {e}"))?;
         let mut sink = Dither::band(&mut fb, y0, levels);
         if !ordered {
             sink = sink.rounding();
@@ -543,7 +486,7 @@ fn to_display<F: PixelFormat>(
 where
     F::Color: PixelColor,
 {
-    let fb = Framebuffer::<F>::new(data, w, h).map_err(|e| cli_err!("framebuffer: {e:?}"))?;
+    let fb = Framebuffer::<F>::new(data, w, h).map_err(|e| cli_err!("framebuffer: {e}"))?;
     let base = fb.pixel(0, 0).ok_or_else(|| cli_err!("empty image"))?;
     let mut d = SimulatorDisplay::with_default_color(Size::new(w, h), base);
     let pixels = (0..h).flat_map(|y| (0..w).map(move |x| (x, y)));
@@ -557,30 +500,16 @@ where
 /// Saves `image` (`w × h`) as a PNG through the simulator, atomically,
 /// one image pixel per display pixel.
 pub fn save_png(image: &Image, w: u32, h: u32, path: &Path) -> CliResult {
-    save_png_as(image, w, h, path, &OutputSettings::default())
+    save_png_as(image, w, h, path, Panel::Plain)
 }
 
-/// [`save_png`] with the simulator's output `settings` (a panel look).
-pub fn save_png_as(
-    image: &Image,
-    w: u32,
-    h: u32,
-    path: &Path,
-    settings: &OutputSettings,
-) -> CliResult {
+/// [`save_png`] with a panel look ([`Panel::output`]).
+pub fn save_png_as(image: &Image, w: u32, h: u32, path: &Path, panel: Panel) -> CliResult {
     let out = match image.clone() {
-        Image::Rgb565(mut v) => {
-            to_display::<Rgb565Format>(&mut v, w, h)?.to_rgb_output_image(settings)
-        }
-        Image::Rgb888(mut v) => {
-            to_display::<Rgb888Format>(&mut v, w, h)?.to_rgb_output_image(settings)
-        }
-        Image::Gray8(mut v) => {
-            to_display::<Gray8Format>(&mut v, w, h)?.to_rgb_output_image(settings)
-        }
-        Image::Mono(mut v) => {
-            to_display::<BinaryFormat>(&mut v, w, h)?.to_rgb_output_image(settings)
-        }
+        Image::Rgb565(mut v) => panel.output(&to_display::<Rgb565Format>(&mut v, w, h)?),
+        Image::Rgb888(mut v) => panel.output(&to_display::<Rgb888Format>(&mut v, w, h)?),
+        Image::Gray8(mut v) => panel.output(&to_display::<Gray8Format>(&mut v, w, h)?),
+        Image::Mono(mut v) => panel.output(&to_display::<BinaryFormat>(&mut v, w, h)?),
     };
     let name = path
         .file_name()
@@ -705,7 +634,17 @@ pub fn run(a: &RenderArgs) -> CliResult {
     }
     let bytes = std::fs::read(&a.tree).map_err(|e| cli_err!("{}: {e}", a.tree.display()))?;
     let tree = Tree::from_bytes(&bytes)
-        .map_err(|e| cli_err!("{}: not a valid tree file: {e:?}", a.tree.display()))?;
+        .map_err(|e| cli_err!("{}: not a valid tree file: {e}", a.tree.display()))?;
+    // `fpt build` refuses such models ([`crate::mesh::MAX_SIZE`]); a file
+    // from elsewhere would be drawn blank (the orbit's eye overflows f32).
+    let radius = f64::from(tree.bounding_radius());
+    if radius > 0.5 * crate::mesh::MAX_SIZE {
+        return Err(cli_err!(
+            "{}: the model is too large to render: its bounding radius is {radius:e}, more than {:e}",
+            a.tree.display(),
+            0.5 * crate::mesh::MAX_SIZE
+        ));
+    }
     let job = Job {
         w,
         h,
@@ -723,7 +662,7 @@ pub fn run(a: &RenderArgs) -> CliResult {
         let raw: Vec<u8> = r.ids.iter().flat_map(|v| v.to_le_bytes()).collect();
         write_atomic(path, &raw).map_err(|e| cli_err!("{}: {e}", path.display()))?;
     }
-    save_png_as(&r.image, w, h, &a.output, &panel.settings())?;
+    save_png_as(&r.image, w, h, &a.output, panel)?;
     let s = r.stats;
     println!(
         "{}: {w}x{h} {}, {} polygons drawn ({} clipped, {} invisible, {} skipped), {} spans, {:.2} ms",
@@ -739,5 +678,6 @@ pub fn run(a: &RenderArgs) -> CliResult {
     Ok(())
 }
 
+mod camera;
 #[cfg(test)]
 mod tests;

@@ -20,6 +20,16 @@ fn check_model(m: &Model) {
         }
     }
     assert!(m.report.dropped_degenerate <= m.report.faces_read);
+    // The part counts agree with the closedness and with each other; an
+    // inverted part is always a closed one.
+    let r = &m.report;
+    assert!(r.closed_parts + r.open_parts >= 1);
+    assert!(r.inverted_parts <= r.closed_parts);
+    if m.closed {
+        assert_eq!((r.open_parts, r.boundary_edges), (0, 0), "{r:?}");
+    } else {
+        assert!(r.boundary_edges > 0 && r.open_parts > 0, "{r:?}");
+    }
 }
 
 fn run(format: MeshFormat, bytes: &[u8]) {
@@ -50,6 +60,16 @@ fn samples() -> Vec<(MeshFormat, Vec<u8>)> {
         (MeshFormat::Ply, super::ply::tests::ascii_tetra().into_bytes()),
         (MeshFormat::Ply, super::ply::tests::binary_tetra(false)),
         (MeshFormat::Ply, super::ply::tests::binary_tetra(true)),
+        // Two tetrahedra, the second wound inward (flipped on import), and
+        // a square sheet: closed, inverted and open parts in one file.
+        (
+            MeshFormat::Off,
+            b"OFF 12 9 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 0\n4 0 0\n3 1 0\n3 0 1\n\
+              6 0 0\n7 0 0\n7 1 0\n6 1 0\n\
+              3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n\
+              3 4 5 6\n3 4 7 5\n3 5 7 6\n3 4 6 7\n4 8 9 10 11\n"
+                .to_vec(),
+        ),
     ]
 }
 
@@ -121,7 +141,7 @@ proptest! {
 
     #[test]
     fn mutated_valid_files_never_panic(
-        sample in 0..7usize,
+        sample in 0..8usize,
         edits in prop::collection::vec(edit(), 1..4),
     ) {
         let (format, mut bytes) = samples().swap_remove(sample);

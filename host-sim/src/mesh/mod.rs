@@ -13,12 +13,16 @@
 //! - Each output polygon's `source` is the index of its face among the faces
 //!   of the input (from 0, in file order), also for pieces of a split face.
 //! - Windings are kept: a face counter-clockwise seen from outside gets an
-//!   outward plane normal.
+//!   outward plane normal. The exception: a closed connected part whose
+//!   faces all wind inward (negative volume; not a cavity inside another
+//!   part) is turned outward, and counted in the [`ImportReport`], unless
+//!   [`ImportOptions::keep_orientation`] (see `parts`).
 //! - Vertices of every output polygon lie on its plane (they are snapped onto
 //!   it), so the builder's tighter tolerance sees them as exactly coplanar.
 
 mod obj;
 mod off;
+mod parts;
 mod planar;
 mod ply;
 mod prepare;
@@ -33,7 +37,7 @@ use crate::geom::Polygon;
 use std::fmt;
 use std::path::Path;
 
-pub use prepare::{from_faces, is_closed, is_closed_faces};
+pub use prepare::{from_faces, from_faces_with, is_closed, is_closed_faces};
 
 /// A mesh ready for the tree builders.
 #[derive(Clone, Debug)]
@@ -59,6 +63,52 @@ pub struct ImportReport {
     pub nonplanar_split: usize,
     /// Referenced vertices merged into another vertex by welding.
     pub welded_vertices: usize,
+    /// Connected parts whose every edge is shared by two faces in opposite
+    /// directions (see the `parts` module).
+    pub closed_parts: usize,
+    /// The other connected parts.
+    pub open_parts: usize,
+    /// Closed parts whose faces wound inward (negative volume).
+    pub inverted_parts: usize,
+    /// Whether the inverted parts were left as they are
+    /// ([`ImportOptions::keep_orientation`]); otherwise they were turned
+    /// outward.
+    pub orientation_kept: bool,
+    /// Edges not shared by exactly two faces in opposite directions.
+    pub boundary_edges: usize,
+}
+
+/// The largest bounding-box diagonal a model may have: trees store sizes
+/// in `f32`, and the renderer's default camera stands three bounding radii
+/// from the centre, a position that must be an `f32` too (3 × 1e38 is just
+/// below `f32::MAX`).
+pub const MAX_SIZE: f64 = 2e38;
+
+/// Choices of the import.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ImportOptions {
+    /// Leave closed parts that wind inward as they are instead of turning
+    /// them outward (they are then drawn inside out: their inner walls).
+    pub keep_orientation: bool,
+}
+
+/// A number as a person writes it: plain when moderate, else `1e30`.
+fn short(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
+        // Four decimals say enough about a size in a message.
+        format!("{}", (v * 1e4).round() / 1e4)
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// `n` and the noun, with an `s` unless `n` is 1.
+fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
 }
 
 impl ImportReport {
@@ -66,9 +116,59 @@ impl ImportReport {
     pub fn warning_line(&self) -> Option<String> {
         match self.dropped_degenerate {
             0 => None,
-            1 => Some("warning: dropped 1 degenerate face".to_string()),
-            n => Some(format!("warning: dropped {n} degenerate faces")),
+            n => Some(format!("warning: dropped {}", count(n, "degenerate face"))),
         }
+    }
+
+    /// The line about closed parts that wound inward, else `None`: a file
+    /// that is drawn inside out otherwise shows no sign of it.
+    pub fn orientation_line(&self) -> Option<String> {
+        let (n, of) = (self.inverted_parts, count(self.closed_parts, "closed part"));
+        match (n, self.orientation_kept) {
+            (0, _) => None,
+            (1, false) => Some(format!(
+                "warning: 1 of {of} was inside out; flipped it (--keep-orientation keeps it)"
+            )),
+            (_, false) => Some(format!(
+                "warning: {n} of {of} were inside out; flipped them (--keep-orientation keeps them)"
+            )),
+            (1, true) => Some(format!(
+                "warning: 1 of {of} is inside out; kept as it is (--keep-orientation): \
+                 its inner walls are drawn"
+            )),
+            (_, true) => Some(format!(
+                "warning: {n} of {of} are inside out; kept as they are (--keep-orientation): \
+                 their inner walls are drawn"
+            )),
+        }
+    }
+
+    /// The line about a mesh that mixes closed and open parts, else `None`:
+    /// the whole model is then built open (every face drawn from both
+    /// sides), which the closed parts do not need and `--closed` would undo
+    /// at the price of holes.
+    pub fn mixed_line(&self) -> Option<String> {
+        (self.closed_parts > 0 && self.open_parts > 0).then(|| {
+            format!(
+                "warning: the mesh mixes {} with {} ({}); it is built open: \
+                 every face is drawn from both sides, none is culled",
+                count(self.closed_parts, "closed part"),
+                count(self.open_parts, "open part"),
+                count(self.boundary_edges, "boundary edge")
+            )
+        })
+    }
+
+    /// Every warning line of the import, in the order they are printed.
+    pub fn warning_lines(&self) -> Vec<String> {
+        [
+            self.warning_line(),
+            self.orientation_line(),
+            self.mixed_line(),
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
     }
 }
 
@@ -132,10 +232,32 @@ pub enum MeshError {
     },
     /// No face with a non-zero area is left.
     Empty,
+    /// The file holds no face at all.
+    NoFaces {
+        /// Format name, e.g. `"OBJ"`.
+        format: &'static str,
+        /// Lines (or records) the parser skipped because it did not know
+        /// them: a text of some other kind is recognisable by this.
+        unknown_lines: usize,
+    },
+    /// The model is larger than [`MAX_SIZE`].
+    TooLarge {
+        /// Its bounding-box diagonal.
+        diag: f64,
+    },
+    /// One vertex is so far from all the others that, at the scale it
+    /// gives the model, the others weld into one point.
+    FarVertex {
+        /// Its index in the file (from 0).
+        index: usize,
+        /// Its position.
+        position: [f64; 3],
+        /// The size (bounding-box diagonal) of all the other used vertices.
+        rest: f64,
+    },
     /// The file extension names no known format.
     UnknownFormat(String),
-    /// A vertex used by a face has a NaN or infinite coordinate, or the
-    /// model is too large for its size to be a finite number.
+    /// A vertex used by a face has a NaN or infinite coordinate.
     NonFinite,
     /// A face refers to a vertex that does not exist.
     BadIndex {
@@ -183,14 +305,55 @@ impl fmt::Display for MeshError {
                 msg,
             } => write!(f, "invalid {format} file: {msg}"),
             MeshError::Empty => write!(f, "the mesh has no face with a non-zero area"),
+            MeshError::NoFaces {
+                format,
+                unknown_lines: 0,
+            } => write!(f, "no faces found in the {format} file"),
+            MeshError::NoFaces {
+                format,
+                unknown_lines,
+            } => write!(
+                f,
+                "no faces found in the {format} file ({} not understood)",
+                count(*unknown_lines, "line")
+            ),
+            MeshError::TooLarge { diag } if !diag.is_finite() => write!(
+                f,
+                "the model is too large: its size overflows f64 (at most {} across); \
+                 scale it down",
+                short(MAX_SIZE)
+            ),
+            MeshError::TooLarge { diag } => write!(
+                f,
+                "the model is too large: its bounding box is {} across, more than {} \
+                 (a camera three radii away must fit in f32); scale it down",
+                short(*diag),
+                short(MAX_SIZE)
+            ),
+            MeshError::FarVertex {
+                index,
+                position: [x, y, z],
+                rest,
+            } => write!(
+                f,
+                "vertex {index} (from 0) at ({}, {}, {}) is out of range: the other vertices \
+                 span only {}, which at the size it gives the model is below the weld \
+                 distance, so every face near them would vanish",
+                short(*x),
+                short(*y),
+                short(*z),
+                short(*rest)
+            ),
             MeshError::UnknownFormat(ext) => write!(
                 f,
                 "unknown mesh format {ext:?} (expected a .obj, .off, .stl or .ply file)"
             ),
-            MeshError::NonFinite => write!(
-                f,
-                "the mesh has a vertex coordinate that is NaN or infinite, or is too large"
-            ),
+            MeshError::NonFinite => {
+                write!(
+                    f,
+                    "the mesh has a vertex coordinate that is NaN or infinite"
+                )
+            }
             MeshError::BadIndex {
                 face,
                 index,
@@ -225,28 +388,42 @@ pub(crate) struct RawMesh {
     pub vertices: Vec<[f64; 3]>,
     pub faces: Vec<Vec<u32>>,
     pub colors: Option<Vec<[u8; 3]>>,
+    /// Lines the parser skipped without knowing what they were (only the
+    /// formats that skip anything count them).
+    pub unknown_lines: usize,
 }
 
 impl RawMesh {
-    fn into_model(self) -> Result<Model, MeshError> {
-        from_faces(&self.vertices, &self.faces, self.colors.as_deref())
+    fn into_model(self, format: MeshFormat, options: &ImportOptions) -> Result<Model, MeshError> {
+        if self.faces.is_empty() {
+            return Err(MeshError::NoFaces {
+                format: format.name(),
+                unknown_lines: self.unknown_lines,
+            });
+        }
+        from_faces_with(&self.vertices, &self.faces, self.colors.as_deref(), options)
     }
 }
 
 /// Reads a mesh file; the format comes from the extension (any case).
 pub fn load(path: &Path) -> Result<Model, MeshError> {
+    load_with(path, &ImportOptions::default())
+}
+
+/// [`load`] with options.
+pub fn load_with(path: &Path, options: &ImportOptions) -> Result<Model, MeshError> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().into_owned())
         .unwrap_or_default();
     let format = MeshFormat::from_extension(&ext).ok_or(MeshError::UnknownFormat(ext))?;
     let bytes = std::fs::read(path)?;
-    load_bytes(format, &bytes)
+    parse_raw(format, &bytes)?.into_model(format, options)
 }
 
 /// Parses a mesh of `format` from memory.
 pub fn load_bytes(format: MeshFormat, bytes: &[u8]) -> Result<Model, MeshError> {
-    parse_raw(format, bytes)?.into_model()
+    parse_raw(format, bytes)?.into_model(format, &ImportOptions::default())
 }
 
 /// Only the parsing step, without the common pipeline.
@@ -334,6 +511,19 @@ mod tests {
                 vertices: 4,
             },
             MeshError::Io(std::io::Error::other("boom")),
+            MeshError::NoFaces {
+                format: "OBJ",
+                unknown_lines: 3,
+            },
+            MeshError::FarVertex {
+                index: 8,
+                position: [0.0, 1e30, -2.5],
+                rest: 1.7,
+            },
+            MeshError::TooLarge { diag: 1e100 },
+            MeshError::TooLarge {
+                diag: f64::INFINITY,
+            },
         ];
         for e in errors {
             let s = e.to_string();

@@ -19,7 +19,7 @@ const FORMAT: &str = "OBJ";
 /// Parses an OBJ file.
 pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
     let text = String::from_utf8_lossy(bytes);
-    let clean = preprocess(&text)?;
+    let (clean, unknown_lines) = preprocess(&text)?;
     let options = tobj::LoadOptions {
         triangulate: false,
         single_index: false,
@@ -32,7 +32,10 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
     })
     .map_err(|e| MeshError::parse(FORMAT, e.to_string()))?;
 
-    let mut raw = RawMesh::default();
+    let mut raw = RawMesh {
+        unknown_lines,
+        ..RawMesh::default()
+    };
     for model in &models {
         let mesh = &model.mesh;
         let offset = raw.vertices.len();
@@ -67,12 +70,15 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
 }
 
 /// Joins continuation lines and keeps only checked, simplified `v` and `f`
-/// records, one per line.
-fn preprocess(text: &str) -> Result<String, MeshError> {
+/// records, one per line; also returns the number of logical lines that are
+/// no OBJ statement at all ([`KEYWORDS`]), which tells a file of another
+/// kind from an OBJ file without faces.
+fn preprocess(text: &str) -> Result<(String, usize), MeshError> {
     let mut out = String::with_capacity(text.len().min(1 << 26));
     let mut logical = String::new();
     let mut first_line = 1usize;
     let mut vertices = 0u64;
+    let mut unknown = 0usize;
     for (k, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
         if logical.is_empty() {
@@ -84,19 +90,59 @@ fn preprocess(text: &str) -> Result<String, MeshError> {
             continue;
         }
         logical.push_str(line);
-        record(&logical, first_line, &mut vertices, &mut out)?;
+        unknown += usize::from(!record(&logical, first_line, &mut vertices, &mut out)?);
         logical.clear();
     }
     if !logical.is_empty() {
-        record(&logical, first_line, &mut vertices, &mut out)?;
+        unknown += usize::from(!record(&logical, first_line, &mut vertices, &mut out)?);
     }
-    Ok(out)
+    Ok((out, unknown))
 }
+
+/// The statements of the OBJ format (geometry, grouping, display and
+/// free-form ones); a line starting with anything else is not understood.
+const KEYWORDS: [&str; 34] = [
+    "v",
+    "vt",
+    "vn",
+    "vp",
+    "f",
+    "fo",
+    "l",
+    "p",
+    "g",
+    "o",
+    "s",
+    "mg",
+    "usemtl",
+    "mtllib",
+    "usemap",
+    "maplib",
+    "cstype",
+    "deg",
+    "bmat",
+    "step",
+    "curv",
+    "curv2",
+    "surf",
+    "parm",
+    "trim",
+    "hole",
+    "scrv",
+    "sp",
+    "end",
+    "con",
+    "lod",
+    "shadow_obj",
+    "trace_obj",
+    "call",
+];
 
 /// Checks one logical line and appends its simplified form to `out` when it
 /// is a `v` or `f` record. `vertices` counts the `v` records so far, to
-/// resolve and check indices.
-fn record(line: &str, at: usize, vertices: &mut u64, out: &mut String) -> Result<(), MeshError> {
+/// resolve and check indices. Returns whether the line is understood: blank,
+/// a comment or an OBJ statement ([`KEYWORDS`]).
+fn record(line: &str, at: usize, vertices: &mut u64, out: &mut String) -> Result<bool, MeshError> {
     let line = line.split('#').next().unwrap_or("");
     let mut words = line.split_whitespace();
     match words.next() {
@@ -154,9 +200,10 @@ fn record(line: &str, at: usize, vertices: &mut u64, out: &mut String) -> Result
             }
             out.push('\n');
         }
-        _ => {}
+        Some(k) => return Ok(KEYWORDS.contains(&k)),
+        None => {}
     }
-    Ok(())
+    Ok(true)
 }
 
 #[cfg(test)]
@@ -279,14 +326,29 @@ mod tests {
     }
 
     #[test]
-    fn no_faces_is_empty() {
-        assert!(matches!(
-            load_bytes(MeshFormat::Obj, b"v 0 0 0\n"),
-            Err(MeshError::Empty)
-        ));
-        assert!(matches!(
-            load_bytes(MeshFormat::Obj, b""),
-            Err(MeshError::Empty)
-        ));
+    fn no_faces_is_reported_with_the_lines_not_understood() {
+        let no_faces = |text: &[u8]| match load_bytes(MeshFormat::Obj, text) {
+            Err(MeshError::NoFaces {
+                format: "OBJ",
+                unknown_lines,
+            }) => unknown_lines,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(no_faces(b"v 0 0 0\n"), 0);
+        assert_eq!(no_faces(b""), 0);
+        // Statements of the format (even ones ignored here) are understood.
+        assert_eq!(
+            no_faces(b"# c\no x\ng a\nvt 0 0\nl 1 2\nusemtl m\ncstype bezier\n"),
+            0
+        );
+        assert_eq!(
+            no_faces(b"solid x\n  facet normal 0 0 1\nendsolid\n\nv 1 2 3\n"),
+            3
+        );
+        let e = load_bytes(MeshFormat::Obj, b"<html>\n<body>\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "no faces found in the OBJ file (2 lines not understood)"
+        );
     }
 }

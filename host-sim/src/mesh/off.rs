@@ -72,6 +72,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
         vertices: Vec::with_capacity(capped_capacity(nv, bytes.len(), 6)),
         faces: Vec::with_capacity(capped_capacity(nf, bytes.len(), 2)),
         colors: None,
+        unknown_lines: 0,
     };
     for _ in 0..nv {
         let r = records.next().ok_or_else(|| {

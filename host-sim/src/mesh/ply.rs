@@ -296,12 +296,12 @@ pub(crate) mod tests {
     }
 
     #[test]
-    fn point_cloud_is_empty() {
+    fn point_cloud_has_no_faces() {
         let s = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n\
                  property float z\nend_header\n1 2 3\n";
         assert!(matches!(
             load_bytes(MeshFormat::Ply, s.as_bytes()),
-            Err(MeshError::Empty)
+            Err(MeshError::NoFaces { .. })
         ));
     }
 }

@@ -16,7 +16,7 @@
 //! play no part in it.
 
 use super::planar::{self, Planarized, Tols};
-use super::{ImportReport, MeshError, Model};
+use super::{ImportOptions, ImportReport, MeshError, Model};
 use crate::geom::{Polygon, Tolerance, DEFAULT_COLOR};
 use glam::DVec3;
 use std::collections::{HashMap, VecDeque};
@@ -43,13 +43,27 @@ pub const PLANAR_REL: f64 = 1e-6;
 /// widen the model's size nor have to be finite).
 ///
 /// Errors: [`MeshError::BadIndex`] for an index past the vertex list,
-/// [`MeshError::NonFinite`] for a NaN/infinite used coordinate (or a model
-/// whose size overflows), [`MeshError::Empty`] when no face with area is
-/// left.
+/// [`MeshError::NonFinite`] for a NaN/infinite used coordinate,
+/// [`MeshError::TooLarge`] for a model larger than [`super::MAX_SIZE`],
+/// [`MeshError::FarVertex`] when one vertex alone stretches the model so
+/// far that the others weld into a point, [`MeshError::Empty`] when no
+/// face with area is left otherwise.
 pub fn from_faces(
     vertices: &[[f64; 3]],
     faces: &[Vec<u32>],
     colors: Option<&[[u8; 3]]>,
+) -> Result<Model, MeshError> {
+    from_faces_with(vertices, faces, colors, &ImportOptions::default())
+}
+
+/// [`from_faces`] with options: closed parts that wind inward are turned
+/// outward unless `options.keep_orientation` (see the `parts` module; the
+/// report counts them either way).
+pub fn from_faces_with(
+    vertices: &[[f64; 3]],
+    faces: &[Vec<u32>],
+    colors: Option<&[[u8; 3]]>,
+    options: &ImportOptions,
 ) -> Result<Model, MeshError> {
     let mut used = vec![false; vertices.len()];
     for (fi, f) in faces.iter().enumerate() {
@@ -77,8 +91,9 @@ pub fn from_faces(
         return Err(MeshError::Empty);
     }
     let diag = (hi - lo).length();
-    if !diag.is_finite() {
-        return Err(MeshError::NonFinite);
+    // Finite coordinates whose span overflows are a model too large too.
+    if !diag.is_finite() || diag > super::MAX_SIZE {
+        return Err(MeshError::TooLarge { diag });
     }
     // A model that is one point still gets non-zero tolerances; all its faces
     // are then degenerate and the result is `Empty`.
@@ -96,6 +111,8 @@ pub fn from_faces(
     };
     let mut polygons = Vec::with_capacity(faces.len());
     let mut kept_loops = Vec::with_capacity(faces.len());
+    // The first polygon of each kept loop (its pieces follow it).
+    let mut first_polygon = Vec::with_capacity(faces.len());
     for (fi, face) in faces.iter().enumerate() {
         let ids = clean_loop(face.iter().map(|&i| map[i as usize]));
         if ids.len() < 3 {
@@ -108,6 +125,7 @@ pub fn from_faces(
             .copied()
             .unwrap_or(DEFAULT_COLOR);
         let source = u32::try_from(fi).unwrap_or(u32::MAX);
+        let start = polygons.len();
         match planar::planarize(&pts, source, color, tols) {
             Planarized::Degenerate => {
                 report.dropped_degenerate += 1;
@@ -120,14 +138,88 @@ pub fn from_faces(
             }
         }
         kept_loops.push(ids);
+        first_polygon.push(start);
     }
     if polygons.is_empty() {
-        return Err(MeshError::Empty);
+        return Err(far_vertex(vertices, &used, diag).unwrap_or(MeshError::Empty));
+    }
+    if report.dropped_degenerate > 0 {
+        if let Some(e) = far_vertex(vertices, &used, diag) {
+            return Err(e);
+        }
+    }
+    let parts = super::parts::analyse(&kept_loops, &reps);
+    report.closed_parts = parts.closed_count();
+    report.open_parts = parts.open_count();
+    report.inverted_parts = parts.inverted_count();
+    report.boundary_edges = parts.boundary_edges;
+    report.orientation_kept = options.keep_orientation;
+    if !options.keep_orientation && report.inverted_parts > 0 {
+        let ends = first_polygon
+            .iter()
+            .skip(1)
+            .copied()
+            .chain([polygons.len()]);
+        for ((&start, end), &part) in first_polygon.iter().zip(ends).zip(&parts.part_of) {
+            if parts.inverted[part as usize] {
+                polygons[start..end].iter_mut().for_each(flip);
+            }
+        }
     }
     Ok(Model {
         polygons,
         closed: is_closed_faces(&kept_loops),
         report,
+    })
+}
+
+/// Turns a polygon to face the other way: the same vertices in reverse
+/// order, the plane's normal and offset negated (exactly).
+fn flip(p: &mut Polygon) {
+    p.verts.reverse();
+    p.plane = p.plane.flipped();
+}
+
+/// The one used vertex that alone stretches the model: without it the other
+/// used vertices span no more than the weld distance of the whole model, so
+/// at the model's scale they all weld into one point and every face near
+/// them loses its area. `None` when there is no such vertex (then the
+/// faces were degenerate for their own reasons).
+///
+/// Only the vertices at the six extremes of the bounding box can be it;
+/// each is tried by recomputing the box without it (linear).
+fn far_vertex(vertices: &[[f64; 3]], used: &[bool], diag: f64) -> Option<MeshError> {
+    let pts = || {
+        vertices
+            .iter()
+            .enumerate()
+            .zip(used)
+            .filter(|(_, &u)| u)
+            .map(|((i, v), _)| (i, DVec3::from(*v)))
+    };
+    let mut extremes: Vec<usize> = Vec::with_capacity(6);
+    for axis in 0..3 {
+        let key = |p: &(usize, DVec3)| p.1[axis];
+        let lo = pts().min_by(|a, b| key(a).total_cmp(&key(b)));
+        let hi = pts().max_by(|a, b| key(a).total_cmp(&key(b)));
+        extremes.extend(lo.into_iter().chain(hi).map(|(i, _)| i));
+    }
+    extremes.sort_unstable();
+    extremes.dedup();
+    extremes.into_iter().find_map(|far| {
+        let (lo, hi) = pts().filter(|&(i, _)| i != far).fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), (_, p)| (lo.min(p), hi.max(p)),
+        );
+        let rest = (hi - lo).length();
+        let position = *vertices.get(far)?;
+        (rest.is_finite() && rest > 0.0 && rest <= WELD_REL * diag).then_some(
+            MeshError::FarVertex {
+                index: far,
+                position,
+                rest,
+            },
+        )
     })
 }
 
@@ -321,6 +413,56 @@ mod tests {
     }
 
     #[test]
+    fn inside_out_cube_is_flipped_unless_kept() {
+        let (v, mut f) = cube();
+        f.iter_mut().for_each(|l| l.reverse());
+        let centre = DVec3::splat(0.5);
+        let outward = |m: &Model| {
+            m.polygons.iter().all(|p| {
+                let c = crate::geom::centroid(&p.verts);
+                p.plane.normal.dot(c - centre) > 0.0 && p.plane.distance(c).abs() < 1e-12
+            })
+        };
+        let m = from_faces(&v, &f, None).unwrap();
+        assert!(m.closed);
+        assert_eq!((m.report.closed_parts, m.report.inverted_parts), (1, 1));
+        assert!(!m.report.orientation_kept);
+        assert!(outward(&m));
+        let opts = ImportOptions {
+            keep_orientation: true,
+        };
+        let kept = from_faces_with(&v, &f, None, &opts).unwrap();
+        assert!(kept.closed && kept.report.orientation_kept);
+        assert!(kept.polygons.iter().all(|p| {
+            let c = crate::geom::centroid(&p.verts);
+            p.plane.normal.dot(c - centre) < 0.0
+        }));
+        let correct = from_faces(&v, &cube().1, None).unwrap();
+        assert_eq!(correct.report.inverted_parts, 0);
+        assert!(outward(&correct));
+    }
+
+    #[test]
+    fn one_far_vertex_is_named_instead_of_an_empty_mesh() {
+        let (mut v, mut f) = cube();
+        v.push([0.0, 1e30, 0.0]);
+        f.push(vec![0, 1, 8]);
+        match from_faces(&v, &f, None) {
+            Err(MeshError::FarVertex { index: 8, rest, .. }) => {
+                assert!((rest - 3f64.sqrt()).abs() < 1e-12)
+            }
+            other => panic!("{other:?}"),
+        }
+        // Two far vertices: no single one is to blame.
+        v.push([0.0, -1e30, 0.0]);
+        f.push(vec![0, 9, 1]);
+        assert!(matches!(from_faces(&v, &f, None), Err(MeshError::Empty)));
+        // A large model whose size comes from all its vertices is fine.
+        let big: Vec<[f64; 3]> = cube().0.iter().map(|p| p.map(|c| c * 1e30)).collect();
+        assert!(from_faces(&big, &cube().1, None).unwrap().closed);
+    }
+
+    #[test]
     fn cube_missing_a_face_is_open() {
         let (v, mut f) = cube();
         f.pop();
@@ -461,7 +603,12 @@ mod tests {
         v[3] = [f64::MAX, -f64::MAX, 0.0];
         assert!(matches!(
             from_faces(&v, &f, None),
-            Err(MeshError::NonFinite)
+            Err(MeshError::TooLarge { .. })
+        ));
+        let big: Vec<[f64; 3]> = cube().0.iter().map(|p| p.map(|c| c * 1e100)).collect();
+        assert!(matches!(
+            from_faces(&big, &f, None),
+            Err(MeshError::TooLarge { .. })
         ));
         assert!(matches!(from_faces(&v, &[], None), Err(MeshError::Empty)));
         let same = vec![[1.0, 2.0, 3.0]; 3];

@@ -37,6 +37,7 @@ fn parse_binary(bytes: &[u8], n: usize) -> Result<RawMesh, MeshError> {
         vertices: Vec::with_capacity(3 * n),
         faces: Vec::with_capacity(n),
         colors: None,
+        unknown_lines: 0,
     };
     let f32_at = |rec: &[u8], off: usize| -> f64 {
         let b = [rec[off], rec[off + 1], rec[off + 2], rec[off + 3]];
@@ -185,7 +186,7 @@ pub(crate) mod tests {
     fn empty_and_truncated() {
         assert!(matches!(
             load_bytes(MeshFormat::Stl, &binary(b"solid", &[])),
-            Err(MeshError::Empty)
+            Err(MeshError::NoFaces { .. })
         ));
         assert!(parse(b"").is_err());
         let text = ascii("solid t", &TETRA);

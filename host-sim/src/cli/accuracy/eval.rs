@@ -176,7 +176,7 @@ impl Case {
             DEFAULT_SEED,
             &mut NoProgress,
         );
-        let order = polygon_order(&tree).map_err(|e| cli_err!("{name}: {e:?}"))?;
+        let order = polygon_order(&tree).map_err(|e| cli_err!("{name}: {e}"))?;
         let exact = order
             .iter()
             .map(|&t| {
@@ -192,7 +192,7 @@ impl Case {
                 vertex_format,
                 ..SerializeOptions::default()
             };
-            let bytes = serialize(&tree, &opts).map_err(|e| cli_err!("{name}: {e:?}"))?;
+            let bytes = serialize(&tree, &opts).map_err(|e| cli_err!("{name}: {e}"))?;
             trees.push((vertex_format, bytes));
         }
         Ok(Case {
@@ -210,7 +210,7 @@ impl Case {
             .iter()
             .find(|(g, _)| *g == f)
             .map(|(_, b)| b.as_slice())
-            .ok_or_else(|| cli_err!("{}: no {f:?} tree", self.name))
+            .ok_or_else(|| cli_err!("{}: no {} tree", self.name, f.name()))
     }
 }
 
@@ -390,7 +390,7 @@ pub fn view_counts(
 ) -> Result<(Counts, Vec<u32>), CliError> {
     let (w, h) = (reference.w as u32, reference.h as u32);
     let bytes = case.tree_bytes(config.vertex)?;
-    let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e:?}", case.name))?;
+    let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e}", case.name))?;
     let spec = camera_spec(config, &tree, view, w, h);
     let ids = if config.raw_q16 {
         render_raw_q16(&tree, &job(spec, w, h, true))?
@@ -614,7 +614,7 @@ pub fn host_seconds(
         let mut jobs = Vec::new();
         for case in cases {
             let bytes = case.tree_bytes(config.vertex)?;
-            let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e:?}", case.name))?;
+            let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{}: {e}", case.name))?;
             for &v in views {
                 let spec = camera_spec(config, &tree, v, w, h);
                 jobs.push((tree, job(spec, w, h, false)));
