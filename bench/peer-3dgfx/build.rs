@@ -201,9 +201,9 @@ fn main() {
     fs::write(out.join("config.rs"), cfg).expect("writing config.rs");
 
     // Memory map and linker script.
-    println!("cargo::rustc-check-cfg=cfg(peer_armv6m)");
+    println!("cargo::rustc-check-cfg=cfg(fpt_armv6m)");
     let memory = if m0 {
-        println!("cargo::rustc-cfg=peer_armv6m");
+        println!("cargo::rustc-cfg=fpt_armv6m");
         "/* nRF51822 (BBC micro:bit), QEMU microbit: 256 KiB flash, 16 KiB RAM. */\n\
          MEMORY\n{\n  FLASH : ORIGIN = 0x00000000, LENGTH = 256K\n  \
          RAM   : ORIGIN = 0x20000000, LENGTH = 16K\n}\n"

@@ -23,10 +23,15 @@
 #![no_std]
 #![no_main]
 
+// The firmware's own clock calibration, failure report and stack
+// measurement, so that both sides are measured alike.
+#[path = "../../../firmware/src/clock.rs"]
 mod clock;
+#[path = "../../../firmware/src/fail.rs"]
 mod fail;
 mod fb;
 mod model;
+#[path = "../../../firmware/src/stack.rs"]
 mod stack;
 
 mod config {
