@@ -133,8 +133,7 @@ pub enum RawVertex {
 /// The vertices of one polygon ([`PolygonRef::vertices`]).
 #[derive(Clone, Debug)]
 pub struct Vertices<'a> {
-    indices: &'a [u8],
-    wide: bool,
+    indices: VertexIndices<'a>,
     dec: VertexDecoder<'a>,
 }
 
@@ -206,20 +205,12 @@ impl Iterator for Vertices<'_> {
 
     #[inline]
     fn next(&mut self) -> Option<[f32; 3]> {
-        let v = if self.wide {
-            let (&[a, b, c, d], rest) = self.indices.split_first_chunk::<4>()?;
-            self.indices = rest;
-            u32::from_le_bytes([a, b, c, d]) as usize
-        } else {
-            let (&[a, b], rest) = self.indices.split_first_chunk::<2>()?;
-            self.indices = rest;
-            usize::from(u16::from_le_bytes([a, b]))
-        };
-        Some(self.dec.get(v))
+        let v = self.indices.next()?;
+        Some(self.dec.get(v as usize))
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
-        let n = self.indices.len() / if self.wide { 4 } else { 2 };
+        let n = self.indices.indices.len() / if self.indices.wide { 4 } else { 2 };
         (n, Some(n))
     }
 }
@@ -576,16 +567,9 @@ impl<'a> PolygonRef<'a> {
     /// index and one on its record (both always pass on a validated tree;
     /// a failing one yields the origin, as [`PolygonRef::vertex`] does).
     pub fn vertices(&self) -> Vertices<'a> {
-        let g = &self.g;
-        let size = usize::from(g.index_size);
-        let lo = g
-            .indices
-            .wrapping_add((self.first as usize).wrapping_mul(size));
-        let hi = lo.wrapping_add((self.count as usize).wrapping_mul(size));
         Vertices {
-            indices: g.bytes.get(lo..hi).unwrap_or(&[]),
-            wide: size == 4,
-            dec: g.decoder(),
+            indices: self.vertex_indices(),
+            dec: self.g.decoder(),
         }
     }
 
