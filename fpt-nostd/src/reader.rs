@@ -130,115 +130,6 @@ pub enum RawVertex {
     Q32([i32; 3]),
 }
 
-/// The vertices of one polygon ([`PolygonRef::vertices`]).
-#[derive(Clone, Debug)]
-pub struct Vertices<'a> {
-    indices: VertexIndices<'a>,
-    dec: VertexDecoder<'a>,
-}
-
-/// Decodes vertices of a [`Tree`] by index, as [`Vertices`] does
-/// ([`Tree::vertex_decoder`]): the fast path of a vertex cache's misses.
-/// An index outside the section decodes to the origin (which a validated
-/// tree never has).
-#[derive(Clone, Copy, Debug)]
-pub struct VertexDecoder<'a> {
-    section: &'a [u8],
-    format: VertexFormat,
-    q16_scale: [f32; 3],
-    q32_scale: f32,
-}
-
-impl VertexDecoder<'_> {
-    /// Vertex `v` of a q16 tree as stored (`i16` per axis, widened);
-    /// zero for another format or an index outside the section.
-    #[inline]
-    pub fn raw_q16(&self, v: usize) -> [i32; 3] {
-        let at = v.wrapping_mul(6);
-        match (self.format, self.section.get(at..at.wrapping_add(6))) {
-            (VertexFormat::Q16, Some(&[a, b, c, d, e, f])) => [
-                i32::from(i16::from_le_bytes([a, b])),
-                i32::from(i16::from_le_bytes([c, d])),
-                i32::from(i16::from_le_bytes([e, f])),
-            ],
-            _ => [0; 3],
-        }
-    }
-
-    /// Vertex `v`, relative to the origin, decoded to `f32`.
-    #[inline]
-    pub fn get(&self, v: usize) -> [f32; 3] {
-        let at = v.wrapping_mul(self.format.vertex_len());
-        let f = |r: &[u8], k: usize| -> [u8; 4] {
-            let mut o = [0; 4];
-            if let Some(s) = r.get(k..k + 4) {
-                o.copy_from_slice(s);
-            }
-            o
-        };
-        match self.format {
-            VertexFormat::F32 => match self.section.get(at..at.wrapping_add(12)) {
-                Some(r) => [0, 4, 8].map(|k| f32::from_le_bytes(f(r, k))),
-                None => [0.0; 3],
-            },
-            VertexFormat::Q32 => match self.section.get(at..at.wrapping_add(12)) {
-                Some(r) => [0, 4, 8].map(|k| i32::from_le_bytes(f(r, k)) as f32 * self.q32_scale),
-                None => [0.0; 3],
-            },
-            VertexFormat::Q16 => match self.section.get(at..at.wrapping_add(6)) {
-                Some(r) => {
-                    let q = |k: usize| f32::from(i16::from_le_bytes([r[k], r[k + 1]]));
-                    [
-                        q(0) * self.q16_scale[0],
-                        q(2) * self.q16_scale[1],
-                        q(4) * self.q16_scale[2],
-                    ]
-                }
-                None => [0.0; 3],
-            },
-        }
-    }
-}
-
-impl Iterator for Vertices<'_> {
-    type Item = [f32; 3];
-
-    #[inline]
-    fn next(&mut self) -> Option<[f32; 3]> {
-        let v = self.indices.next()?;
-        Some(self.dec.get(v as usize))
-    }
-
-    fn size_hint(&self) -> (usize, Option<usize>) {
-        let n = self.indices.indices.len() / if self.indices.wide { 4 } else { 2 };
-        (n, Some(n))
-    }
-}
-
-/// The vertex indices of one polygon ([`PolygonRef::vertex_indices`]).
-#[derive(Clone, Debug)]
-pub struct VertexIndices<'a> {
-    indices: &'a [u8],
-    wide: bool,
-}
-
-impl Iterator for VertexIndices<'_> {
-    type Item = u32;
-
-    #[inline]
-    fn next(&mut self) -> Option<u32> {
-        if self.wide {
-            let (&[a, b, c, d], rest) = self.indices.split_first_chunk::<4>()?;
-            self.indices = rest;
-            Some(u32::from_le_bytes([a, b, c, d]))
-        } else {
-            let (&[a, b], rest) = self.indices.split_first_chunk::<2>()?;
-            self.indices = rest;
-            Some(u32::from(u16::from_le_bytes([a, b])))
-        }
-    }
-}
-
 /// What decoding a vertex needs; copied into every [`PolygonRef`].
 #[derive(Clone, Copy, Debug)]
 struct Geometry<'a> {
@@ -886,6 +777,8 @@ impl<'a> Tree<'a> {
 }
 
 mod validate;
+mod vertices;
+pub use vertices::{VertexDecoder, VertexIndices, Vertices};
 
 #[cfg(test)]
 mod tests;

@@ -415,7 +415,7 @@ pub fn render_tree<P: Precision, E: Compiled, K: SpanSink, const N: usize, const
 /// again per band).
 ///
 /// Effects ([`crate::effects`]) handled here: `culling` chooses the walk
-/// ([`Order::with_culling`]); `two-sided` lights a face seen from behind
+/// ([`crate::order::Order::with_culling`]); `two-sided` lights a face seen from behind
 /// with its normal flipped toward the viewer (without it, such a face is
 /// lit by its own normal, usually only by the ambient term). The others
 /// are the renderer's.
