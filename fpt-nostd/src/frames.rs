@@ -14,7 +14,8 @@
 //!   drawn with [`FramePrecision`] (the project's default arithmetic) and
 //!   the frame's key light. [`render_full`] draws into a caller-supplied
 //!   full framebuffer; [`render_banded`] draws the same picture through a
-//!   [`BAND_ROWS`]-row band buffer, walking the tree once per band.
+//!   [`BAND_ROWS`]-row band buffer, with the working memory the caller
+//!   gives (one walk a frame when it suffices; `crate::render::cached`).
 //! * **Checksum.** [`PixelCrc`]: the CRC-32 (IEEE 802.3 / zlib, the same as
 //!   the tree files' [`crate::format::crc32`]) of the pixels' RGB565 storage
 //!   values as **little-endian** `u16`, row-major from the top-left pixel.
@@ -32,12 +33,11 @@
 //! The renders take a [`Probe`]: hooks at the boundaries between the
 //! phases of a frame ([`Phase`]: tree walk, transform, fill). Every hook has
 //! an empty default body and the probe is a generic parameter, so with
-//! [`NoProbe`] they compile to nothing. The draw loop here is
-//! [`crate::render::draw_frame`]'s loop with the hooks added (tests check
-//! that both draw the same pixels); the fill boundary is seen through the
-//! sink: the rasterizer asks the sink for the polygon's colour exactly once,
-//! after transform, clipping, projection and shading and right before the
-//! scan conversion.
+//! [`NoProbe`] they compile to nothing. The draw loops are the product's
+//! own (`crate::render::cached`, the loops of [`crate::render::draw_frame`]
+//! and [`crate::render::TreeRenderer::render_banded_in`]), which call the
+//! hooks: the fill phase starts when a prepared polygon (transformed,
+//! clipped, projected, shaded) is handed to the scan conversion.
 
 use core::fmt;
 
@@ -201,8 +201,8 @@ impl fmt::Display for FrameError {
 pub struct Rendered {
     /// [`PixelCrc`] of the frame.
     pub crc: u32,
-    /// The renderer's counters (summed over the bands for a banded frame,
-    /// where a polygon counts once per band).
+    /// The renderer's counters (a polygon counts once a frame, banded or
+    /// not; spans are summed over the bands).
     pub stats: RenderStats,
 }
 

@@ -38,9 +38,11 @@
 //! [`crate::raster::IdBuffer`] are the polygon's source face or its id in
 //! the file ([`FaceIds`]).
 //!
-//! Band rendering ([`TreeRenderer::render_banded`]) walks the tree once per
-//! band into one band buffer; the result is the full-frame picture exactly
-//! (see [`crate::raster::band`]).
+//! Band rendering ([`TreeRenderer::render_banded_in`]) walks the tree once
+//! a frame into a display list in the caller's working memory and replays
+//! it into each band of one band buffer (`render::cached`; with less memory
+//! it walks more often, without any once per band); the result is the
+//! full-frame picture exactly (see [`crate::raster::band`]).
 //!
 //! Nothing here allocates or panics, whatever the camera: degenerate,
 //! non-finite or extreme matrices render something or nothing, never fail,
@@ -494,17 +496,6 @@ pub(crate) fn face_of(p: &PolygonRef<'_>, view: &LocalView, fx: WalkFx, id: u32)
         id,
         hidden_edges: p.hidden_edges(),
     }
-}
-
-/// The vertices of `p`, relative to the tree's origin, times the frame's
-/// `scale` (see [`Frame`]).
-#[inline]
-pub(crate) fn scaled_vertices<'p>(
-    p: &'p PolygonRef<'_>,
-    scale: f32,
-) -> impl Iterator<Item = [f32; 3]> + 'p {
-    p.vertices()
-        .map(move |v| [v[0] * scale, v[1] * scale, v[2] * scale])
 }
 
 /// The band buffer of [`TreeRenderer::render_banded`]: storage for `rows`

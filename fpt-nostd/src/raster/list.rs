@@ -262,30 +262,24 @@ impl<'m> DisplayList<'m> {
     /// The record at word `at` (0 for the first), or `None` at the end.
     #[inline]
     pub fn record(&self, at: usize) -> Option<Record> {
-        let h = self.buf.get(at..self.len)?;
-        let &[h0, h1, h2, h3, ..] = h else {
-            return None;
-        };
-        let mut k = 4;
-        let mut n = usize::from(h3 >> 8);
-        if n == 0 {
-            n = usize::from(*h.get(k)?);
-            k += 1;
-        }
+        let (h, n, body) = self.head(at)?;
+        let [h0, h1, h2, h3] = h;
+        // The optional words sit right before the points: the outline
+        // mask, then the id.
+        let mut k = body - at - usize::from(self.outlines) - 2 * usize::from(self.ids);
         let hidden = if self.outlines {
             k += 1;
-            *h.get(k - 1)? as u8
+            *self.buf.get(at + k - 1)? as u8
         } else {
             0
         };
         let id = if self.ids {
             k += 2;
-            u32::from(*h.get(k - 2)?) | u32::from(*h.get(k - 1)?) << 16
+            u32::from(*self.buf.get(at + k - 2)?) | u32::from(*self.buf.get(at + k - 1)?) << 16
         } else {
             0
         };
         let inline = h0 & FLAG != 0;
-        let body = at + k;
         let next = body + n * if inline { 4 } else { 1 };
         Some(Record {
             entry: Entry {
@@ -303,13 +297,12 @@ impl<'m> DisplayList<'m> {
         })
     }
 
-    /// The rows `(first, end)` of the record at word `at` and where the
-    /// next one starts, from its first words only: the quick test a band
-    /// makes of every record. `None` at the end.
+    /// The fixed header words of the record at word `at`, its vertex count
+    /// and where its points start. `None` at the end.
     #[inline(always)]
-    pub fn rows_at(&self, at: usize) -> Option<(i32, i32, usize)> {
+    fn head(&self, at: usize) -> Option<([u16; 4], usize, usize)> {
         let h = self.buf.get(at..self.len)?;
-        let &[h0, h1, _, h3, ..] = h else {
+        let &[h0, h1, h2, h3, ..] = h else {
             return None;
         };
         let mut k = 4 + usize::from(self.outlines) + 2 * usize::from(self.ids);
@@ -318,12 +311,17 @@ impl<'m> DisplayList<'m> {
             n = usize::from(*h.get(4)?);
             k += 1;
         }
+        Some(([h0, h1, h2, h3], n, at + k))
+    }
+
+    /// The rows `(first, end)` of the record at word `at` and where the
+    /// next one starts, from its first words only: the quick test a band
+    /// makes of every record. `None` at the end.
+    #[inline(always)]
+    pub fn rows_at(&self, at: usize) -> Option<(i32, i32, usize)> {
+        let ([h0, h1, ..], n, body) = self.head(at)?;
         let per = if h0 & FLAG != 0 { 4 } else { 1 };
-        Some((
-            i32::from(h0 & !FLAG),
-            i32::from(h1 & !FLAG),
-            at + k + n * per,
-        ))
+        Some((i32::from(h0 & !FLAG), i32::from(h1 & !FLAG), body + n * per))
     }
 
     /// Where the record after `r` starts.

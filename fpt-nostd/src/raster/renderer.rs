@@ -422,54 +422,32 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         }
     }
 
-    /// `M · [v, 1]` with the frame's matrix (the vertex cache's miss path).
+    /// The frame's matrix in the path's format (for the walk's own
+    /// transforms: the vertex cache's misses, [`Renderer::prepare_verts`]).
     #[inline]
-    pub(crate) fn transform(&self, v: [f32; 3]) -> Option<ClipVert<Scalar<P>>> {
-        P::Path::transform(&self.matrix, v)
+    pub(crate) fn matrix(&self) -> &PathMatrix<P> {
+        &self.matrix
     }
 
-    /// [`Renderer::transform`] of integer vertices with `frac` fraction
-    /// bits ([`VertexPath::transform_q`]).
-    #[inline]
-    pub(crate) fn transform_q(&self, v: [i32; 3], frac: u32) -> Option<ClipVert<Scalar<P>>> {
-        P::Path::transform_q(&self.matrix, v, frac)
-    }
-
-    /// [`Renderer::prepare_verts`] for integer vertices with `frac`
-    /// fraction bits (as [`Renderer::draw_polygon_q`] takes them).
+    /// Transforms (with `xf` and the frame's matrix: `VertexPath::transform`
+    /// for model-space `f32` vertices as [`Renderer::draw_polygon`] takes
+    /// them, `VertexPath::transform_q` for integer ones), clips and
+    /// projects the polygon `verts` and shades it: everything but the
+    /// fill, for rows `reach`.
     #[inline(always)]
-    pub(crate) fn prepare_verts_q<I, const N: usize>(
+    pub(crate) fn prepare_verts<X, I, const N: usize>(
         &mut self,
         scratch: &mut Scratch<P, N>,
         verts: I,
-        frac: u32,
+        xf: impl Fn(&PathMatrix<P>, X) -> Option<ClipVert<Scalar<P>>>,
         face: &Face,
         reach: &SpanBounds,
     ) -> Result<Ready, Outcome>
     where
-        I: IntoIterator<Item = [i32; 3]>,
+        I: IntoIterator<Item = X>,
     {
         let m = self.matrix;
-        let loaded = self.load(scratch, verts, |v| P::Path::transform_q(&m, v, frac));
-        self.prepare(scratch, loaded, face, reach)
-    }
-
-    /// Transforms, clips and projects the polygon `verts` (model-space
-    /// `f32`, as [`Renderer::draw_polygon`] takes them) and shades it:
-    /// everything but the fill, for rows `reach`.
-    #[inline(always)]
-    pub(crate) fn prepare_verts<I, const N: usize>(
-        &mut self,
-        scratch: &mut Scratch<P, N>,
-        verts: I,
-        face: &Face,
-        reach: &SpanBounds,
-    ) -> Result<Ready, Outcome>
-    where
-        I: IntoIterator<Item = [f32; 3]>,
-    {
-        let m = self.matrix;
-        let loaded = self.load(scratch, verts, |v| P::Path::transform(&m, v));
+        let loaded = self.load(scratch, verts, |v| xf(&m, v));
         self.prepare(scratch, loaded, face, reach)
     }
 

@@ -38,10 +38,11 @@
 use core::cell::Cell;
 
 use super::probe::{Phase, Probe};
-use super::{face_of, scaled_vertices, walk_effects, BandBuffer, FaceIds, Frame, RenderError};
+use super::{face_of, walk_effects, BandBuffer, FaceIds, Frame, RenderError, WalkFx};
 use crate::effects::{Compiled, Effects};
 use crate::format::VertexFormat;
 use crate::order::{Order, OrderError};
+use crate::raster::clip::ClipVert;
 use crate::raster::int_path::q16_camera;
 use crate::raster::list::{DisplayList, Entry, Points};
 use crate::raster::renderer::Ready;
@@ -54,28 +55,32 @@ use crate::raster::{
 };
 use crate::reader::{PolygonRef, Tree};
 
+/// The clip-space scalar of `P`'s vertex path.
+type PathScalar<P> = <<P as Precision>::Path as VertexPath>::Scalar;
+
 /// Most vertices the cache holds: the display list stores their indices
 /// as `u16`.
 const MAX_CACHED: usize = 1 << 16;
 
-/// Splits `memory` into the vertex cache's slots (one per vertex of
-/// `tree`, up to half of it; none when `cache` is false) and the display
-/// list's words.
-fn split<'m>(
+/// The vertex cache over the first words of `memory`, cleared: one slot
+/// per vertex of `tree`, at most [`MAX_CACHED`] and `limit`; none when
+/// `cache` is false. Returns it and the words left.
+fn take_cache<'m>(
     memory: &'m mut [u32],
     tree: &Tree<'_>,
     cache: bool,
-) -> (VertexCache<'m>, &'m mut [u16]) {
+    limit: usize,
+) -> (VertexCache<'m>, &'m mut [u32]) {
     let want = if cache {
         tree.vertex_count() as usize
     } else {
         0
     };
-    let slots = want.min(MAX_CACHED).min(memory.len() / 2);
-    let (c, l) = memory.split_at_mut(slots);
+    let slots = want.min(MAX_CACHED).min(limit).min(memory.len());
+    let (c, rest) = memory.split_at_mut(slots);
     let mut c = VertexCache::new(c);
     c.clear();
-    (c, bytemuck::cast_slice_mut(l))
+    (c, rest)
 }
 
 /// Words of memory with which a frame of `tree` needs one walk and
@@ -86,7 +91,10 @@ fn split<'m>(
 /// with one more walk (see the module docs).
 pub fn memory_words(tree: &Tree<'_>) -> usize {
     let v = (tree.vertex_count() as usize).min(MAX_CACHED);
-    let halves = 8 * tree.polygon_count() as usize + tree.index_count() as usize;
+    // A record by index: at most 8 header words (a long vertex count, the
+    // outline mask, the id) and its share of the group table (4 words a
+    // group of 16), plus a word a vertex.
+    let halves = 9 * tree.polygon_count() as usize + tree.index_count() as usize;
     // The cache may take at most half the memory.
     v.max(halves.div_ceil(2)) + halves.div_ceil(2)
 }
@@ -105,6 +113,7 @@ struct Walk<'t, 'a, 'c> {
     tree: &'a Tree<'t>,
     frame: &'a Frame,
     source: Source,
+    fx: WalkFx,
     ids: FaceIds,
     cache: &'a mut VertexCache<'c>,
 }
@@ -121,14 +130,18 @@ enum Source {
     Q16(u32),
 }
 
-/// Sets the renderer's camera for `frame` and says how vertices reach it:
-/// raw q16 values when the tree stores them and the path prefers them.
+/// Starts a frame: zeroes the counters, settles the effects
+/// ([`walk_effects`], once a frame for every walk of it), sets the
+/// renderer's camera for `frame` and says how vertices reach it: raw q16
+/// values when the tree stores them and the path prefers them.
 fn begin_frame<P: Precision, E: Compiled>(
     r: &mut Renderer<P, E>,
     tree: &Tree<'_>,
     frame: &Frame,
-) -> Source {
-    match <P::Path as VertexPath>::RAW_Q16_FRAC {
+) -> (Source, WalkFx) {
+    r.reset_stats();
+    let fx = walk_effects(tree, r);
+    let source = match <P::Path as VertexPath>::RAW_Q16_FRAC {
         Some(frac) if tree.vertex_format() == VertexFormat::Q16 => {
             let cam = q16_camera(&frame.camera, frame.vertex_scale, tree.half_extent(), frac);
             r.set_camera(&cam);
@@ -138,7 +151,8 @@ fn begin_frame<P: Precision, E: Compiled>(
             r.set_camera(&frame.camera);
             Source::Scaled(frame.vertex_scale)
         }
-    }
+    };
+    (source, fx)
 }
 
 impl Walk<'_, '_, '_> {
@@ -166,7 +180,7 @@ impl Walk<'_, '_, '_> {
         ) -> Step,
     ) -> Result<(), OrderError> {
         probe.enter(Phase::Post);
-        let fx = walk_effects(self.tree, r);
+        let fx = self.fx;
         let mut order = Order::<N>::with_culling(self.tree, self.frame.view, fx.cull)?;
         let view = order.view();
         while let Some(range) = order.next_range() {
@@ -221,32 +235,48 @@ impl Walk<'_, '_, '_> {
         reach: &SpanBounds,
     ) -> (Result<Ready, Outcome>, bool) {
         let dec = self.tree.vertex_decoder();
+        match self.source {
+            Source::Scaled(s) => {
+                let decode = move |v: u32| {
+                    let x = dec.get(v as usize);
+                    [x[0] * s, x[1] * s, x[2] * s]
+                };
+                let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
+                self.prepare_from(r, scratch, p, (decode, xf), face, reach)
+            }
+            Source::Q16(frac) => {
+                let decode = move |v: u32| dec.raw_q16(v as usize);
+                let xf = move |m: &_, x| <P::Path as VertexPath>::transform_q(m, x, frac);
+                self.prepare_from(r, scratch, p, (decode, xf), face, reach)
+            }
+        }
+    }
+
+    /// [`Walk::prepare`] for vertices that `decode` reads by index and `xf`
+    /// transforms with the frame's matrix.
+    #[inline(always)]
+    fn prepare_from<P: Precision, E: Compiled, X, const V: usize>(
+        &mut self,
+        r: &mut Renderer<P, E>,
+        scratch: &mut Scratch<P, V>,
+        p: &PolygonRef<'_>,
+        (decode, xf): (
+            impl Fn(u32) -> X,
+            impl Fn(&<P::Path as VertexPath>::Matrix, X) -> Option<ClipVert<PathScalar<P>>>,
+        ),
+        face: &Face,
+        reach: &SpanBounds,
+    ) -> (Result<Ready, Outcome>, bool) {
         if self.cache.capacity() > 0 {
-            let loaded = match self.source {
-                Source::Scaled(s) => {
-                    let xform = |v: u32| {
-                        let x = dec.get(v as usize);
-                        r.transform([x[0] * s, x[1] * s, x[2] * s])
-                    };
-                    r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
-                }
-                Source::Q16(frac) => {
-                    let xform = |v: u32| r.transform_q(dec.raw_q16(v as usize), frac);
-                    r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
-                }
-            };
-            if let Some((n, by_index)) = loaded {
+            let xform = |v: u32| xf(r.matrix(), decode(v));
+            if let Some((n, by_index)) =
+                r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
+            {
                 return (r.prepare_screen(scratch, n, face, reach), by_index);
             }
         }
-        let ready = match self.source {
-            Source::Scaled(s) => r.prepare_verts(scratch, scaled_vertices(p, s), face, reach),
-            Source::Q16(frac) => {
-                let raw = p.vertex_indices().map(|v| dec.raw_q16(v as usize));
-                r.prepare_verts_q(scratch, raw, frac, face, reach)
-            }
-        };
-        (ready, false)
+        let verts = p.vertex_indices().map(decode);
+        (r.prepare_verts(scratch, verts, xf, face, reach), false)
     }
 }
 
@@ -292,23 +322,16 @@ where
     K: SpanSink,
     Pr: Probe,
 {
-    let source = begin_frame(r, tree, frame);
-    r.reset_stats();
-    walk_effects(tree, r);
-    let want = if cacheable(r) {
-        tree.vertex_count() as usize
-    } else {
-        0
-    };
-    let slots = want.min(memory.len());
-    let mut cache = VertexCache::new(&mut memory[..slots]);
-    cache.clear();
+    let (source, fx) = begin_frame(r, tree, frame);
+    let limit = memory.len();
+    let (mut cache, _) = take_cache(memory, tree, cacheable(r), limit);
     let reach = r.viewport_bounds().intersect(&sink.bounds());
     let mut spans = 0;
     let mut walk = Walk {
         tree,
         frame,
         source,
+        fx,
         ids,
         cache: &mut cache,
     };
@@ -326,7 +349,7 @@ where
     let mut stats = r.stats();
     stats.spans = spans;
     stats.walks = 1;
-    stats.memory_used = slots as u32;
+    stats.memory_used = cache.capacity() as u32;
     Ok(stats)
 }
 
@@ -464,11 +487,12 @@ where
 {
     // The caller has started the probe (before its own set-up).
     probe.enter(Phase::Xform);
-    let source = begin_frame(r, tree, frame);
-    r.reset_stats();
-    walk_effects(tree, r);
+    let (source, fx) = begin_frame(r, tree, frame);
     let outlines = r.effects().contains(Effects::OUTLINE);
-    let (mut cache, list_words) = split(memory, tree, cacheable(r));
+    // The cache takes at most half the memory (the list the rest).
+    let half = memory.len() / 2;
+    let (mut cache, rest) = take_cache(memory, tree, cacheable(r), half);
+    let list_words = bytemuck::cast_slice_mut(rest);
     let needs_id = <Band<'_, Framebuffer<'_, F>> as SpanSink>::NEEDS_ID;
     let mut list = DisplayList::new(list_words, needs_id, outlines);
     let screen = r.viewport_bounds();
@@ -494,6 +518,7 @@ where
             tree,
             frame,
             source,
+            fx,
             ids,
             cache: &mut cache,
         };
@@ -564,14 +589,17 @@ where
         if stats.is_none() {
             stats = Some(r.stats());
         }
-        if direct {
-            probe.stop();
-            emit(y, &fb);
-            probe.start(Phase::Fill);
-            y += rows;
-            continue;
+        // Band `y`, opened and cleared before the walk: filled during it
+        // (`direct`, and then `cut` is its end) or from the list now.
+        if !direct {
+            probe.enter(Phase::Fill);
+            let mut sink = Band::new(&mut fb, y);
+            spans += replay(r, scratch, &list, &cache, (y, y + rows), &mut sink);
         }
-        let mut y0 = y;
+        probe.stop();
+        emit(y, &fb);
+        probe.start(Phase::Fill);
+        let mut y0 = y + rows;
         while y0 < cut.get() {
             probe.enter(Phase::Fill);
             let mut fb = open_band::<F>(&mut *buf, (w, h), rows, y0, background)?;
