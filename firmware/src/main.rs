@@ -44,6 +44,7 @@ mod clock;
 #[cfg(feature = "full")]
 mod effects;
 mod fail;
+mod in_place;
 mod probe;
 mod stack;
 
@@ -60,9 +61,7 @@ use cortex_m_semihosting::{debug, hprintln};
 
 use fpt_nostd::frames::{FrameError, FrameLine, FrameRenderer, Probe, Rendered, ViewSpec};
 use fpt_nostd::frames::{HEIGHT, SCENES, VIEWS, WIDTH};
-use fpt_nostd::raster::{Camera, Mat4, Renderer, Scratch};
 use fpt_nostd::reader::Tree;
-use fpt_nostd::render::FaceIds;
 
 use clock::Clock;
 use fail::fail;
@@ -136,19 +135,10 @@ mod target {
 #[inline(never)]
 fn renderer() -> &'static mut FrameRenderer {
     static mut RENDERER: MaybeUninit<FrameRenderer> = MaybeUninit::uninit();
-    let camera = Camera::from_matrix(Mat4::IDENTITY, 1.0);
-    let Some(renderer) = Renderer::new(WIDTH, HEIGHT, &camera) else {
-        fail(format_args!("renderer size"))
-    };
     // SAFETY: called once, from `main`, so no other reference to RENDERER
-    // exists; every field is written before the value is used.
-    unsafe {
-        let p = (*core::ptr::addr_of_mut!(RENDERER)).as_mut_ptr();
-        core::ptr::addr_of_mut!((*p).renderer).write(renderer);
-        core::ptr::addr_of_mut!((*p).scratch).write(Scratch::new());
-        core::ptr::addr_of_mut!((*p).ids).write(FaceIds::Source);
-        &mut *p
-    }
+    // exists.
+    let slot = unsafe { &mut *core::ptr::addr_of_mut!(RENDERER) };
+    in_place::renderer(slot, WIDTH, HEIGHT)
 }
 
 /// The expected checksum of a frame, from [`EXPECTED`].

@@ -32,6 +32,8 @@
 mod clock;
 #[path = "../fail.rs"]
 mod fail;
+#[path = "../in_place.rs"]
+mod in_place;
 #[path = "../stack.rs"]
 mod stack;
 
@@ -47,9 +49,8 @@ use cortex_m_semihosting::{debug, hprintln};
 
 use fpt_nostd::frames::orbit::{draw_band_frame, OrbitLine};
 use fpt_nostd::frames::PixelCrc;
-use fpt_nostd::raster::{Camera, Mat4, Renderer, Scratch};
 use fpt_nostd::reader::Tree;
-use fpt_nostd::render::{FaceIds, TreeRenderer};
+use fpt_nostd::render::TreeRenderer;
 
 use clock::{now, Clock};
 use config::{
@@ -91,19 +92,10 @@ fn memory() -> &'static mut [u32] {
 #[inline(never)]
 fn renderer() -> &'static mut BenchRenderer {
     static mut RENDERER: MaybeUninit<BenchRenderer> = MaybeUninit::uninit();
-    let camera = Camera::from_matrix(Mat4::IDENTITY, 1.0);
-    let Some(renderer) = Renderer::new(WIDTH, HEIGHT, &camera) else {
-        fail(format_args!("renderer size {WIDTH}x{HEIGHT}"))
-    };
     // SAFETY: called once, from `main`, so no other reference to RENDERER
-    // exists; every field is written before the value is used.
-    unsafe {
-        let p = (*core::ptr::addr_of_mut!(RENDERER)).as_mut_ptr();
-        core::ptr::addr_of_mut!((*p).renderer).write(renderer);
-        core::ptr::addr_of_mut!((*p).scratch).write(Scratch::new());
-        core::ptr::addr_of_mut!((*p).ids).write(FaceIds::Source);
-        &mut *p
-    }
+    // exists.
+    let slot = unsafe { &mut *core::ptr::addr_of_mut!(RENDERER) };
+    in_place::renderer(slot, WIDTH, HEIGHT)
 }
 
 /// Draws frame `i` and checksums it: the checksum and the ticks of the
