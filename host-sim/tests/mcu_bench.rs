@@ -44,6 +44,11 @@ fn bad_options_exit_2() {
         all.extend_from_slice(args);
         assert_error(&fpt(&all), &format!("{args:?}"));
     }
+    // A negative clock is a value the check explains, not an unknown flag.
+    let out = fpt(&["mcu-bench", vise.as_str(), "--clock", "-5"]);
+    assert_error(&out, "--clock -5");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--clock must be a positive number"), "{err}");
     let out = fpt(&["mcu-bench", "/nonexistent/tree.fpt"]);
     assert_error(&out, "missing tree");
     let out = fpt(&["mcu-bench", &tree("frames.txt"), "--frames", "1"]);

@@ -82,7 +82,8 @@ pub struct McuBenchArgs {
           value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub frames: u32,
     /// Clock in MHz for fps_at_clock [default: 168 on m4f, 64 on m0].
-    #[arg(long)]
+    // Negative values reach the check that says what is wrong with them.
+    #[arg(long, allow_negative_numbers = true)]
     pub clock: Option<f64>,
     /// Words of working memory (vertex cache and display list; see the
     /// README, "Working memory") [default: what a frame of the tree needs,
