@@ -54,7 +54,7 @@ def main():
         print(f"{v:>10} {100 * v / total:5.1f}%  {s[:100]}")
     addrs = sorted(per_insn)
     out = subprocess.run(
-        ["llvm-addr2line-14", "-e", elf, "-f", "-C"] + [hex(a) for a in addrs],
+        ["llvm-addr2line", "-e", elf, "-f", "-C"] + [hex(a) for a in addrs],
         capture_output=True, text=True,
     ).stdout.splitlines()
     by_fn = collections.Counter()

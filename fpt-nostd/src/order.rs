@@ -83,6 +83,7 @@
 //! }
 //! ```
 
+use core::cell::Cell;
 use core::fmt;
 
 mod class;
@@ -239,19 +240,31 @@ impl Frame {
     };
 }
 
+/// Words of a memo that holds every plane of `tree` for
+/// [`Order::with_memo`]: two bits a plane run and a switch record.
+pub fn memo_words(tree: &Tree<'_>) -> usize {
+    (tree.run_count() as usize + tree.switch_count() as usize).div_ceil(16)
+}
+
 /// The walk of one view: an iterator over the classes, back to front.
 #[derive(Clone, Debug)]
 pub struct Order<'a, const N: usize> {
     w: WalkData<'a>,
-    face: Facing,
+    face: Facing<'a>,
+    /// The memo's plane number of switch record 0 (the run count).
+    switch_base: u32,
     view: LocalView,
     closed: bool,
     /// Runs still to hand out as the away-facing prelude (0 when none).
     prelude_runs: u32,
+    /// Its value at the start of the walk.
+    prelude: u32,
     /// The current class's hand-out (see [`Order::next_range`]).
     at: Cursor,
     len: usize,
     stack: [Frame; N],
+    /// The root is still to be entered (by the first [`Order::advance`]).
+    root_pending: bool,
 }
 
 impl<'a, const N: usize> Order<'a, N> {
@@ -276,27 +289,97 @@ impl<'a, const N: usize> Order<'a, N> {
     ///   only costs time; what it shows when the near plane cuts a volume
     ///   open is in no particular order).
     pub fn with_culling(tree: &Tree<'a>, view: View, cull: bool) -> Result<Self, OrderError> {
+        Self::with_memo(tree, view, cull, &[])
+    }
+
+    /// [`Order::with_culling`] remembering each plane's facing test in
+    /// `memo` (two bits a plane, [`memo_words`] words for the whole tree;
+    /// a shorter memo holds the first planes only). The memo belongs to
+    /// one view: the caller zeroes it when the view changes, and walks of
+    /// the same view (the several walks of a banded frame with little
+    /// memory) then test each plane once. The order is the same with or
+    /// without it.
+    ///
+    /// ```
+    /// # use fpt_nostd::order::{memo_words, Order, View};
+    /// # use fpt_nostd::reader::Tree;
+    /// # fn walk(tree: &Tree<'_>, view: View) -> Result<(), fpt_nostd::order::OrderError> {
+    /// let mut words = [0u32; 64]; // zeroed: nothing known yet
+    /// // A memo too short for the tree remembers its first planes only.
+    /// let n = memo_words(tree).min(words.len());
+    /// let memo = core::cell::Cell::from_mut(&mut words[..n]).as_slice_of_cells();
+    /// for _ in 0..2 {
+    ///     let mut order = Order::<64>::with_memo(tree, view, tree.is_closed(), memo)?;
+    ///     while let Some(ids) = order.next_range() {
+    ///         let _ = ids;
+    ///     }
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
+    pub fn with_memo(
+        tree: &Tree<'a>,
+        view: View,
+        cull: bool,
+        memo: &'a [Cell<u32>],
+    ) -> Result<Self, OrderError> {
+        Self::check_depth(tree)?;
+        Ok(Self::unchecked(tree, view, cull, memo))
+    }
+
+    /// Whether the walk's stack holds `tree`'s depth.
+    pub(crate) fn check_depth(tree: &Tree<'_>) -> Result<(), OrderError> {
         let depth = tree.max_depth();
         if depth as usize > N {
             return Err(OrderError::StackTooSmall { depth, capacity: N });
         }
+        Ok(())
+    }
+
+    /// [`Order::with_memo`] after [`Order::check_depth`]: returned by value
+    /// rather than in a `Result`, so that it is built in the caller's slot
+    /// (an `Order` is large: moving it out of a `Result` kept two of them on
+    /// the stack, which a 16 KiB Cortex-M0 felt). Were the tree deeper
+    /// than `N` after all, the subtrees below the stack's depth would be
+    /// skipped, never a panic.
+    pub(crate) fn unchecked(
+        tree: &Tree<'a>,
+        view: View,
+        cull: bool,
+        memo: &'a [Cell<u32>],
+    ) -> Self {
         let view = view.local(tree);
-        let mut o = Order {
+        let prelude = if tree.is_closed() && !cull {
+            tree.run_count()
+        } else {
+            0
+        };
+        // Built in the caller's slot (no named local to move from: an
+        // `Order` is large), the root entered by the first `advance`.
+        Order {
             w: tree.walk_data(),
-            face: Facing::of(&view),
+            face: Facing::of(&view, memo),
+            switch_base: tree.run_count(),
             view,
             closed: tree.is_closed() || cull,
-            prelude_runs: if tree.is_closed() && !cull {
-                tree.run_count()
-            } else {
-                0
-            },
+            prelude_runs: prelude,
+            prelude,
             at: Cursor::EMPTY,
             len: 0,
             stack: [Frame::EMPTY; N],
-        };
-        o.push(0);
-        Ok(o)
+            root_pending: true,
+        }
+    }
+
+    /// Starts the same walk again from the beginning, in place: a banded
+    /// frame with little memory walks the same view several times, and an
+    /// `Order` is large (its stack), so it is made once a frame and not
+    /// built and moved through the stack for every walk.
+    pub fn restart(&mut self) {
+        self.prelude_runs = self.prelude;
+        self.at = Cursor::EMPTY;
+        self.len = 0;
+        self.root_pending = true;
     }
 
     /// The view relative to the origin, as the walk tests it.
@@ -401,6 +484,10 @@ impl<'a, const N: usize> Order<'a, N> {
     /// `self.at`); false at the end of the walk.
     #[inline(never)]
     fn advance(&mut self) -> bool {
+        if self.root_pending {
+            self.root_pending = false;
+            self.push(0);
+        }
         if self.prelude_runs != 0 {
             let runs = (0, core::mem::take(&mut self.prelude_runs));
             let seg = Seg::new(&self.w, runs, Pick::Forward);
@@ -431,7 +518,10 @@ impl<'a, const N: usize> Order<'a, N> {
                         continue;
                     }
                     // The back group is farther when the eye is in front.
-                    let back_is_far = self.face.backward(&self.w.switch_record(f.switch));
+                    let plane = self.switch_base.wrapping_add(f.switch);
+                    let back_is_far = self
+                        .face
+                        .backward_at(plane, &self.w.switch_record(f.switch));
                     f.phase = ON | if back_is_far { FAR_IS_BACK } else { 0 };
                     self.put(top, f);
                     self.push(child(f.switch, back_is_far));

@@ -6,6 +6,7 @@
 //! run's plane, and a passing run is handed out whole as a range of polygon
 //! ids: a flat face triangulated into many polygons costs one test.
 
+use core::cell::Cell;
 use core::ops::Range;
 
 use super::LocalView;
@@ -19,22 +20,44 @@ use crate::reader::{PolygonRef, Tree, WalkData};
 /// them (negation is exact in floating point, and the added `d · 0 = ±0` of a
 /// parallel view changes no sign test), without a branch on the kind of view
 /// in the loop.
+///
+/// With a **memo** (caller storage, two bits a plane: known, backward) a
+/// plane is tested once a frame however many walks the frame takes: a band
+/// renderer with less memory than a frame needs walks the tree several
+/// times for the same view, and on a core without an FPU the four
+/// software-float products of a test were the largest part of a walk.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Facing {
+pub(super) struct Facing<'m> {
     a: [f32; 3],
     w: f32,
+    memo: &'m [Cell<u32>],
 }
 
-impl Facing {
-    /// The test of `view`.
-    pub(super) fn of(view: &LocalView) -> Facing {
-        match *view {
-            LocalView::Parallel(d) => Facing {
-                a: [-d[0], -d[1], -d[2]],
-                w: 0.0,
-            },
-            LocalView::Eye(e) => Facing { a: e, w: 1.0 },
+impl<'m> Facing<'m> {
+    /// The test of `view`, remembering results in `memo` (empty: none).
+    pub(super) fn of(view: &LocalView, memo: &'m [Cell<u32>]) -> Facing<'m> {
+        let (a, w) = match *view {
+            LocalView::Parallel(d) => ([-d[0], -d[1], -d[2]], 0.0),
+            LocalView::Eye(e) => (e, 1.0),
+        };
+        Facing { a, w, memo }
+    }
+
+    /// [`Facing::backward`] of plane number `i` (runs first, then switch
+    /// records), through the memo when it holds the plane.
+    #[inline(always)]
+    pub(super) fn backward_at<const L: usize>(&self, i: u32, r: &[u8; L]) -> bool {
+        let Some(cell) = self.memo.get((i / 16) as usize) else {
+            return self.backward(r);
+        };
+        let word = cell.get();
+        let shift = 2 * (i % 16);
+        if word >> shift & 2 != 0 {
+            return word >> shift & 1 != 0;
         }
+        let b = self.backward(r);
+        cell.set(word | (2 | u32::from(b)) << shift);
+        b
     }
 
     /// Whether the plane stored at the start of record `r` (normal, offset)
@@ -95,7 +118,7 @@ impl Seg {
 
     /// The polygon ids of the next run that passes, and moves past it.
     #[inline(always)]
-    fn take(&mut self, runs: &[u8], face: &Facing) -> Option<(u32, u32)> {
+    fn take(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<(u32, u32)> {
         // Emptiness first: the second bunch of a closed volume's class is
         // always empty, and this keeps that case to one predictable branch.
         if self.is_empty() {
@@ -126,8 +149,9 @@ impl Seg {
                 break;
             };
             let end = le_u32(r, rn::END);
+            let passes = face.backward_at(run, r) == want;
             run = run.wrapping_add(1);
-            if face.backward(r) == want {
+            if passes {
                 self.run = run;
                 self.start = end;
                 return Some((start, end));
@@ -174,7 +198,7 @@ impl Cursor {
     /// Starts on `segs`; false (and nothing to hand out) when nothing in
     /// them passes.
     #[inline]
-    pub(super) fn start(&mut self, runs: &[u8], face: &Facing, segs: [Seg; 2]) -> bool {
+    pub(super) fn start(&mut self, runs: &[u8], face: &Facing<'_>, segs: [Seg; 2]) -> bool {
         self.next = 0;
         self.end = 0;
         self.segs = segs;
@@ -185,7 +209,7 @@ impl Cursor {
     /// Makes `next..end` the next passing run; false when there is none.
     /// Each run is tested once.
     #[inline]
-    fn settle(&mut self, runs: &[u8], face: &Facing) -> bool {
+    fn settle(&mut self, runs: &[u8], face: &Facing<'_>) -> bool {
         while let Some(seg) = self.segs.get_mut(self.cur) {
             if let Some((start, end)) = seg.take(runs, face) {
                 self.next = start;
@@ -199,7 +223,7 @@ impl Cursor {
 
     /// The next range of ids (a whole run, or what is left of it).
     #[inline]
-    pub(super) fn next_range(&mut self, runs: &[u8], face: &Facing) -> Option<Range<u32>> {
+    pub(super) fn next_range(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<Range<u32>> {
         if !self.pending(runs, face) {
             return None;
         }
@@ -211,13 +235,13 @@ impl Cursor {
     /// Whether an id is left to hand out (settling on the next passing run
     /// if the current one is used up).
     #[inline]
-    pub(super) fn pending(&mut self, runs: &[u8], face: &Facing) -> bool {
+    pub(super) fn pending(&mut self, runs: &[u8], face: &Facing<'_>) -> bool {
         self.next < self.end || self.settle(runs, face)
     }
 
     /// The next id.
     #[inline]
-    fn next_id(&mut self, runs: &[u8], face: &Facing) -> Option<u32> {
+    fn next_id(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<u32> {
         if !self.pending(runs, face) {
             return None;
         }
@@ -251,7 +275,7 @@ impl Cursor {
 #[derive(Clone, Copy, Debug)]
 pub struct Class<'a> {
     runs: &'a [u8],
-    face: Facing,
+    face: Facing<'a>,
     at: Cursor,
 }
 
@@ -259,7 +283,7 @@ impl<'a> Class<'a> {
     /// The class whose hand-out stands at `at` (already settled on a
     /// passing run).
     #[inline]
-    pub(super) fn resume(w: &WalkData<'a>, face: Facing, at: Cursor) -> Class<'a> {
+    pub(super) fn resume(w: &WalkData<'a>, face: Facing<'a>, at: Cursor) -> Class<'a> {
         Class {
             runs: w.runs,
             face,

@@ -312,9 +312,48 @@ fn the_walks_facing_test_is_the_local_views() {
         }
         let plane = Plane { normal, d };
         assert_eq!(
-            class::Facing::of(&view).backward(&rec),
+            class::Facing::of(&view, &[]).backward(&rec),
             view.is_backward(&plane),
             "{view:?} {plane:?}"
         );
+        // Through a memo: the same answer the first time and from memory.
+        let memo = [core::cell::Cell::new(0u32)];
+        let face = class::Facing::of(&view, &memo);
+        let k = (i % 16) as u32;
+        assert_eq!(face.backward_at(k, &rec), view.is_backward(&plane));
+        assert_eq!(memo[0].get() >> (2 * k) & 2, 2, "remembered");
+        assert_eq!(face.backward_at(k, &rec), view.is_backward(&plane));
+    }
+}
+
+#[test]
+fn a_memo_changes_no_order() {
+    let floors = two_floors().bytes();
+    let runs = runs_in_a_bunch(true).bytes();
+    let views = [
+        DOWN_Z,
+        UP_Z,
+        View::perspective([0.5, 0.5, 10.0]),
+        View::perspective([0.5, 0.5, 0.5]),
+    ];
+    for bytes in [&floors, &runs] {
+        let t = Tree::from_bytes(bytes).unwrap();
+        for v in views {
+            let want = classes::<4>(&t, v);
+            // Full, too short and empty memos; each walked twice (the
+            // second walk answers from the memo).
+            for n in [memo_words(&t), 0] {
+                let mut words = std::vec![0u32; n];
+                let memo = core::cell::Cell::from_mut(&mut words[..]).as_slice_of_cells();
+                for _ in 0..2 {
+                    let got: Vec<Vec<u32>> = Order::<4>::with_memo(&t, v, t.is_closed(), memo)
+                        .unwrap()
+                        .map(|c| c.collect())
+                        .collect();
+                    assert_eq!(got, want, "{v:?} memo {n}");
+                }
+            }
+            assert!(memo_words(&t) >= 1);
+        }
     }
 }

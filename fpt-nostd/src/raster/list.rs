@@ -20,14 +20,22 @@
 //! * Records keep the order they were pushed in (back to front), and
 //!   [`DisplayList::retain_rows_below`] drops records in place without
 //!   reordering the rest.
-//! * Sizes, in 16-bit words: a header of 4, plus 1 with outlines, plus 2
-//!   with ids, plus 1 per vertex (by index) or 4 per vertex (inline); a
-//!   polygon of more than 255 vertices adds 1. A triangle of a frame
-//!   without outlines or ids takes 7 words (14 bytes).
+//! * Sizes, in 16-bit words: a header of 3, plus 1 when the polygon spans
+//!   more than 62 rows, plus 1 with outlines, plus 2 with ids; then the
+//!   points: a polygon whose every vertex is cached is stored by its
+//!   **polygon index** (1 word; the replay reads its vertex indices from
+//!   the tree, which is in flash, not RAM), else a count word and 1 word a
+//!   vertex (by index) or 4 a vertex (inline). A triangle of a frame
+//!   without outlines or ids takes 4 words (8 bytes): on a 16 KiB
+//!   Cortex-M0 the list is what decides how many walks a frame takes, so
+//!   the common record is kept as small as it can be while still holding
+//!   the shaded colour exactly.
 //!
-//! Header layout: `[first | inline << 15, end | clipped << 15, r | g << 8,
-//! b | n << 8]`, `first..end` the rows (both in `0..=2^14`, the largest
-//! viewport), `n = 0` meaning "the next word holds the vertex count".
+//! Header layout: `[first, r | g << 8, b | kind << 8 | rows << 10]`, `first`
+//! the first row (in `0..=2^14`, the largest viewport), `kind` 0 (by
+//! polygon), 1 (by vertex index), 2 (inline) or 3 (inline, clipped),
+//! `rows = end - first` when below 63, else 63 and the next word holds
+//! `end`.
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
@@ -54,10 +62,25 @@ pub struct Entry {
 /// Where a record's screen points are.
 #[derive(Clone, Copy, Debug)]
 pub enum Points<'a> {
+    /// Polygon `i` of the tree (below 2^16), every vertex of which is in
+    /// the frame's vertex cache: the replay reads its vertex indices from
+    /// the tree.
+    Polygon(u16),
     /// Vertex indices into the frame's vertex cache (each below 2^16).
     Indices(&'a [u16]),
     /// The points themselves.
     Inline(&'a [ScreenPt]),
+}
+
+/// How a record stores its points (see [`Points`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// By polygon index: [`DisplayList::polygon`].
+    Polygon,
+    /// By vertex indices: [`DisplayList::indices`].
+    Indices,
+    /// Inline: [`DisplayList::inline_point`].
+    Inline,
 }
 
 /// A record read back: its entry and where its points start.
@@ -65,16 +88,21 @@ pub enum Points<'a> {
 pub struct Record {
     /// The fixed part.
     pub entry: Entry,
-    /// Vertex count.
+    /// Vertex count (0 for a record by polygon: the tree has it).
     pub n: usize,
-    /// Points stored inline (else vertex indices).
-    pub inline: bool,
+    /// How the points are stored.
+    pub kind: Kind,
     body: usize,
     next: usize,
 }
 
-/// Bit 15 of the first two header words.
-const FLAG: u16 = 0x8000;
+/// `kind` values of the header's third word.
+const BY_POLYGON: u16 = 0;
+const BY_INDEX: u16 = 1;
+const INLINE: u16 = 2;
+const INLINE_CLIPPED: u16 = 3;
+/// `rows` value saying that the next word holds the end row.
+const LONG_ROWS: u16 = 63;
 
 /// A list of records in caller storage (see the module docs).
 #[derive(Debug)]
@@ -191,27 +219,40 @@ impl<'m> DisplayList<'m> {
         self.peak
     }
 
-    /// Words a record of `n` points takes.
-    pub fn record_words(&self, n: usize, inline: bool) -> usize {
-        4 + usize::from(n > 255)
+    /// Words a record takes: `n` points stored `kind`, spanning `rows`
+    /// rows.
+    pub fn record_words(&self, n: usize, kind: Kind, rows: i32) -> usize {
+        3 + usize::from(rows >= i32::from(LONG_ROWS))
             + usize::from(self.outlines)
             + 2 * usize::from(self.ids)
-            + n * if inline { 4 } else { 1 }
+            + match kind {
+                Kind::Polygon => 1,
+                Kind::Indices => 1 + n,
+                Kind::Inline => 1 + 4 * n,
+            }
     }
 
     /// Appends a record; `false` (and nothing written) when it does not
-    /// fit or a field is out of range (rows outside `0..=2^14`, more than
-    /// 65 535 points).
+    /// fit or a field is out of range (rows outside `0..=2^14` or
+    /// decreasing, more than 65 535 points). A clipped polygon must be
+    /// stored inline (its points are not the tree's).
     pub fn push(&mut self, e: &Entry, pts: Points<'_>) -> bool {
-        let (n, inline) = match pts {
-            Points::Indices(ix) => (ix.len(), false),
-            Points::Inline(p) => (p.len(), true),
+        let (n, kind) = match pts {
+            Points::Polygon(_) => (0, Kind::Polygon),
+            Points::Indices(ix) => (ix.len(), Kind::Indices),
+            Points::Inline(p) => (p.len(), Kind::Inline),
         };
         let rows_ok = |r: i32| (0..=1 << 14).contains(&r);
-        if !rows_ok(e.first) || !rows_ok(e.end) || n > usize::from(u16::MAX) {
+        if !rows_ok(e.first)
+            || !rows_ok(e.end)
+            || e.end < e.first
+            || n > usize::from(u16::MAX)
+            || (e.clipped && kind != Kind::Inline)
+        {
             return false;
         }
-        let words = self.record_words(n, inline);
+        let rows = e.end - e.first;
+        let words = self.record_words(n, kind, rows);
         let table = 4 * (self.groups + usize::from(self.in_group == 0));
         if self.len + words + table > self.buf.len() {
             return false;
@@ -219,13 +260,23 @@ impl<'m> DisplayList<'m> {
         let Some(out) = self.buf.get_mut(self.len..self.len + words) else {
             return false;
         };
-        let n8 = if n > 255 { 0 } else { n as u16 };
-        let mut k = 4;
-        out[0] = e.first as u16 | if inline { FLAG } else { 0 };
-        out[1] = e.end as u16 | if e.clipped { FLAG } else { 0 };
-        out[2] = u16::from(e.rgb.r()) | u16::from(e.rgb.g()) << 8;
-        out[3] = u16::from(e.rgb.b()) | n8 << 8;
-        if n > 255 {
+        let code = match kind {
+            Kind::Polygon => BY_POLYGON,
+            Kind::Indices => BY_INDEX,
+            Kind::Inline if e.clipped => INLINE_CLIPPED,
+            Kind::Inline => INLINE,
+        };
+        let long = rows >= i32::from(LONG_ROWS);
+        let rows_code = if long { LONG_ROWS } else { rows as u16 };
+        out[0] = e.first as u16;
+        out[1] = u16::from(e.rgb.r()) | u16::from(e.rgb.g()) << 8;
+        out[2] = u16::from(e.rgb.b()) | code << 8 | rows_code << 10;
+        let mut k = 3;
+        if long {
+            out[k] = e.end as u16;
+            k += 1;
+        }
+        if kind != Kind::Polygon {
             out[k] = n as u16;
             k += 1;
         }
@@ -239,6 +290,7 @@ impl<'m> DisplayList<'m> {
             k += 2;
         }
         match pts {
+            Points::Polygon(i) => out[k] = i,
             Points::Indices(ix) => out[k..k + n].copy_from_slice(ix),
             Points::Inline(p) => {
                 for (o, p) in out[k..k + 4 * n].chunks_exact_mut(4).zip(p) {
@@ -262,56 +314,87 @@ impl<'m> DisplayList<'m> {
     /// The record at word `at` (0 for the first), or `None` at the end.
     #[inline]
     pub fn record(&self, at: usize) -> Option<Record> {
-        let (h, n, body) = self.head(at)?;
-        let [h0, h1, h2, h3] = h;
+        let h = self.head(at)?;
         // The optional words sit right before the points: the outline
         // mask, then the id.
-        let mut k = body - at - usize::from(self.outlines) - 2 * usize::from(self.ids);
+        let mut k = h.body - usize::from(self.outlines) - 2 * usize::from(self.ids);
         let hidden = if self.outlines {
             k += 1;
-            *self.buf.get(at + k - 1)? as u8
+            *self.buf.get(k - 1)? as u8
         } else {
             0
         };
         let id = if self.ids {
             k += 2;
-            u32::from(*self.buf.get(at + k - 2)?) | u32::from(*self.buf.get(at + k - 1)?) << 16
+            u32::from(*self.buf.get(k - 2)?) | u32::from(*self.buf.get(k - 1)?) << 16
         } else {
             0
         };
-        let inline = h0 & FLAG != 0;
-        let next = body + n * if inline { 4 } else { 1 };
+        let (w1, w2) = h.colour;
         Some(Record {
             entry: Entry {
-                first: i32::from(h0 & !FLAG),
-                end: i32::from(h1 & !FLAG),
-                rgb: Rgb888::new(h2 as u8, (h2 >> 8) as u8, h3 as u8),
+                first: h.first,
+                end: h.end,
+                rgb: Rgb888::new(w1 as u8, (w1 >> 8) as u8, w2 as u8),
                 id,
                 hidden,
-                clipped: h1 & FLAG != 0,
+                clipped: h.clipped,
             },
-            n,
-            inline,
-            body,
-            next,
+            n: h.n,
+            kind: h.kind,
+            body: h.body,
+            next: h.next,
         })
     }
 
-    /// The fixed header words of the record at word `at`, its vertex count
-    /// and where its points start. `None` at the end.
+    /// The header of the record at word `at`. `None` at the end.
     #[inline(always)]
-    fn head(&self, at: usize) -> Option<([u16; 4], usize, usize)> {
+    fn head(&self, at: usize) -> Option<Head> {
         let h = self.buf.get(at..self.len)?;
-        let &[h0, h1, h2, h3, ..] = h else {
+        let &[w0, w1, w2, ..] = h else {
             return None;
         };
-        let mut k = 4 + usize::from(self.outlines) + 2 * usize::from(self.ids);
-        let mut n = usize::from(h3 >> 8);
-        if n == 0 {
-            n = usize::from(*h.get(4)?);
+        let first = i32::from(w0);
+        let rows = w2 >> 10;
+        let mut k = 3;
+        let end = if rows == LONG_ROWS {
             k += 1;
-        }
-        Some(([h0, h1, h2, h3], n, at + k))
+            i32::from(*h.get(3)?)
+        } else {
+            first + i32::from(rows)
+        };
+        let code = (w2 >> 8) & 3;
+        let (kind, n) = if code == BY_POLYGON {
+            (Kind::Polygon, 0)
+        } else {
+            k += 1;
+            let n = usize::from(*h.get(k - 1)?);
+            (
+                if code == BY_INDEX {
+                    Kind::Indices
+                } else {
+                    Kind::Inline
+                },
+                n,
+            )
+        };
+        let body = at + k + usize::from(self.outlines) + 2 * usize::from(self.ids);
+        let next = body
+            + match kind {
+                Kind::Polygon => 1,
+                Kind::Indices => n,
+                Kind::Inline => 4 * n,
+            };
+        Some(Head {
+            first,
+            end,
+            colour: (w1, w2),
+            kind,
+            clipped: code == INLINE_CLIPPED,
+            n,
+            body,
+            next,
+        })
     }
 
     /// The rows `(first, end)` of the record at word `at` and where the
@@ -319,9 +402,8 @@ impl<'m> DisplayList<'m> {
     /// makes of every record. `None` at the end.
     #[inline(always)]
     pub fn rows_at(&self, at: usize) -> Option<(i32, i32, usize)> {
-        let ([h0, h1, ..], n, body) = self.head(at)?;
-        let per = if h0 & FLAG != 0 { 4 } else { 1 };
-        Some((i32::from(h0 & !FLAG), i32::from(h1 & !FLAG), body + n * per))
+        let h = self.head(at)?;
+        Some((h.first, h.end, h.next))
     }
 
     /// Where the record after `r` starts.
@@ -343,27 +425,36 @@ impl<'m> DisplayList<'m> {
         }
     }
 
-    /// The vertex indices of a record stored by index (empty for an
-    /// inline one).
+    /// The vertex indices of a record stored by index (empty for the
+    /// others).
     #[inline]
     pub fn indices(&self, r: &Record) -> &[u16] {
-        if r.inline {
+        if r.kind != Kind::Indices {
             return &[];
         }
         self.buf.get(r.body..r.body + r.n).unwrap_or(&[])
+    }
+
+    /// The polygon index of a record stored by polygon (`None` for the
+    /// others).
+    #[inline]
+    pub fn polygon(&self, r: &Record) -> Option<u32> {
+        if r.kind != Kind::Polygon {
+            return None;
+        }
+        self.buf.get(r.body).map(|&i| u32::from(i))
     }
 
     /// Drops every record whose first row is at or below `cut`, keeping
     /// the others in order (compacting in place).
     pub fn retain_rows_below(&mut self, cut: i32) {
         let (mut read, mut write) = (0, 0);
-        while let Some(r) = self.record(read) {
-            let words = r.next - read;
-            if r.entry.first < cut {
-                self.buf.copy_within(read..r.next, write);
-                write += words;
+        while let Some((first, _, next)) = self.rows_at(read) {
+            if first < cut {
+                self.buf.copy_within(read..next, write);
+                write += next - read;
             }
-            read = r.next;
+            read = next;
         }
         self.len = write;
         // The groups again, over the records kept (fewer entries than
@@ -378,6 +469,20 @@ impl<'m> DisplayList<'m> {
     }
 }
 
+/// A record's header, decoded.
+#[derive(Clone, Copy)]
+struct Head {
+    first: i32,
+    end: i32,
+    /// The second and third words (`r | g << 8`, `b | ...`).
+    colour: (u16, u16),
+    kind: Kind,
+    clipped: bool,
+    n: usize,
+    body: usize,
+    next: usize,
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -390,10 +495,9 @@ mod tests {
             rgb: Rgb888::new(1, 2, 3),
             id: 0x0102_0304,
             hidden: 0b101,
-            clipped: first % 2 == 1,
+            clipped: false,
         }
     }
-
     #[test]
     fn records_round_trip_in_every_layout() {
         let pts = [ScreenPt { x: -70000, y: 5 }, ScreenPt { x: 3, y: 1 << 20 }];
@@ -401,46 +505,76 @@ mod tests {
         for (ids, outlines) in [(false, false), (true, false), (false, true), (true, true)] {
             let mut buf = [0u16; 512];
             let mut l = DisplayList::new(&mut buf, ids, outlines);
+            let clipped = Entry {
+                clipped: true,
+                ..entry(4, 5)
+            };
             assert!(l.push(&entry(3, 9), Points::Indices(&[7, 8, 9])));
-            assert!(l.push(&entry(4, 5), Points::Inline(&pts)));
+            assert!(l.push(&clipped, Points::Inline(&pts)));
             assert!(l.push(&entry(0, 16384), Points::Indices(&many)));
+            assert!(l.push(&entry(2, 64), Points::Polygon(65535)));
+            assert!(l.push(&entry(2, 65), Points::Polygon(7)));
             let a = l.record(0).unwrap();
             let b = l.record(l.next(&a)).unwrap();
             let c = l.record(l.next(&b)).unwrap();
-            assert!(l.record(l.next(&c)).is_none());
-            assert_eq!(l.next(&c), l.len());
+            let d = l.record(l.next(&c)).unwrap();
+            let e = l.record(l.next(&d)).unwrap();
+            assert!(l.record(l.next(&e)).is_none());
+            assert_eq!(l.next(&e), l.len());
             assert_eq!(
-                (a.n, a.inline, l.indices(&a)),
-                (3, false, &[7u16, 8, 9][..])
+                (a.n, a.kind, l.indices(&a), l.polygon(&a)),
+                (3, Kind::Indices, &[7u16, 8, 9][..], None)
             );
-            assert_eq!((b.n, b.inline), (2, true));
+            assert_eq!((b.n, b.kind), (2, Kind::Inline));
             assert_eq!([l.inline_point(&b, 0), l.inline_point(&b, 1)], pts);
             assert_eq!((c.n, l.indices(&c)), (300, &many[..]));
+            assert_eq!(
+                (d.kind, l.polygon(&d), l.indices(&d)),
+                (Kind::Polygon, Some(65535), &[][..])
+            );
+            assert_eq!(l.polygon(&e), Some(7));
             let want = |e: Entry| Entry {
                 id: if ids { e.id } else { 0 },
                 hidden: if outlines { e.hidden } else { 0 },
                 ..e
             };
             assert_eq!(a.entry, want(entry(3, 9)));
-            assert_eq!(b.entry, want(entry(4, 5)));
+            assert_eq!(b.entry, want(clipped));
             assert_eq!(c.entry, want(entry(0, 16384)));
+            assert_eq!(d.entry, want(entry(2, 64)));
+            assert_eq!(e.entry, want(entry(2, 65)));
             assert_eq!(
                 l.len(),
-                l.record_words(3, false) + l.record_words(2, true) + l.record_words(300, false)
+                l.record_words(3, Kind::Indices, 6)
+                    + l.record_words(2, Kind::Inline, 1)
+                    + l.record_words(300, Kind::Indices, 16384)
+                    + l.record_words(0, Kind::Polygon, 62)
+                    + l.record_words(0, Kind::Polygon, 63)
             );
         }
     }
 
     #[test]
     fn a_full_list_refuses_whole_records() {
-        // A triangle takes 7 words, and its group's entry 4.
-        let mut buf = [0u16; 11];
+        // A triangle by polygon takes 4 words, and its group's entry 4.
+        let mut buf = [0u16; 8];
         let mut l = DisplayList::new(&mut buf, false, false);
-        assert!(l.push(&entry(0, 1), Points::Indices(&[1, 2, 3])));
-        assert!(!l.push(&entry(0, 1), Points::Indices(&[1, 2, 3])));
+        assert!(l.push(&entry(0, 1), Points::Polygon(3)));
+        assert!(!l.push(&entry(0, 1), Points::Polygon(4)));
         assert!(!l.push(&entry(-1, 1), Points::Indices(&[1])));
         assert!(!l.push(&entry(0, 1 << 15), Points::Indices(&[1])));
-        assert_eq!((l.len(), l.peak(), l.groups()), (7, 11, 1));
+        assert!(!l.push(&entry(3, 2), Points::Indices(&[1])));
+        assert_eq!((l.len(), l.peak(), l.groups()), (4, 8, 1));
+        // A clipped polygon's points are not the tree's: inline only.
+        let mut buf = [0u16; 64];
+        let mut l = DisplayList::new(&mut buf, false, false);
+        let clipped = Entry {
+            clipped: true,
+            ..entry(0, 1)
+        };
+        assert!(!l.push(&clipped, Points::Polygon(3)));
+        assert!(!l.push(&clipped, Points::Indices(&[1, 2, 3])));
+        assert!(l.is_empty());
     }
 
     #[test]
@@ -489,6 +623,6 @@ mod tests {
             at = l.next(&r);
         }
         assert_eq!(kept, [(0, 0), (5, 2), (15, 4)]);
-        assert_eq!(l.len(), 21);
+        assert_eq!(l.len(), 3 * 7);
     }
 }

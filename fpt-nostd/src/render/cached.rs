@@ -18,9 +18,9 @@
 //!
 //! The picture never depends on the memory, only the time does:
 //!
-//! * The cache takes one word per vertex of the tree, up to half the
-//!   memory (and 2^16 vertices); vertices beyond it are transformed per
-//!   polygon, as without a cache.
+//! * The cache takes one word per vertex of the tree, up to three
+//!   quarters of the memory (and 2^16 vertices); vertices beyond it are
+//!   transformed per polygon, as without a cache.
 //! * The list takes the rest. A walk records the polygons touching rows
 //!   `[y, cut)`, `cut` starting at the frame's bottom; when a record does
 //!   not fit, `cut` moves up by a quarter of the bands still covered (in
@@ -41,10 +41,10 @@ use super::probe::{Phase, Probe};
 use super::{face_of, walk_effects, BandBuffer, FaceIds, Frame, RenderError, WalkFx};
 use crate::effects::{Compiled, Effects};
 use crate::format::VertexFormat;
-use crate::order::{Order, OrderError};
+use crate::order::{memo_words, Order, OrderError};
 use crate::raster::clip::ClipVert;
 use crate::raster::int_path::q16_camera;
-use crate::raster::list::{DisplayList, Entry, Points};
+use crate::raster::list::{DisplayList, Entry, Kind, Points};
 use crate::raster::renderer::Ready;
 use crate::raster::scan::Bbox;
 use crate::raster::transform::VertexPath;
@@ -84,19 +84,26 @@ fn take_cache<'m>(
 }
 
 /// Words of memory with which a frame of `tree` needs one walk and
-/// transforms each vertex once, whatever the view: a cache slot for
-/// every vertex and a list with room for every polygon (by index, with
-/// ids and outline masks). Clipped polygons are stored inline and may
+/// transforms each vertex once, whatever the view: the facing memo, a
+/// cache slot for every vertex and a list with room for every polygon (by
+/// polygon index, with ids and outline masks). Clipped polygons are stored inline and may
 /// need more; a frame that needs more still draws the same picture,
 /// with one more walk (see the module docs).
 pub fn memory_words(tree: &Tree<'_>) -> usize {
     let v = (tree.vertex_count() as usize).min(MAX_CACHED);
-    // A record by index: at most 8 header words (a long vertex count, the
-    // outline mask, the id) and its share of the group table (4 words a
-    // group of 16), plus a word a vertex.
-    let halves = 9 * tree.polygon_count() as usize + tree.index_count() as usize;
-    // The cache may take at most half the memory.
-    v.max(halves.div_ceil(2)) + halves.div_ceil(2)
+    // A record by polygon: at most 7 header words (a long row span, the
+    // outline mask, the id), the polygon index and its share of the group
+    // table (4 words a group of 16); polygons from the 65,537th on are
+    // stored by vertex index, a word a vertex more.
+    let polygons = tree.polygon_count() as usize;
+    let mut halves = 9 * polygons;
+    if polygons > MAX_CACHED {
+        halves += tree.index_count() as usize;
+    }
+    let list = halves.div_ceil(2);
+    // The cache may take at most three quarters of the memory; the facing
+    // memo comes first.
+    memo_words(tree) + (v + list).max((4 * v).div_ceil(3))
 }
 
 /// What a walk's callback asks for next.
@@ -111,7 +118,6 @@ enum Step {
 /// Everything a walk needs besides the renderer.
 struct Walk<'t, 'a, 'c> {
     tree: &'a Tree<'t>,
-    frame: &'a Frame,
     source: Source,
     fx: WalkFx,
     ids: FaceIds,
@@ -165,6 +171,7 @@ impl Walk<'_, '_, '_> {
     #[inline(always)]
     fn run<P: Precision, E: Compiled, Pr: Probe, const N: usize, const V: usize>(
         &mut self,
+        order: &mut Order<'_, N>,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
         probe: &Pr,
@@ -174,14 +181,14 @@ impl Walk<'_, '_, '_> {
             &mut Renderer<P, E>,
             &mut Scratch<P, V>,
             &Ready,
-            bool,
+            Option<u32>,
             &Face,
             &VertexCache<'_>,
         ) -> Step,
-    ) -> Result<(), OrderError> {
+    ) {
         probe.enter(Phase::Post);
         let fx = self.fx;
-        let mut order = Order::<N>::with_culling(self.tree, self.frame.view, fx.cull)?;
+        order.restart();
         let view = order.view();
         while let Some(range) = order.next_range() {
             for p in range.filter_map(|id| self.tree.polygon(id)) {
@@ -209,7 +216,12 @@ impl Walk<'_, '_, '_> {
                     }
                     first = false;
                     let step = match ready {
-                        Ok(ready) => f(r, scratch, &ready, by_index, &face, self.cache),
+                        // Every vertex cached: the polygon's index stands
+                        // for its points.
+                        Ok(ready) => {
+                            let poly = by_index.then(|| p.id());
+                            f(r, scratch, &ready, poly, &face, self.cache)
+                        }
                         Err(_) => Step::Next,
                     };
                     if step == Step::Next {
@@ -219,7 +231,6 @@ impl Walk<'_, '_, '_> {
                 probe.enter(Phase::Post);
             }
         }
-        Ok(())
     }
 
     /// Prepares `p` through the cache when every vertex is inside the clip
@@ -327,15 +338,17 @@ where
     let (mut cache, _) = take_cache(memory, tree, cacheable(r), limit);
     let reach = r.viewport_bounds().intersect(&sink.bounds());
     let mut spans = 0;
+    Order::<N>::check_depth(tree)?;
+    let mut order = Order::<N>::unchecked(tree, frame.view, fx.cull, &[]);
     let mut walk = Walk {
         tree,
-        frame,
         source,
         fx,
         ids,
         cache: &mut cache,
     };
     walk.run::<P, E, Pr, N, V>(
+        &mut order,
         r,
         scratch,
         probe,
@@ -345,7 +358,7 @@ where
             spans += fill(r, s, ready, face, sink, probe);
             Step::Next
         },
-    )?;
+    );
     let mut stats = r.stats();
     stats.spans = spans;
     stats.walks = 1;
@@ -358,6 +371,7 @@ where
 fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
     r: &Renderer<P, E>,
     scratch: &mut Scratch<P, V>,
+    tree: &Tree<'_>,
     list: &DisplayList<'_>,
     cache: &VertexCache<'_>,
     (y0, y1): (i32, i32),
@@ -385,29 +399,54 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
             break;
         };
         let e = rec.entry;
-        if rec.n > V {
-            continue;
-        }
         let mut ok = true;
-        if rec.inline {
-            for (i, dst) in scratch.screen_mut()[..rec.n].iter_mut().enumerate() {
-                *dst = list.inline_point(&rec, i);
-            }
-        } else {
-            for (dst, &v) in scratch.screen_mut().iter_mut().zip(list.indices(&rec)) {
-                match cache.get(u32::from(v)) {
-                    Slot::Point(p) => *dst = p,
-                    // Recorded by index only when cached: not reached.
-                    _ => ok = false,
+        let n = match rec.kind {
+            Kind::Polygon => {
+                // Recorded by polygon only when every vertex was cached.
+                let Some(p) = list.polygon(&rec).and_then(|i| tree.polygon(i)) else {
+                    continue;
+                };
+                let n = p.vertex_count();
+                if n > V {
+                    continue;
                 }
+                for (dst, v) in scratch.screen_mut().iter_mut().zip(p.vertex_indices()) {
+                    match cache.get(v) {
+                        Slot::Point(p) => *dst = p,
+                        _ => ok = false,
+                    }
+                }
+                n
             }
-        }
+            Kind::Indices => {
+                if rec.n > V {
+                    continue;
+                }
+                for (dst, &v) in scratch.screen_mut().iter_mut().zip(list.indices(&rec)) {
+                    match cache.get(u32::from(v)) {
+                        Slot::Point(p) => *dst = p,
+                        // Recorded by index only when cached: not reached.
+                        _ => ok = false,
+                    }
+                }
+                rec.n
+            }
+            Kind::Inline => {
+                if rec.n > V {
+                    continue;
+                }
+                for (i, dst) in scratch.screen_mut()[..rec.n].iter_mut().enumerate() {
+                    *dst = list.inline_point(&rec, i);
+                }
+                rec.n
+            }
+        };
         if !ok {
             continue;
         }
-        let pts = &scratch.screen_mut()[..rec.n];
+        let pts = &scratch.screen_mut()[..n];
         let ready = Ready {
-            n: rec.n,
+            n,
             bbox: Bbox::of(pts),
             first: e.first,
             end: e.end,
@@ -489,9 +528,27 @@ where
     probe.enter(Phase::Xform);
     let (source, fx) = begin_frame(r, tree, frame);
     let outlines = r.effects().contains(Effects::OUTLINE);
-    // The cache takes at most half the memory (the list the rest).
-    let half = memory.len() / 2;
-    let (mut cache, rest) = take_cache(memory, tree, cacheable(r), half);
+    // A frame that walks the tree more than once tests each plane once:
+    // the facing memo comes first (a few dozen words), when the memory
+    // has room for it beside a cache.
+    let memo_n = memo_words(tree);
+    let memo_n = if memory.len() >= 8 * memo_n {
+        memo_n
+    } else {
+        0
+    };
+    let (memo, memory) = memory.split_at_mut(memo_n);
+    memo.fill(0);
+    let memo = Cell::from_mut(&mut *memo).as_slice_of_cells();
+    // Made once a frame and restarted for every walk (it is large).
+    Order::<N>::check_depth(tree).map_err(RenderError::Order)?;
+    let mut order = Order::<N>::unchecked(tree, frame.view, fx.cull, memo);
+    // The cache takes at most three quarters of the memory (the list the
+    // rest): a vertex missing from the cache is transformed again by each
+    // of its polygons in every walk, which costs more than the walk a
+    // smaller list adds (measured on a Cortex-M0, README "Small RAM").
+    let most = memory.len() - memory.len() / 4;
+    let (mut cache, rest) = take_cache(memory, tree, cacheable(r), most);
     let list_words = bytemuck::cast_slice_mut(rest);
     let needs_id = <Band<'_, Framebuffer<'_, F>> as SpanSink>::NEEDS_ID;
     let mut list = DisplayList::new(list_words, needs_id, outlines);
@@ -516,7 +573,6 @@ where
         let mut fb = open_band::<F>(&mut *buf, (w, h), rows, y, background)?;
         let mut walk = Walk {
             tree,
-            frame,
             source,
             fx,
             ids,
@@ -528,12 +584,13 @@ where
             ..screen
         };
         walk.run::<P, E, Pr, N, V>(
+            &mut order,
             r,
             scratch,
             probe,
             stats.is_none(),
             reach,
-            |r, s, ready, by_index, face, cache| {
+            |r, s, ready, poly, face, cache| {
                 if direct {
                     spans += fill(r, s, ready, face, &mut Band::new(&mut fb, y), probe);
                     return Step::Next;
@@ -547,10 +604,10 @@ where
                     clipped: ready.clipped,
                 };
                 loop {
-                    let pts = if by_index {
-                        Points::Indices(s.active().get(..ready.n).unwrap_or(&[]))
-                    } else {
-                        Points::Inline(s.screen().get(..ready.n).unwrap_or(&[]))
+                    let pts = match poly {
+                        Some(i) if i <= u32::from(u16::MAX) => Points::Polygon(i as u16),
+                        Some(_) => Points::Indices(s.active().get(..ready.n).unwrap_or(&[])),
+                        None => Points::Inline(s.screen().get(..ready.n).unwrap_or(&[])),
                     };
                     if list.push(&e, pts) {
                         return Step::Next;
@@ -575,6 +632,7 @@ where
                 spans += replay(
                     r,
                     s,
+                    tree,
                     &list,
                     cache,
                     (y, y + rows),
@@ -584,8 +642,7 @@ where
                 direct = true;
                 Step::Again
             },
-        )
-        .map_err(RenderError::Order)?;
+        );
         if stats.is_none() {
             stats = Some(r.stats());
         }
@@ -594,7 +651,7 @@ where
         if !direct {
             probe.enter(Phase::Fill);
             let mut sink = Band::new(&mut fb, y);
-            spans += replay(r, scratch, &list, &cache, (y, y + rows), &mut sink);
+            spans += replay(r, scratch, tree, &list, &cache, (y, y + rows), &mut sink);
         }
         probe.stop();
         emit(y, &fb);
@@ -604,7 +661,7 @@ where
             probe.enter(Phase::Fill);
             let mut fb = open_band::<F>(&mut *buf, (w, h), rows, y0, background)?;
             let mut sink = Band::new(&mut fb, y0);
-            spans += replay(r, scratch, &list, &cache, (y0, y0 + rows), &mut sink);
+            spans += replay(r, scratch, tree, &list, &cache, (y0, y0 + rows), &mut sink);
             probe.stop();
             emit(y0, &fb);
             probe.start(Phase::Fill);
@@ -616,6 +673,6 @@ where
     let mut stats = stats.unwrap_or_default();
     stats.spans = spans;
     stats.walks = walks;
-    stats.memory_used = (cache.capacity() + list.peak().div_ceil(2)) as u32;
+    stats.memory_used = (memo_n + cache.capacity() + list.peak().div_ceil(2)) as u32;
     Ok(stats)
 }

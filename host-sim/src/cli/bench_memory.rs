@@ -15,7 +15,8 @@
 //! Output: one line per tree,
 //! `memory tree=NAME vertices=N polygons=N needed_max=W needed_median=W
 //! walks@100%=.. walks@75%=.. walks@50%=.. walks@25%=.. walks@10%=..`
-//! (walks: the median over the frames).
+//! (walks: the median over the frames), then `walks@W=..` for each
+//! `--memory W` asked for (the words a given RAM leaves, say).
 
 use std::path::PathBuf;
 
@@ -50,6 +51,9 @@ pub struct BenchMemoryArgs {
     /// Frames of the orbit.
     #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub frames: u32,
+    /// Also measure with this many words of memory (repeatable).
+    #[arg(long)]
+    pub memory: Vec<usize>,
 }
 
 /// Runs `fpt bench-memory`.
@@ -87,8 +91,12 @@ pub fn run(a: &BenchMemoryArgs) -> CliResult {
             tree.polygon_count(),
             median(&used)
         );
-        for pct in FRACTIONS {
-            let mut memory = vec![0u32; max * pct / 100];
+        let sizes = FRACTIONS
+            .iter()
+            .map(|&pct| (format!("{pct}%"), max * pct / 100));
+        let asked = a.memory.iter().map(|&m| (m.to_string(), m));
+        for (label, words) in sizes.chain(asked) {
+            let mut memory = vec![0u32; words];
             let mut walks = Vec::new();
             for (i, &want) in crcs.iter().enumerate() {
                 let (crc, s) = frame_crc::<_, VERTS, DEPTH>(
@@ -101,12 +109,12 @@ pub fn run(a: &BenchMemoryArgs) -> CliResult {
                 .map_err(|e| cli_err!("{name} frame {i}: {e}"))?;
                 if crc != want {
                     return Err(cli_err!(
-                        "{name} frame {i}: {pct} % of the memory drew another picture"
+                        "{name} frame {i}: {label} of the memory drew another picture"
                     ));
                 }
                 walks.push(s.walks as usize);
             }
-            line += &format!(" walks@{pct}%={}", median(&walks));
+            line += &format!(" walks@{label}={}", median(&walks));
         }
         println!("{line}");
     }
