@@ -86,7 +86,8 @@ fn take_cache<'m>(
 /// Words of memory with which a frame of `tree` needs one walk and
 /// transforms each vertex once, whatever the view: the facing memo, a
 /// cache slot for every vertex and a list with room for every polygon (by
-/// polygon index, with ids and outline masks). Clipped polygons are stored inline and may
+/// polygon index, with ids and outline masks; inline when depth cueing
+/// keeps the cache off). Clipped polygons are stored inline and may
 /// need more; a frame that needs more still draws the same picture,
 /// with one more walk (see the module docs).
 pub fn memory_words(tree: &Tree<'_>) -> usize {
@@ -103,7 +104,11 @@ pub fn memory_words(tree: &Tree<'_>) -> usize {
     let list = halves.div_ceil(2);
     // The cache may take at most three quarters of the memory; the facing
     // memo comes first.
-    memo_words(tree) + (v + list).max((4 * v).div_ceil(3))
+    let cached = (v + list).max((4 * v).div_ceil(3));
+    // Depth cueing keeps no cache: every record holds its points inline
+    // (4 words a point, a count word).
+    let inline = (9 * polygons + 4 * tree.index_count() as usize).div_ceil(2);
+    memo_words(tree) + cached.max(inline)
 }
 
 /// What a walk's callback asks for next.

@@ -19,7 +19,7 @@
 //! | `--cpu` | target | QEMU machine | flash | RAM | default `--band` | default `--clock` |
 //! |---|---|---|---:|---:|---:|---:|
 //! | `m4f` | `thumbv7em-none-eabihf` | `netduinoplus2` (STM32F405) | 1 MiB | 128 KiB | 0 (full frame) | 168 MHz |
-//! | `m0` | `thumbv6m-none-eabi` | `microbit` (nRF51822) | 256 KiB | 16 KiB | 16 | 64 MHz (an STM32G0-class M0+; the nRF51 runs at 16) |
+//! | `m0` | `thumbv6m-none-eabi` | `microbit` (nRF51822) | 256 KiB | 16 KiB | 8 | 64 MHz (an STM32G0-class M0+; the nRF51 runs at 16) |
 //!
 //! Other defaults: `--size 240x240 --precision f32-libm --frames 100`.
 //! `fps_at_clock` is `clock / instr_median` at one instruction per cycle
@@ -71,7 +71,7 @@ pub struct McuBenchArgs {
     /// Display size WxH.
     #[arg(long, default_value = "240x240")]
     pub size: String,
-    /// Rows per band, 0 for a full framebuffer [default: 0 on m4f, 16 on m0].
+    /// Rows per band, 0 for a full framebuffer [default: 0 on m4f, 8 on m0].
     #[arg(long)]
     pub band: Option<u32>,
     /// Vertex arithmetic: f32-libm or fixed.
@@ -150,7 +150,10 @@ impl Cpu {
     fn default_band(self) -> u32 {
         match self {
             Cpu::M4f => 0,
-            Cpu::M0 => 16,
+            // 16 KiB: a 16-row band (7.5 KiB) leaves the working memory a
+            // tenth of what a frame of socket needs, an 8-row band
+            // (3.75 KiB) three fifths, and the frame takes fewer walks.
+            Cpu::M0 => 8,
         }
     }
 
@@ -513,7 +516,9 @@ fn parse_run(out: &str) -> Run {
 /// frame of the orbit used on the host with all it could want (`used`),
 /// on the Cortex-M0 at most what its RAM leaves beside the band buffer,
 /// the renderer's scratch (as `build.rs` sizes it: 106 B a vertex) and
-/// 5 KiB for the stack and the other statics.
+/// 4 KiB for the stack and the other statics (measured: a 3.8 KiB stack
+/// peak for socket in 8-row bands; `fpt mcu-bench` fails with the
+/// measured overflow if a tree needs more).
 fn default_memory(b: &Bench, tree: &Tree<'_>, used: usize) -> usize {
     if b.cpu != Cpu::M0 {
         return used;
@@ -525,7 +530,7 @@ fn default_memory(b: &Bench, tree: &Tree<'_>, used: usize) -> usize {
         .unwrap_or(0)
         .max(16);
     let band = 2 * band_words(b.size.0, b.size.1, b.band);
-    let left = (b.cpu.ram() as usize).saturating_sub(band + 106 * verts + 5 * 1024);
+    let left = (b.cpu.ram() as usize).saturating_sub(band + 106 * verts + 4 * 1024);
     used.min(left / 4)
 }
 
