@@ -738,6 +738,31 @@ impl<'a> Tree<'a> {
         })
     }
 
+    /// The vertex indices of polygon `id` (what
+    /// [`PolygonRef::vertex_indices`] gives), without making the
+    /// [`PolygonRef`]: a band's replay of the display list reads them for
+    /// every polygon it fills, and a `PolygonRef` carries the whole
+    /// vertex decoder (about 100 bytes to copy on a 32-bit core). Empty
+    /// when `id ≥ polygon_count()`.
+    #[inline]
+    pub fn polygon_vertex_indices(&self, id: u32) -> VertexIndices<'a> {
+        if id >= self.counts.polygons {
+            return VertexIndices {
+                indices: &[],
+                wide: false,
+            };
+        }
+        let g = &self.g;
+        let (first, end) = g.polygon_range(id);
+        let size = usize::from(g.index_size);
+        let lo = g.indices.wrapping_add((first as usize).wrapping_mul(size));
+        let hi = lo.wrapping_add((end.saturating_sub(first) as usize).wrapping_mul(size));
+        VertexIndices {
+            indices: g.bytes.get(lo..hi).unwrap_or(&[]),
+            wide: size == 4,
+        }
+    }
+
     /// Stored vertex `v` relative to the origin, decoded to `f32`.
     pub fn vertex(&self, v: u32) -> Option<[f32; 3]> {
         self.vertex_raw(v).map(|r| self.g.decode(r))

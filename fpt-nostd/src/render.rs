@@ -478,7 +478,7 @@ pub(crate) fn walk_effects<P: Precision, E: Compiled>(
 /// that lighting switched off costs what lighting compiled out does.
 /// Shared by [`draw_frame`] and the loops of `render::cached`, so all draw
 /// alike.
-#[inline]
+#[inline(always)]
 pub(crate) fn face_of(p: &PolygonRef<'_>, view: &LocalView, fx: WalkFx, id: u32) -> Face {
     let normal = if fx.lit {
         let plane = p.plane();

@@ -76,18 +76,87 @@ fn unit_from_ints(v: [i64; 3]) -> Option<[Fx14; 3]> {
     }))
 }
 
-/// Tolerance on `|v|² − 1` under which an `f32` vector counts as already
-/// unit length. The tree stores normalised plane normals (squared length
-/// within a few f32 ulps of 1); 2^-13 on the square is 2^-14 on the length,
-/// under one Fx14 unit, so rounding each component to Q14 directly gives
-/// the normalised vector as exactly as the square-root path does.
-const UNIT_TOLERANCE: f32 = 1.0 / 8192.0;
+/// `c` with `|c| < 2` scaled by `2^frac` (`frac` at most 29) and rounded,
+/// halves away from zero, exactly (0 for anything smaller than half a
+/// unit).
+///
+/// Two implementations with the same results (a test compares them),
+/// chosen by the target: on a core without an FPU each `f32` operation is
+/// a software routine of some 50–90 instructions, and shading a polygon
+/// from its stored `f32` normal (a unit-length test and three roundings)
+/// was about a tenth of a Cortex-M0 frame, so there it is integer work on
+/// the bits; with an FPU a few float instructions are cheaper. (The older
+/// `(|c| · 2^14 + 0.5) as i32` rounded twice; both of these round once.)
+#[inline(always)]
+fn round_scaled(c: f32, frac: u32) -> i32 {
+    if HAS_FPU {
+        round_scaled_fpu(c, frac)
+    } else {
+        round_scaled_bits(c, frac)
+    }
+}
+
+/// Whether the target has hardware floating point: hosted targets, ARM
+/// hard-float ABIs, RISC-V with F.
+const HAS_FPU: bool = cfg!(any(
+    not(target_os = "none"),
+    target_abi = "eabihf",
+    target_feature = "f"
+));
+
+/// [`round_scaled`] in integers, from the bits of `c`.
+#[inline]
+fn round_scaled_bits(c: f32, frac: u32) -> i32 {
+    let bits = c.to_bits();
+    let exp = bits >> 23 & 0xff;
+    // value = m · 2^(e − 150) (subnormals: e = 1 without the hidden bit).
+    let (m, e) = if exp == 0 {
+        (bits & 0x7f_ffff, 1)
+    } else {
+        (bits & 0x7f_ffff | 0x80_0000, exp)
+    };
+    // × 2^frac: m · 2^(e + frac − 150), a right shift by k = 150 − e − frac;
+    // |c| < 2 means e ≤ 127, so k ≥ 23 − frac ≥ −6.
+    let k = 150i32 - e as i32 - frac as i32;
+    let mag = if k <= 0 {
+        m << (-k).min(6) as u32
+    } else if k > 25 {
+        // m < 2^24 is below half a unit (2^(k−1) ≥ 2^25).
+        0
+    } else {
+        (m + (1 << (k - 1))) >> k
+    } as i32;
+    if bits >> 31 != 0 {
+        -mag
+    } else {
+        mag
+    }
+}
+
+/// [`round_scaled`] in `f32`: the scaling by a power of two, the
+/// truncation and the fraction `x − ⌊x⌋` are all exact.
+#[inline]
+fn round_scaled_fpu(c: f32, frac: u32) -> i32 {
+    let x = c.abs() * (1u32 << frac) as f32;
+    let t = x as i32;
+    let mag = t + i32::from(x - t as f32 >= 0.5);
+    if c.is_sign_negative() {
+        -mag
+    } else {
+        mag
+    }
+}
 
 /// `c` in `[-1, 1]` rounded to Q14 (halves away from zero, as
 /// [`unit_from_ints`]).
 fn q14_round(c: f32) -> Fx14 {
-    let m = (c.abs() * 16384.0 + 0.5) as i32;
-    Fx14::from_raw(if c < 0.0 { -m } else { m })
+    Fx14::from_raw(round_scaled(c, 14))
+}
+
+/// Whether `bits` is a finite `f32` with magnitude below 2.
+#[inline]
+fn below_two(c: f32) -> bool {
+    c.to_bits() & 0x7fff_ffff < 0x4000_0000
 }
 
 /// Normalises an `f32` vector; `None` for zero or non-finite input.
@@ -97,11 +166,18 @@ fn unit_from_f32(v: [f32; 3]) -> Option<[Fx14; 3]> {
     }
     // Fast path: stored normals are unit already, and a 64-bit integer
     // square root plus three 64-bit divisions per face was the whole cost
-    // of shading on a 32-bit core. Finite components with |v|² ≈ 1 are
-    // within [-1, 1] (up to the tolerance), so the rounding cannot overflow.
-    let len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if (len2 - 1.0).abs() <= UNIT_TOLERANCE {
-        return Some(v.map(q14_round));
+    // of shading on a 32-bit core. The length test is on the rounded Q14
+    // components, in integers (the same decision on every target, and
+    // cheap without an FPU): |q|² within 2^16 of 2^28, i.e. |v|² within
+    // about 2^-12 of 1 (the rounding takes up to 2^-13.2 of it), where
+    // rounding each component directly is within two Q14 units of the
+    // normalised vector. Components below 2 in magnitude cannot overflow.
+    if v.iter().all(|&c| below_two(c)) {
+        let q = v.map(q14_round);
+        let len2: u32 = q.iter().map(|c| c.raw().unsigned_abs().pow(2)).sum();
+        if len2.abs_diff(1 << 28) <= 1 << 16 {
+            return Some(q);
+        }
     }
     let big = v.iter().fold(0.0f32, |m, c| m.max(c.abs()));
     if big == 0.0 {
@@ -134,8 +210,11 @@ impl Light {
     fn intensity_unit(&self, n: Option<[Fx14; 3]>) -> Fx14 {
         let cos = match (n, self.dir) {
             (Some(n), Some(l)) => {
-                let dot: i64 = (0..3).map(|i| n[i].raw() as i64 * l[i].raw() as i64).sum();
-                Fx14::from_raw((dot >> 14) as i32)
+                // Q14 · Q14 unit components: each product at most 2^28
+                // (and a rounding unit), the sum of three within i32 (a
+                // 64-bit multiply is a library call on a Cortex-M0).
+                let dot: i32 = (0..3).map(|i| n[i].raw() * l[i].raw()).sum();
+                Fx14::from_raw(dot >> 14)
             }
             _ => Fx14::ZERO,
         };
@@ -254,6 +333,52 @@ impl DepthCue {
 mod tests {
     use super::*;
     use embedded_graphics::pixelcolor::RgbColor;
+
+    #[test]
+    fn integer_rounding_is_exact() {
+        // Against f64, where c · 2^frac + 0.5 is exact for these values.
+        let mut x = 0x1234_5678u32;
+        let mut check = |c: f32| {
+            for frac in [14, 29] {
+                let want = (f64::from(c.abs()) * f64::from(1u32 << frac) + 0.5).floor();
+                let want = if c < 0.0 { -want } else { want };
+                assert_eq!(f64::from(round_scaled(c, frac)), want, "{c:e} q{frac}");
+            }
+        };
+        let mut check = |c: f32| {
+            check(c);
+            for frac in [14, 29] {
+                assert_eq!(
+                    round_scaled_bits(c, frac),
+                    round_scaled_fpu(c, frac),
+                    "{c:e}"
+                );
+            }
+        };
+        for c in [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            1.999_999_9,
+            0.5,
+            1e-38,
+            1e-45,
+            3.0517578e-5,
+        ] {
+            check(c);
+        }
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            // Every sign and exponent below 2 (bits below 0x4000_0000).
+            check(f32::from_bits(x & 0xbfff_ffff));
+        }
+        // Exactly half a unit goes away from zero.
+        check(0.5 / 16384.0);
+        check(-1.5 / 16384.0);
+    }
 
     #[test]
     fn unit_vectors_have_unit_length() {

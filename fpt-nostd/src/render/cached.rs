@@ -408,18 +408,16 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
         let n = match rec.kind {
             Kind::Polygon => {
                 // Recorded by polygon only when every vertex was cached.
-                let Some(p) = list.polygon(&rec).and_then(|i| tree.polygon(i)) else {
+                let Some(i) = list.polygon(&rec) else {
                     continue;
                 };
-                let n = p.vertex_count();
-                if n > V {
-                    continue;
-                }
-                for (dst, v) in scratch.screen_mut().iter_mut().zip(p.vertex_indices()) {
-                    match cache.get(v) {
-                        Slot::Point(p) => *dst = p,
+                let mut n = 0;
+                for v in tree.polygon_vertex_indices(i) {
+                    match (scratch.screen_mut().get_mut(n), cache.get(v)) {
+                        (Some(dst), Slot::Point(p)) => *dst = p,
                         _ => ok = false,
                     }
+                    n += 1;
                 }
                 n
             }
