@@ -338,14 +338,14 @@ mod tests {
     fn integer_rounding_is_exact() {
         // Against f64, where c · 2^frac + 0.5 is exact for these values.
         let mut x = 0x1234_5678u32;
-        let mut check = |c: f32| {
+        let check = |c: f32| {
             for frac in [14, 29] {
                 let want = (f64::from(c.abs()) * f64::from(1u32 << frac) + 0.5).floor();
                 let want = if c < 0.0 { -want } else { want };
                 assert_eq!(f64::from(round_scaled(c, frac)), want, "{c:e} q{frac}");
             }
         };
-        let mut check = |c: f32| {
+        let check = |c: f32| {
             check(c);
             for frac in [14, 29] {
                 assert_eq!(
