@@ -21,7 +21,7 @@
 //!   [`DisplayList::retain_rows_below`] drops records in place without
 //!   reordering the rest.
 //! * Sizes, in 16-bit words: a header of 3, plus 1 when the polygon spans
-//!   more than 62 rows, plus 1 with outlines, plus 2 with ids; then the
+//!   more than 254 rows, plus 1 with outlines, plus 2 with ids; then the
 //!   points: a polygon whose every vertex is cached is stored by its
 //!   **polygon index** (1 word; the replay reads its vertex indices from
 //!   the tree, which is in flash, not RAM), else a count word and 1 word a
@@ -31,10 +31,10 @@
 //!   the common record is kept as small as it can be while still holding
 //!   the shaded colour exactly.
 //!
-//! Header layout: `[first, r | g << 8, b | kind << 8 | rows << 10]`, `first`
-//! the first row (in `0..=2^14`, the largest viewport), `kind` 0 (by
+//! Header layout: `[first | kind << 14, r | g << 8, b | rows << 8]`,
+//! `first` the first row (below 2^14, the largest viewport), `kind` 0 (by
 //! polygon), 1 (by vertex index), 2 (inline) or 3 (inline, clipped),
-//! `rows = end - first` when below 63, else 63 and the next word holds
+//! `rows = end - first` when below 255, else 255 and the next word holds
 //! `end`.
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
@@ -102,7 +102,7 @@ const BY_INDEX: u16 = 1;
 const INLINE: u16 = 2;
 const INLINE_CLIPPED: u16 = 3;
 /// `rows` value saying that the next word holds the end row.
-const LONG_ROWS: u16 = 63;
+const LONG_ROWS: u16 = 255;
 
 /// A list of records in caller storage (see the module docs).
 #[derive(Debug)]
@@ -112,6 +112,8 @@ pub struct DisplayList<'m> {
     peak: usize,
     ids: bool,
     outlines: bool,
+    /// Words of the optional fields (outline mask, id) in every record.
+    extra: usize,
     /// Groups in the table at the top of `buf` (see [`GROUP`]).
     groups: usize,
     /// Records in the last group.
@@ -137,6 +139,7 @@ impl<'m> DisplayList<'m> {
             peak: 0,
             ids,
             outlines,
+            extra: usize::from(outlines) + 2 * usize::from(ids),
             groups: 0,
             in_group: 0,
         }
@@ -223,8 +226,7 @@ impl<'m> DisplayList<'m> {
     /// rows.
     pub fn record_words(&self, n: usize, kind: Kind, rows: i32) -> usize {
         3 + usize::from(rows >= i32::from(LONG_ROWS))
-            + usize::from(self.outlines)
-            + 2 * usize::from(self.ids)
+            + self.extra
             + match kind {
                 Kind::Polygon => 1,
                 Kind::Indices => 1 + n,
@@ -233,8 +235,8 @@ impl<'m> DisplayList<'m> {
     }
 
     /// Appends a record; `false` (and nothing written) when it does not
-    /// fit or a field is out of range (rows outside `0..=2^14` or
-    /// decreasing, more than 65 535 points). A clipped polygon must be
+    /// fit or a field is out of range (a first row outside `0..2^14`, an
+    /// end row outside `0..=2^14` or above it, more than 65 535 points). A clipped polygon must be
     /// stored inline (its points are not the tree's).
     pub fn push(&mut self, e: &Entry, pts: Points<'_>) -> bool {
         let (n, kind) = match pts {
@@ -242,9 +244,8 @@ impl<'m> DisplayList<'m> {
             Points::Indices(ix) => (ix.len(), Kind::Indices),
             Points::Inline(p) => (p.len(), Kind::Inline),
         };
-        let rows_ok = |r: i32| (0..=1 << 14).contains(&r);
-        if !rows_ok(e.first)
-            || !rows_ok(e.end)
+        if !(0..1 << 14).contains(&e.first)
+            || e.end > 1 << 14
             || e.end < e.first
             || n > usize::from(u16::MAX)
             || (e.clipped && kind != Kind::Inline)
@@ -268,9 +269,9 @@ impl<'m> DisplayList<'m> {
         };
         let long = rows >= i32::from(LONG_ROWS);
         let rows_code = if long { LONG_ROWS } else { rows as u16 };
-        out[0] = e.first as u16;
+        out[0] = e.first as u16 | code << 14;
         out[1] = u16::from(e.rgb.r()) | u16::from(e.rgb.g()) << 8;
-        out[2] = u16::from(e.rgb.b()) | code << 8 | rows_code << 10;
+        out[2] = u16::from(e.rgb.b()) | rows_code << 8;
         let mut k = 3;
         if long {
             out[k] = e.end as u16;
@@ -317,7 +318,7 @@ impl<'m> DisplayList<'m> {
         let h = self.head(at)?;
         // The optional words sit right before the points: the outline
         // mask, then the id.
-        let mut k = h.body - usize::from(self.outlines) - 2 * usize::from(self.ids);
+        let mut k = h.body - self.extra;
         let hidden = if self.outlines {
             k += 1;
             *self.buf.get(k - 1)? as u8
@@ -354,8 +355,9 @@ impl<'m> DisplayList<'m> {
         let &[w0, w1, w2, ..] = h else {
             return None;
         };
-        let first = i32::from(w0);
-        let rows = w2 >> 10;
+        let first = i32::from(w0 & 0x3fff);
+        let code = w0 >> 14;
+        let rows = w2 >> 8;
         let mut k = 3;
         let end = if rows == LONG_ROWS {
             k += 1;
@@ -363,7 +365,6 @@ impl<'m> DisplayList<'m> {
         } else {
             first + i32::from(rows)
         };
-        let code = (w2 >> 8) & 3;
         let (kind, n) = if code == BY_POLYGON {
             (Kind::Polygon, 0)
         } else {
@@ -378,7 +379,7 @@ impl<'m> DisplayList<'m> {
                 n,
             )
         };
-        let body = at + k + usize::from(self.outlines) + 2 * usize::from(self.ids);
+        let body = at + k + self.extra;
         let next = body
             + match kind {
                 Kind::Polygon => 1,
@@ -512,8 +513,8 @@ mod tests {
             assert!(l.push(&entry(3, 9), Points::Indices(&[7, 8, 9])));
             assert!(l.push(&clipped, Points::Inline(&pts)));
             assert!(l.push(&entry(0, 16384), Points::Indices(&many)));
-            assert!(l.push(&entry(2, 64), Points::Polygon(65535)));
-            assert!(l.push(&entry(2, 65), Points::Polygon(7)));
+            assert!(l.push(&entry(2, 256), Points::Polygon(65535)));
+            assert!(l.push(&entry(2, 257), Points::Polygon(7)));
             let a = l.record(0).unwrap();
             let b = l.record(l.next(&a)).unwrap();
             let c = l.record(l.next(&b)).unwrap();
@@ -541,15 +542,15 @@ mod tests {
             assert_eq!(a.entry, want(entry(3, 9)));
             assert_eq!(b.entry, want(clipped));
             assert_eq!(c.entry, want(entry(0, 16384)));
-            assert_eq!(d.entry, want(entry(2, 64)));
-            assert_eq!(e.entry, want(entry(2, 65)));
+            assert_eq!(d.entry, want(entry(2, 256)));
+            assert_eq!(e.entry, want(entry(2, 257)));
             assert_eq!(
                 l.len(),
                 l.record_words(3, Kind::Indices, 6)
                     + l.record_words(2, Kind::Inline, 1)
                     + l.record_words(300, Kind::Indices, 16384)
-                    + l.record_words(0, Kind::Polygon, 62)
-                    + l.record_words(0, Kind::Polygon, 63)
+                    + l.record_words(0, Kind::Polygon, 254)
+                    + l.record_words(0, Kind::Polygon, 255)
             );
         }
     }
@@ -563,6 +564,7 @@ mod tests {
         assert!(!l.push(&entry(0, 1), Points::Polygon(4)));
         assert!(!l.push(&entry(-1, 1), Points::Indices(&[1])));
         assert!(!l.push(&entry(0, 1 << 15), Points::Indices(&[1])));
+        assert!(!l.push(&entry(1 << 14, 1 << 14), Points::Indices(&[1])));
         assert!(!l.push(&entry(3, 2), Points::Indices(&[1])));
         assert_eq!((l.len(), l.peak(), l.groups()), (4, 8, 1));
         // A clipped polygon's points are not the tree's: inline only.

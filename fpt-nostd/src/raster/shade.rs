@@ -98,7 +98,7 @@ fn round_scaled(c: f32, frac: u32) -> i32 {
 
 /// Whether the target has hardware floating point: hosted targets, ARM
 /// hard-float ABIs, RISC-V with F.
-const HAS_FPU: bool = cfg!(any(
+pub(crate) const HAS_FPU: bool = cfg!(any(
     not(target_os = "none"),
     target_abi = "eabihf",
     target_feature = "f"

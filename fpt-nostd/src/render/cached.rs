@@ -47,6 +47,7 @@ use crate::raster::int_path::q16_camera;
 use crate::raster::list::{DisplayList, Entry, Kind, Points};
 use crate::raster::renderer::Ready;
 use crate::raster::scan::Bbox;
+use crate::raster::shade::HAS_FPU;
 use crate::raster::transform::VertexPath;
 use crate::raster::vcache::{Slot, VertexCache};
 use crate::raster::{
@@ -103,7 +104,7 @@ pub fn memory_words(tree: &Tree<'_>) -> usize {
     }
     let list = halves.div_ceil(2);
     // The cache may take at most three quarters of the memory; the facing
-    // memo comes first.
+    // memo (without an FPU) comes first.
     let cached = (v + list).max((4 * v).div_ceil(3));
     // Depth cueing keeps no cache: every record holds its points inline
     // (4 words a point, a count word).
@@ -533,9 +534,11 @@ where
     let outlines = r.effects().contains(Effects::OUTLINE);
     // A frame that walks the tree more than once tests each plane once:
     // the facing memo comes first (a few dozen words), when the memory
-    // has room for it beside a cache.
+    // has room for it beside a cache, on cores without an FPU (with one,
+    // a facing test costs what looking it up does). This crate's own tests
+    // take it on every target, so that the host checks the path too.
     let memo_n = memo_words(tree);
-    let memo_n = if memory.len() >= 8 * memo_n {
+    let memo_n = if (!HAS_FPU || cfg!(test)) && memory.len() >= 8 * memo_n {
         memo_n
     } else {
         0
