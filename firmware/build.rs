@@ -10,7 +10,9 @@
 //!   `.cargo/config.toml`'s `rustflags`, which a `RUSTFLAGS` variable in
 //!   the environment would replace).
 //!   `FPT_BENCH_RAM_KIB` replaces the RAM's length (for `fpt mcu-bench`'s
-//!   measurement of a stack that does not fit).
+//!   measurement of a stack that does not fit), `FPT_BENCH_FLASH_KIB` the
+//!   flash's (for the accuracy study's Cortex-M0 column, see
+//!   `src/bin/accuracy.rs`).
 //! * `src/bin/bench.rs` (`fpt mcu-bench`): writes `bench_config.rs` into
 //!   `OUT_DIR` from the environment (see [`BenchConfig`]).
 use std::{env, fs, path::PathBuf};
@@ -35,8 +37,9 @@ struct BenchConfig {
     memory: usize,
 }
 
-const VARS: [&str; 8] = [
+const VARS: [&str; 9] = [
     "FPT_BENCH_RAM_KIB",
+    "FPT_BENCH_FLASH_KIB",
     "FPT_BENCH_TREE",
     "FPT_BENCH_WIDTH",
     "FPT_BENCH_HEIGHT",
@@ -147,13 +150,19 @@ fn main() {
     let mut layout = fs::read_to_string(memory).unwrap_or_else(|e| panic!("reading {memory}: {e}"));
     // `fpt mcu-bench` measures a Cortex-M0 stack that outgrows the 16 KiB
     // by relinking with more RAM and running on QEMU's mps2-an385.
-    if let Ok(kib) = env::var("FPT_BENCH_RAM_KIB") {
+    // The accuracy study's Cortex-M0 column (`m0_instr`) runs the M0's code
+    // with a whole frame and every tree in memory on the same machine, with
+    // `FPT_BENCH_FLASH_KIB` too.
+    for (region, var) in [("RAM", "FPT_BENCH_RAM_KIB"), ("FLASH", "FPT_BENCH_FLASH_KIB")] {
+        let Ok(kib) = env::var(var) else {
+            continue;
+        };
         let line = layout
             .lines()
-            .find(|l| l.trim_start().starts_with("RAM"))
-            .expect("a RAM line in the layout")
+            .find(|l| l.trim_start().starts_with(region))
+            .unwrap_or_else(|| panic!("a {region} line in the layout"))
             .to_string();
-        let (head, _) = line.split_once("LENGTH").expect("RAM LENGTH");
+        let (head, _) = line.split_once("LENGTH").expect("LENGTH");
         layout = layout.replace(&line, &format!("{head}LENGTH = {kib}K"));
     }
     fs::write(out.join("memory.x"), layout).expect("writing memory.x");

@@ -237,7 +237,7 @@ fn bench_accuracy_writes_the_csv_and_the_plot() {
     assert_eq!(lines.len(), CONFIGS.len() + 1);
     for (line, c) in lines[1..].iter().zip(CONFIGS) {
         let f: Vec<&str> = line.split(',').collect();
-        assert_eq!(f.len(), 6, "{line}");
+        assert_eq!(f.len(), 7, "{line}");
         assert_eq!(f[0], c.name);
         for v in &f[1..5] {
             let x: f64 = v.parse().expect("number");
@@ -248,7 +248,7 @@ fn bench_accuracy_writes_the_csv_and_the_plot() {
         .iter()
         .find(|l| l.starts_with("fixed,"))
         .expect("fixed row");
-    assert!(fixed.ends_with(",1.000,"), "{fixed}");
+    assert!(fixed.ends_with(",1.000,,"), "{fixed}");
     let png = std::fs::read(out_dir.join("accuracy.png")).expect("png");
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
 
@@ -265,6 +265,14 @@ fn bench_accuracy_writes_the_csv_and_the_plot() {
         }
     }
     std::fs::write(&mcu, &text).expect("mcu file");
+    // And the Cortex-M0's output, m0_instr.
+    let m0 = out_dir.join("m0.txt");
+    std::fs::write(
+        &m0,
+        text.replace("instr=7", "instr=9")
+            .replace("instr=1", "instr=3"),
+    )
+    .expect("m0 file");
     let args = |m: &Path| -> Vec<String> {
         [
             "bench-accuracy",
@@ -279,6 +287,8 @@ fn bench_accuracy_writes_the_csv_and_the_plot() {
             "--no-models",
             "--mcu",
             &s(m),
+            "--m0",
+            &s(&m0),
         ]
         .map(String::from)
         .to_vec()
@@ -294,7 +304,12 @@ fn bench_accuracy_writes_the_csv_and_the_plot() {
         .lines()
         .find(|l| l.starts_with("fixed,"))
         .expect("fixed");
-    assert!(fixed.ends_with(",1.000,120"), "{fixed}");
+    assert!(fixed.ends_with(",1.000,120,320"), "{fixed}");
+    let other = csv
+        .lines()
+        .find(|l| l.starts_with("f32-libm,"))
+        .expect("f32-libm");
+    assert!(other.ends_with(",7,9"), "{other}");
     // A firmware output missing a configuration is an error (exit 2).
     std::fs::write(&mcu, text.replace("config=subpx-8", "config=other")).expect("mcu");
     let out = fpt(&args(&mcu));

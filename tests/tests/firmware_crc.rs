@@ -14,6 +14,11 @@
 //!   (`--target thumbv6m-none-eabi`, feature `band`, QEMU `microbit`),
 //!   which embeds the scene that fits its flash (vise), and
 //!   checks that its statics and measured stack peak fit its 16 KiB of RAM.
+//! * `m0_accuracy_matches_host`: the `accuracy` binary built for the
+//!   Cortex-M0 with room for a whole frame (run on QEMU `mps2-an385`,
+//!   whose Cortex-M3 executes the M0's code): every configuration's
+//!   checksums equal the host's (the `m0_instr` column of the accuracy
+//!   study).
 //!
 //! The firmware tests are skipped, with a message, when
 //! `qemu-system-arm` or the thumb target is missing — unless
@@ -141,6 +146,11 @@ fn can_run(test: &str, target: &str) -> bool {
 
 /// `cargo run --release ARGS` in `firmware/`: exit success and stdout.
 fn run_firmware(args: &[&str]) -> (bool, String) {
+    run_firmware_with(args, &[])
+}
+
+/// [`run_firmware`] with environment variables `env` set.
+fn run_firmware_with(args: &[&str], env: &[(&str, &str)]) -> (bool, String) {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let mut child = ok(
         Command::new(cargo)
@@ -150,6 +160,7 @@ fn run_firmware(args: &[&str]) -> (bool, String) {
             // The firmware's own target and linker flags must apply.
             .env_remove("CARGO_BUILD_TARGET")
             .env_remove("CARGO_ENCODED_RUSTFLAGS")
+            .envs(env.iter().copied())
             .stdout(Stdio::piped())
             .stderr(Stdio::inherit())
             .spawn(),
@@ -295,4 +306,42 @@ fn m0_firmware_matches_host() {
         "M0 RAM: {statics} B static + {stack} B stack > {M0_RAM} B"
     );
     assert!(success, "M0 firmware exited with failure:\n{out}");
+}
+
+/// The accuracy configurations in the Cortex-M0's code (Thumb-1, software
+/// floating point, no divide instruction), with the RAM and flash a whole
+/// 240×240 frame and the three trees need, on QEMU `mps2-an385`: the same
+/// checksums as the host's, a cost each (`fpt bench-accuracy --m0`).
+#[test]
+fn m0_accuracy_matches_host() {
+    if !can_run("m0_accuracy_matches_host", "thumbv6m-none-eabi") {
+        return;
+    }
+    let host: Vec<String> = ok(
+        accuracy_lines(&ok(read_accuracy_trees(&trees_dir()), "accuracy trees")),
+        "drawing the accuracy frames on the host",
+    );
+    let target_dir = firmware_dir().join("target").join("m0-accuracy");
+    let runner = "qemu-system-arm -machine mps2-an385 -cpu cortex-m3 -nographic \
+                  -semihosting-config enable=on,target=native -icount shift=0 -kernel";
+    let (success, out) = run_firmware_with(
+        &["--bin", "accuracy", "--target", "thumbv6m-none-eabi"],
+        &[
+            ("FPT_BENCH_RAM_KIB", "1024"),
+            ("FPT_BENCH_FLASH_KIB", "4096"),
+            ("CARGO_TARGET_DIR", &target_dir.to_string_lossy()),
+            ("CARGO_TARGET_THUMBV6M_NONE_EABI_RUNNER", runner),
+        ],
+    );
+    let firmware: Vec<String> = out
+        .lines()
+        .filter_map(AccuracyLine::parse)
+        .map(|l| l.to_string())
+        .collect();
+    assert_eq!(firmware, host, "M0 accuracy frames differ; output:\n{out}");
+    assert!(out
+        .lines()
+        .filter(|l| l.starts_with("accuracy "))
+        .all(|l| AccuracyLine::instr(l).is_some_and(|n| n > 0)));
+    assert!(success, "M0 accuracy firmware exited with failure:\n{out}");
 }

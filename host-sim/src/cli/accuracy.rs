@@ -1,7 +1,7 @@
 //! `fpt bench-accuracy --out DIR`: what accuracy costs in time.
 //!
 //! ```text
-//! fpt bench-accuracy --out DIR [--size WxH] [--views N] [--reps N] [--no-models] [--mcu FILE]
+//! fpt bench-accuracy --out DIR [--size WxH] [--views N] [--reps N] [--no-models] [--mcu FILE] [--m0 FILE]
 //! ```
 //!
 //! Renders the project's scenes (vise, house, bench city) and the shared
@@ -9,7 +9,7 @@
 //! seeded orbit views with every configuration of [`CONFIGS`], compares
 //! each picture's source ids with the exact float64 reference and writes
 //! * `DIR/accuracy.csv`: header
-//!   `config,wrong_pixel_frac,wrong_face_frac,max_vertex_err_px,host_rel_time,mcu_instr`,
+//!   `config,wrong_pixel_frac,wrong_face_frac,max_vertex_err_px,host_rel_time,mcu_instr,m0_instr`,
 //!   one row per configuration (definitions in [`eval`]);
 //!   `host_rel_time` is the host time per frame (per frame the fastest of
 //!   `--reps` interleaved rounds) divided by that of the default configuration
@@ -19,7 +19,13 @@
 //!   firmware's `accuracy` binary (`cd firmware && cargo run --release
 //!   --bin accuracy > FILE`, see [`fpt_nostd::frames::accuracy`]), whose
 //!   checksums the firmware has already checked against the host's; empty
-//!   without `--mcu`;
+//!   without `--mcu`; `m0_instr` the same for the Cortex-M0's code
+//!   (Thumb-1, no FPU, no divide), from `--m0 FILE`: the same binary
+//!   built for `thumbv6m-none-eabi` with room for a whole frame and the
+//!   three trees (`FPT_BENCH_RAM_KIB=1024 FPT_BENCH_FLASH_KIB=4096`, a
+//!   240×240 frame does not fit a 16 KiB part) and run on QEMU's
+//!   `mps2-an385`, whose Cortex-M3 executes that code (see
+//!   `firmware/README.md`); empty without `--m0`;
 //! * `DIR/accuracy.png`: `wrong_face_frac` against `host_rel_time`, points
 //!   labelled with the configuration.
 //!
@@ -51,7 +57,7 @@ use std::path::PathBuf;
 
 /// The CSV header, exactly.
 pub const CSV_HEADER: &str =
-    "config,wrong_pixel_frac,wrong_face_frac,max_vertex_err_px,host_rel_time,mcu_instr";
+    "config,wrong_pixel_frac,wrong_face_frac,max_vertex_err_px,host_rel_time,mcu_instr,m0_instr";
 
 /// Arguments of `fpt bench-accuracy`.
 #[derive(Args, Debug)]
@@ -75,6 +81,11 @@ pub struct AccuracyArgs {
     /// accuracy` in firmware/), for the mcu_instr column.
     #[arg(long)]
     pub mcu: Option<PathBuf>,
+    /// The same binary's output built for the Cortex-M0
+    /// (`thumbv6m-none-eabi`, run on QEMU mps2-an385), for the m0_instr
+    /// column.
+    #[arg(long)]
+    pub m0: Option<PathBuf>,
 }
 
 /// One CSV row.
@@ -88,6 +99,8 @@ pub struct Row {
     pub host_rel_time: Option<f64>,
     /// Cortex-M4 instructions per frame (mean over the firmware's views).
     pub mcu_instr: Option<u64>,
+    /// Cortex-M0 instructions per frame (the same frames).
+    pub m0_instr: Option<u64>,
 }
 
 impl Row {
@@ -95,13 +108,14 @@ impl Row {
     pub fn csv(&self) -> String {
         let opt = |v: Option<String>| v.unwrap_or_default();
         format!(
-            "{},{:.8},{:.8},{:.4},{},{}",
+            "{},{:.8},{:.8},{:.4},{},{},{}",
             self.config,
             self.counts.wrong_pixel_frac(),
             self.counts.wrong_face_frac(),
             self.counts.max_vertex_err_px,
             opt(self.host_rel_time.map(|t| format!("{t:.3}"))),
-            opt(self.mcu_instr.map(|n| n.to_string()))
+            opt(self.mcu_instr.map(|n| n.to_string())),
+            opt(self.m0_instr.map(|n| n.to_string()))
         )
     }
 }
@@ -158,6 +172,7 @@ pub fn rows_for(
             counts: Counts::default(),
             host_rel_time: None,
             mcu_instr: None,
+            m0_instr: None,
         })
         .collect();
     for case in cases {
@@ -213,14 +228,18 @@ pub fn run(a: &AccuracyArgs) -> CliResult {
     if a.views == 0 {
         return Err(cli_err!("--views must be at least 1"));
     }
-    let mcu = match &a.mcu {
-        Some(path) => {
-            let text =
-                std::fs::read_to_string(path).map_err(|e| cli_err!("{}: {e}", path.display()))?;
-            Some(mcu_means(&text)?)
-        }
-        None => None,
+    let read = |p: &Option<PathBuf>| -> Result<Option<Vec<(String, u64)>>, CliError> {
+        let Some(path) = p else {
+            return Ok(None);
+        };
+        let text =
+            std::fs::read_to_string(path).map_err(|e| cli_err!("{}: {e}", path.display()))?;
+        mcu_means(&text)
+            .map(Some)
+            .map_err(|CliError(e)| cli_err!("{}: {e}", path.display()))
     };
+    let mcu = read(&a.mcu)?;
+    let m0 = read(&a.m0)?;
     std::fs::create_dir_all(&a.out).map_err(|e| cli_err!("{}: {e}", a.out.display()))?;
     let cases = default_cases(!a.no_models)?;
     let vs = views(a.views);
@@ -233,11 +252,14 @@ pub fn run(a: &AccuracyArgs) -> CliResult {
         .ok_or_else(|| cli_err!("no default configuration"))?;
     for (row, s) in rows.iter_mut().zip(&secs) {
         row.host_rel_time = Some(s / base);
-        row.mcu_instr = mcu
-            .iter()
-            .flatten()
-            .find(|(n, _)| *n == row.config)
-            .map(|m| m.1);
+        let mean = |m: &Option<Vec<(String, u64)>>| {
+            m.iter()
+                .flatten()
+                .find(|(n, _)| *n == row.config)
+                .map(|m| m.1)
+        };
+        row.mcu_instr = mean(&mcu);
+        row.m0_instr = mean(&m0);
     }
     let mut csv = String::new();
     let _ = writeln!(csv, "{CSV_HEADER}");
