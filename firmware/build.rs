@@ -153,7 +153,10 @@ fn main() {
     // The accuracy study's Cortex-M0 column (`m0_instr`) runs the M0's code
     // with a whole frame and every tree in memory on the same machine, with
     // `FPT_BENCH_FLASH_KIB` too.
-    for (region, var) in [("RAM", "FPT_BENCH_RAM_KIB"), ("FLASH", "FPT_BENCH_FLASH_KIB")] {
+    for (region, var) in [
+        ("RAM", "FPT_BENCH_RAM_KIB"),
+        ("FLASH", "FPT_BENCH_FLASH_KIB"),
+    ] {
         let Ok(kib) = env::var(var) else {
             continue;
         };
