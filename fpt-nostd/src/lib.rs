@@ -4,7 +4,7 @@
 //!
 //! # Quickstart: a spinning part on a 240×240 display, drawn in bands
 //!
-//! On the host, once: `fpt build part.stl -o part.fpt --up z` (the
+//! On the host, once: `fpt build part.stl -o part.fpt` (the
 //! `host-sim` crate's command-line tool; `fpt info part.fpt` prints the
 //! renderer's capacities for the tree: the walk depth `N`, the polygon
 //! vertex capacity `V` and the working memory). In the firmware, the tree

@@ -57,7 +57,7 @@ use crate::raster::{
 };
 use crate::reader::{PolygonRef, Tree};
 
-pub use cached::memory_words;
+pub use cached::{memory_words, memory_words_for};
 pub use probe::{NoProbe, Phase, Probe};
 
 /// Which number a polygon writes into id buffers (as `number + 1`).

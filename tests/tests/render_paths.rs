@@ -16,7 +16,7 @@ use fpt_nostd::raster::{
     ShadeMode,
 };
 use fpt_nostd::reader::Tree;
-use fpt_nostd::render::{memory_words, BandBuffer, Frame, TreeRenderer};
+use fpt_nostd::render::{memory_words_for, BandBuffer, Frame, TreeRenderer};
 use fpt_tests::random_cameras;
 use host_sim::scenes;
 use render_common::{build_tree, frame, render_ids, STACK, VERTS};
@@ -106,7 +106,7 @@ where
     // Bands, with working memory from none to all a frame needs (the
     // display list overflows and the renderer walks again, or draws a
     // band as it walks): the same pixels and counters.
-    let need = memory_words(tree);
+    let need = memory_words_for(tree, fx.unwrap_or(Effects::from_bits(tree.effects())));
     for rows in [1u32, 8, 13, H] {
         for words in [0, 40, need / 3, need] {
             let mut memory = vec![0u32; words];

@@ -85,13 +85,21 @@ fn take_cache<'m>(
 }
 
 /// Words of memory with which a frame of `tree` needs one walk and
-/// transforms each vertex once, whatever the view: the facing memo, a
-/// cache slot for every vertex and a list with room for every polygon (by
-/// polygon index, with ids and outline masks; inline when depth cueing
-/// keeps the cache off). Clipped polygons are stored inline and may
-/// need more; a frame that needs more still draws the same picture,
-/// with one more walk (see the module docs).
+/// transforms each vertex once, whatever the view, with the effects the
+/// tree declares: [`memory_words_for`].
 pub fn memory_words(tree: &Tree<'_>) -> usize {
+    memory_words_for(tree, Effects::from_bits(tree.effects()))
+}
+
+/// [`memory_words`] for a renderer drawing with `effects` (its forced
+/// effects, or the tree's): the facing memo, a cache slot for every vertex
+/// and a list with room for every polygon (by polygon index, with ids and
+/// outline masks); with depth cueing, which keeps the cache off, every
+/// record holds its points inline (about four times the words).
+/// Clipped polygons are stored inline and may need more; a frame that
+/// needs more still draws the same picture, with one more walk (see the
+/// module docs).
+pub fn memory_words_for(tree: &Tree<'_>, effects: Effects) -> usize {
     let v = (tree.vertex_count() as usize).min(MAX_CACHED);
     // A record by polygon: at most 7 header words (a long row span, the
     // outline mask, the id), the polygon index and its share of the group
@@ -108,8 +116,12 @@ pub fn memory_words(tree: &Tree<'_>) -> usize {
     let cached = (v + list).max((4 * v).div_ceil(3));
     // Depth cueing keeps no cache: every record holds its points inline
     // (4 words a point, a count word).
-    let inline = (9 * polygons + 4 * tree.index_count() as usize).div_ceil(2);
-    memo_words(tree) + cached.max(inline)
+    let need = if effects.contains(Effects::DEPTH_CUE) {
+        (9 * polygons + 4 * tree.index_count() as usize).div_ceil(2)
+    } else {
+        cached
+    };
+    memo_words(tree) + need
 }
 
 /// What a walk's callback asks for next.
