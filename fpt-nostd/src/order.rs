@@ -298,7 +298,9 @@ impl<'a, const N: usize> Order<'a, N> {
     /// one view: the caller zeroes it when the view changes, and walks of
     /// the same view (the several walks of a banded frame with little
     /// memory) then test each plane once. The order is the same with or
-    /// without it.
+    /// without it. On targets with an FPU the memo is not consulted (a
+    /// facing test there costs what its look-up does; this crate's own
+    /// tests consult it everywhere).
     ///
     /// ```
     /// # use fpt_nostd::order::{memo_words, Order, View};

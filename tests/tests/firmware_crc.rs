@@ -248,17 +248,29 @@ fn firmware_matches_host() {
         "drawing the accuracy frames on the host",
     );
     let (success, out) = run_firmware(&["--bin", "accuracy"]);
+    check_accuracy(&host, success, &out, "Cortex-M4");
+}
+
+/// The `accuracy` binary's run (`success`, output `out`) against the
+/// host's lines: the same checksums, a cost for each, exit success.
+fn check_accuracy(host: &[String], success: bool, out: &str, cpu: &str) {
     let firmware: Vec<String> = out
         .lines()
         .filter_map(AccuracyLine::parse)
         .map(|l| l.to_string())
         .collect();
-    assert_eq!(firmware, host, "accuracy frames differ; output:\n{out}");
+    assert_eq!(
+        firmware, host,
+        "{cpu} accuracy frames differ; output:\n{out}"
+    );
     assert!(out
         .lines()
         .filter(|l| l.starts_with("accuracy "))
         .all(|l| AccuracyLine::instr(l).is_some_and(|n| n > 0)));
-    assert!(success, "accuracy firmware exited with failure:\n{out}");
+    assert!(
+        success,
+        "{cpu} accuracy firmware exited with failure:\n{out}"
+    );
 }
 
 /// The scenes the Cortex-M0 firmware embeds (those that fit its flash).
@@ -333,15 +345,5 @@ fn m0_accuracy_matches_host() {
             ("CARGO_TARGET_THUMBV6M_NONE_EABI_RUNNER", runner),
         ],
     );
-    let firmware: Vec<String> = out
-        .lines()
-        .filter_map(AccuracyLine::parse)
-        .map(|l| l.to_string())
-        .collect();
-    assert_eq!(firmware, host, "M0 accuracy frames differ; output:\n{out}");
-    assert!(out
-        .lines()
-        .filter(|l| l.starts_with("accuracy "))
-        .all(|l| AccuracyLine::instr(l).is_some_and(|n| n > 0)));
-    assert!(success, "M0 accuracy firmware exited with failure:\n{out}");
+    check_accuracy(&host, success, &out, "Cortex-M0");
 }

@@ -11,6 +11,7 @@ use core::ops::Range;
 
 use super::LocalView;
 use crate::format::{le_f32, le_u32, rec, run as rn, RUN_LEN};
+use crate::raster::shade::HAS_FPU;
 use crate::reader::{PolygonRef, Tree, WalkData};
 
 /// The facing test in one form for both projections: a plane `(n, d)` is
@@ -45,8 +46,13 @@ impl<'m> Facing<'m> {
 
     /// [`Facing::backward`] of plane number `i` (runs first, then switch
     /// records), through the memo when it holds the plane.
-    #[inline(always)]
+    #[inline]
     pub(super) fn backward_at<const L: usize>(&self, i: u32, r: &[u8; L]) -> bool {
+        // With an FPU the renderer gives no memo (a test costs what a
+        // look-up does): no look-up in the walk either.
+        if HAS_FPU && !cfg!(test) {
+            return self.backward(r);
+        }
         let Some(cell) = self.memo.get((i / 16) as usize) else {
             return self.backward(r);
         };
