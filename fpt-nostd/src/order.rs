@@ -88,6 +88,8 @@ use core::fmt;
 
 mod class;
 
+pub(crate) use class::MEMO;
+
 use crate::format::NO_SWITCH;
 use crate::reader::{Plane, PolygonRef, Tree, WalkData};
 pub use class::Class;

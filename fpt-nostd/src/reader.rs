@@ -253,6 +253,20 @@ impl<'a> Geometry<'a> {
             .wrapping_add((id as usize).wrapping_mul(POLYGON_LEN))
     }
 
+    /// Index-list entries `first..first + count` (empty when out of range).
+    #[inline]
+    fn indices_of(&self, first: u32, count: u32) -> VertexIndices<'a> {
+        let size = usize::from(self.index_size);
+        let lo = self
+            .indices
+            .wrapping_add((first as usize).wrapping_mul(size));
+        let hi = lo.wrapping_add((count as usize).wrapping_mul(size));
+        VertexIndices {
+            indices: self.bytes.get(lo..hi).unwrap_or(&[]),
+            wide: size == 4,
+        }
+    }
+
     /// The index range `first..end` of polygon `id < polygon_count`.
     #[inline]
     fn polygon_range(&self, id: u32) -> (u32, u32) {
@@ -468,16 +482,7 @@ impl<'a> PolygonRef<'a> {
     /// (what [`PolygonRef::vertex_index`] gives for each `i`): the key of
     /// a per-frame vertex cache.
     pub fn vertex_indices(&self) -> VertexIndices<'a> {
-        let g = &self.g;
-        let size = usize::from(g.index_size);
-        let lo = g
-            .indices
-            .wrapping_add((self.first as usize).wrapping_mul(size));
-        let hi = lo.wrapping_add((self.count as usize).wrapping_mul(size));
-        VertexIndices {
-            indices: g.bytes.get(lo..hi).unwrap_or(&[]),
-            wide: size == 4,
-        }
+        self.g.indices_of(self.first, self.count)
     }
 
     /// Vertex `i` in model coordinates (origin + offset, in `f64`, exact for
@@ -752,15 +757,8 @@ impl<'a> Tree<'a> {
                 wide: false,
             };
         }
-        let g = &self.g;
-        let (first, end) = g.polygon_range(id);
-        let size = usize::from(g.index_size);
-        let lo = g.indices.wrapping_add((first as usize).wrapping_mul(size));
-        let hi = lo.wrapping_add((end.saturating_sub(first) as usize).wrapping_mul(size));
-        VertexIndices {
-            indices: g.bytes.get(lo..hi).unwrap_or(&[]),
-            wide: size == 4,
-        }
+        let (first, end) = self.g.polygon_range(id);
+        self.g.indices_of(first, end.saturating_sub(first))
     }
 
     /// Stored vertex `v` relative to the origin, decoded to `f32`.

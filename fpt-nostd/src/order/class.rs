@@ -14,6 +14,14 @@ use crate::format::{le_f32, le_u32, rec, run as rn, RUN_LEN};
 use crate::raster::shade::HAS_FPU;
 use crate::reader::{PolygonRef, Tree, WalkData};
 
+/// Whether facing memos are used: on cores without an FPU, where a facing
+/// test is four software-float products and three sums; with one, a test
+/// costs what its look-up does, so the walk does not look (this crate's
+/// own tests use them on every target, so that the host checks the path).
+/// The renderer gives a memo only when this holds
+/// ([`crate::render`]'s banded draw).
+pub(crate) const MEMO: bool = !HAS_FPU || cfg!(test);
+
 /// The facing test in one form for both projections: a plane `(n, d)` is
 /// backward when `n · a + d · w > 0`, with `a = −dir, w = 0` for a parallel
 /// view and `a = eye, w = 1` for an eye. This is exactly
@@ -48,9 +56,7 @@ impl<'m> Facing<'m> {
     /// records), through the memo when it holds the plane.
     #[inline]
     pub(super) fn backward_at<const L: usize>(&self, i: u32, r: &[u8; L]) -> bool {
-        // With an FPU the renderer gives no memo (a test costs what a
-        // look-up does): no look-up in the walk either.
-        if HAS_FPU && !cfg!(test) {
+        if !MEMO {
             return self.backward(r);
         }
         let Some(cell) = self.memo.get((i / 16) as usize) else {

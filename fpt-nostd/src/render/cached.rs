@@ -41,13 +41,12 @@ use super::probe::{Phase, Probe};
 use super::{face_of, walk_effects, BandBuffer, FaceIds, Frame, RenderError, WalkFx};
 use crate::effects::{Compiled, Effects};
 use crate::format::VertexFormat;
-use crate::order::{memo_words, Order, OrderError};
+use crate::order::{memo_words, Order, OrderError, MEMO};
 use crate::raster::clip::ClipVert;
 use crate::raster::int_path::q16_camera;
 use crate::raster::list::{DisplayList, Entry, Kind, Points};
 use crate::raster::renderer::Ready;
 use crate::raster::scan::Bbox;
-use crate::raster::shade::HAS_FPU;
 use crate::raster::transform::VertexPath;
 use crate::raster::vcache::{Slot, VertexCache};
 use crate::raster::{
@@ -417,6 +416,11 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
             break;
         };
         let e = rec.entry;
+        // (A record by polygon has `n = 0`: its count is the tree's, and
+        // the scratch bounds it below.)
+        if rec.n > V {
+            continue;
+        }
         let mut ok = true;
         let n = match rec.kind {
             Kind::Polygon => {
@@ -435,9 +439,6 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
                 n
             }
             Kind::Indices => {
-                if rec.n > V {
-                    continue;
-                }
                 for (dst, &v) in scratch.screen_mut().iter_mut().zip(list.indices(&rec)) {
                     match cache.get(u32::from(v)) {
                         Slot::Point(p) => *dst = p,
@@ -448,9 +449,6 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
                 rec.n
             }
             Kind::Inline => {
-                if rec.n > V {
-                    continue;
-                }
                 for (i, dst) in scratch.screen_mut()[..rec.n].iter_mut().enumerate() {
                     *dst = list.inline_point(&rec, i);
                 }
@@ -546,11 +544,10 @@ where
     let outlines = r.effects().contains(Effects::OUTLINE);
     // A frame that walks the tree more than once tests each plane once:
     // the facing memo comes first (a few dozen words), when the memory
-    // has room for it beside a cache, on cores without an FPU (with one,
-    // a facing test costs what looking it up does). This crate's own tests
-    // take it on every target, so that the host checks the path too.
+    // has room for it beside a cache and the walk uses memos (`MEMO`:
+    // cores without an FPU).
     let memo_n = memo_words(tree);
-    let memo_n = if (!HAS_FPU || cfg!(test)) && memory.len() >= 8 * memo_n {
+    let memo_n = if MEMO && memory.len() >= 8 * memo_n {
         memo_n
     } else {
         0
