@@ -49,6 +49,17 @@ fn bad_options_exit_2() {
     assert_error(&out, "--clock -5");
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("--clock must be a positive number"), "{err}");
+    // Negative counts say the value is invalid, not that a flag is unknown.
+    for flag in ["--band", "--frames", "--memory"] {
+        let out = fpt(&["mcu-bench", vise.as_str(), flag, "-1"]);
+        let err = assert_error(&out, &format!("{flag} -1"));
+        assert!(err.contains("invalid value '-1'"), "{flag}: {err}");
+    }
+    for flag in ["--band", "--frames", "--memory"] {
+        let out = fpt(&["bench-memory", vise.as_str(), flag, "-1"]);
+        let err = assert_error(&out, &format!("bench-memory {flag} -1"));
+        assert!(err.contains("invalid value '-1'"), "{flag}: {err}");
+    }
     let out = fpt(&["mcu-bench", "/nonexistent/tree.fpt"]);
     assert_error(&out, "missing tree");
     let out = fpt(&["mcu-bench", &tree("frames.txt"), "--frames", "1"]);

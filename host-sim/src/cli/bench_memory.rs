@@ -46,13 +46,17 @@ pub struct BenchMemoryArgs {
     #[arg(long, default_value = "240x240")]
     pub size: String,
     /// Rows per band.
-    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    // Negative values get clap's "invalid value" message, not "unexpected
+    // argument" (here and below).
+    #[arg(long, default_value_t = 16, allow_negative_numbers = true,
+          value_parser = clap::value_parser!(u32).range(1..=16384))]
     pub band: u32,
     /// Frames of the orbit.
-    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    #[arg(long, default_value_t = 20, allow_negative_numbers = true,
+          value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub frames: u32,
     /// Also measure with this many words of memory (repeatable).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub memory: Vec<usize>,
 }
 

@@ -72,24 +72,27 @@ pub struct McuBenchArgs {
     #[arg(long, default_value = "240x240")]
     pub size: String,
     /// Rows per band, 0 for a full framebuffer [default: 0 on m4f, 8 on m0].
-    #[arg(long)]
+    // Negative values get clap's "invalid value" message, not "unexpected
+    // argument" (here and below).
+    #[arg(long, allow_negative_numbers = true)]
     pub band: Option<u32>,
-    /// Vertex arithmetic: f32-libm or fixed.
+    /// Vertex arithmetic: f32-libm, fixed or int.
     #[arg(long, default_value = "f32-libm", value_parser = OrbitPrecision::NAMES)]
     pub precision: String,
     /// Frames of the orbit.
     #[arg(long, default_value_t = fpt_nostd::frames::orbit::DEFAULT_FRAMES,
+          allow_negative_numbers = true,
           value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub frames: u32,
     /// Clock in MHz for fps_at_clock [default: 168 on m4f, 64 on m0].
     // Negative values reach the check that says what is wrong with them.
     #[arg(long, allow_negative_numbers = true)]
     pub clock: Option<f64>,
-    /// Words of working memory (vertex cache and display list; see the
-    /// README, "Working memory") [default: what a frame of the tree needs,
-    /// on m0 at most what the 16 KiB leave beside the band buffer, the
-    /// renderer and the stack].
-    #[arg(long)]
+    /// Words of working memory (vertex cache, display list, facing memo;
+    /// see the README, "Small RAM") [default: what a frame of the tree
+    /// needs, on m0 at most what the 16 KiB leave beside the band buffer,
+    /// the renderer and the stack].
+    #[arg(long, allow_negative_numbers = true)]
     pub memory: Option<usize>,
 }
 
