@@ -5,8 +5,8 @@
 //! Criterion's times divided by that of `accuracy/fixed` are the
 //! `host_rel_time` column that `fpt bench-accuracy` measures in-process.
 //!
-//! Run: `cargo bench -p host-sim --bench accuracy` (about 1 minute); each
-//! benchmark once: `cargo bench -p host-sim --bench accuracy -- --test`.
+//! Run: `cargo bench -p host-sim --features bench --bench accuracy` (about 1 minute); each
+//! benchmark once: `cargo bench -p host-sim --features bench --bench accuracy -- --test`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use fpt_nostd::reader::Tree;

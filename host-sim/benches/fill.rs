@@ -24,8 +24,8 @@
 //! Before timing, the captured city polygons are filled and must give the
 //! painter's picture exactly (so the capture is the renderer's work).
 //!
-//! Run: `cargo bench -p host-sim --bench fill`; the check alone, each
-//! benchmark run once: `cargo bench -p host-sim --bench fill -- --test`.
+//! Run: `cargo bench -p host-sim --features bench --bench fill`; the check alone, each
+//! benchmark run once: `cargo bench -p host-sim --features bench --bench fill -- --test`.
 
 #[allow(dead_code)] // each benchmark uses a part of it
 mod common;

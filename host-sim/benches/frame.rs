@@ -14,8 +14,8 @@
 //! table of the memory each path needs and of the work per frame is
 //! printed to stderr.
 //!
-//! Run: `cargo bench -p host-sim --bench frame` (about 1.5 minutes); the
-//! checks alone, each benchmark run once: `cargo bench -p host-sim --bench
+//! Run: `cargo bench -p host-sim --features bench --bench frame` (about 1.5 minutes); the
+//! checks alone, each benchmark run once: `cargo bench -p host-sim --features bench --bench
 //! frame -- --test`.
 
 #[allow(dead_code)] // each benchmark uses a part of it

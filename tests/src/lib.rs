@@ -398,15 +398,25 @@ pub const SHARED_MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shar
 pub fn shared_model(file: &str) -> Option<std::path::PathBuf> {
     let dir = std::path::Path::new(SHARED_MODELS);
     if !dir.is_dir() {
-        println!("skipping: ../shared/models not found");
+        skipping("../shared/models not found");
         return None;
     }
     let p = dir.join(file);
     if !p.is_file() {
-        println!("skipping: ../shared/models/{file} not found");
+        skipping(&format!("../shared/models/{file} not found"));
         return None;
     }
     Some(p)
+}
+
+/// Prints `skipping: WHY` where the person running the tests sees it.
+///
+/// The test harness captures what `println!` and `eprintln!` print and shows
+/// it only for failing tests, so a test that skips and passes would say
+/// nothing; a write to the process's standard error handle is not captured.
+pub fn skipping(why: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "skipping: {why}");
 }
 
 /// The model `file` of [`SHARED_MODELS`] loaded, or `None` (with the

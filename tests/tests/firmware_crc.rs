@@ -140,7 +140,7 @@ fn can_run(test: &str, target: &str) -> bool {
     if std::env::var("FPT_REQUIRE_FIRMWARE").is_ok_and(|v| v == "1") {
         panic!("FPT_REQUIRE_FIRMWARE=1 but {why}");
     }
-    println!("SKIPPED {test}: {why}");
+    fpt_tests::skipping(&format!("{test}: {why}"));
     false
 }
 
