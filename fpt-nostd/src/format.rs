@@ -1,7 +1,7 @@
 //! The flat-array tree file: layout, constants and low-level field access.
 //!
 //! A tree file is one byte string, written by the host serializer
-//! (`host_sim::serialize`) and read in place by [`crate::reader::Tree`] from
+//! (`fpt_build::serialize`) and read in place by [`crate::reader::Tree`] from
 //! any `&[u8]`, typically `include_bytes!` in flash. Every multi-byte field
 //! is **little-endian** and read with `from_le_bytes` on a subslice, so the
 //! bytes may sit at any alignment and nothing is copied.

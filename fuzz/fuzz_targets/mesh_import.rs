@@ -5,7 +5,7 @@
 //! breaks the output contract checked below.
 #![no_main]
 
-use host_sim::mesh::{load_bytes, MeshFormat};
+use fpt_build::mesh::{load_bytes, MeshFormat};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -20,7 +20,7 @@ fuzz_target!(|data: &[u8]| {
             assert!((p.source as usize) < model.report.faces_read);
             assert!(p.verts.iter().all(|v| v.is_finite()));
         }
-        // Part counts agree with closedness (see host_sim::mesh::ImportReport).
+        // Part counts agree with closedness (see fpt_build::mesh::ImportReport).
         let r = &model.report;
         assert!(r.inverted_parts <= r.closed_parts);
         assert!(!model.closed || (r.open_parts == 0 && r.boundary_edges == 0));

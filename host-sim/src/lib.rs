@@ -1,16 +1,11 @@
-//! Host side of feudal: mesh import, the feudal priority tree builders, the
-//! serializer of the flat format, and the `fpt` command-line tool.
+//! Host side of feudal: the `fpt` command-line tool, the reference
+//! renderer and the simulator. Mesh import, the tree builders and the
+//! serializer are the [`fpt_build`] crate, re-exported here under their
+//! own names.
 #![deny(unsafe_code, missing_docs)]
 
-pub mod build;
+pub use fpt_build::{build, edges, geom, mesh, scenes, seams, serialize, split, tree};
+
 pub mod cli;
-pub mod edges;
-pub mod geom;
-pub mod mesh;
 pub mod output;
 pub mod reference;
-pub mod scenes;
-pub mod seams;
-pub mod serialize;
-pub mod split;
-pub mod tree;

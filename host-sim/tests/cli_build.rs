@@ -160,3 +160,28 @@ fn closed_stdout_is_not_a_panic() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!err.contains("panicked"), "{err}");
 }
+
+/// The `build.rs` recipe of `fpt_build`'s crate docs (load, build with the
+/// default seed, serialize with default options) writes the very bytes of
+/// `fpt build` with default options.
+#[test]
+fn the_build_rs_recipe_gives_fpt_builds_bytes() {
+    let mesh = write("recipe-cube.obj", CUBE_OBJ.as_bytes());
+    let out_tree = tmp("recipe-cube.fpt");
+    let out = fpt(&["build", s(&mesh), "-o", s(&out_tree)]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let model = fpt_build::mesh::load(&mesh).expect("cube loads");
+    let tree = fpt_build::build::build(
+        model.polygons,
+        model.closed,
+        fpt_build::tree::Method::Static,
+        fpt_build::build::DEFAULT_SEED,
+        &mut fpt_build::build::NoProgress,
+    );
+    let bytes = fpt_build::serialize::serialize(&tree, &Default::default()).expect("serializes");
+    assert_eq!(std::fs::read(&out_tree).expect("tree written"), bytes);
+}
