@@ -15,7 +15,7 @@
 //!   nothing (edges start directly at the first row in bounds), so a band
 //!   renderer pays per band only for the polygons that reach it.
 
-use super::chain::fill_monotone;
+use super::chain::{fill_monotone, fill_triangle};
 use super::edge::{build_edges_with, Dda32, Edge, Stepper, SMALL};
 use super::transform::ScreenPt;
 use embedded_graphics::pixelcolor::Rgb888;
@@ -245,6 +245,11 @@ pub(crate) fn fill_polygon_in<K: SpanSink>(
         return Err(FillError::Capacity);
     }
     if small {
+        // Triangles (most polygons of a tessellated mesh): the shortest
+        // set-up of the same spans.
+        if let [p0, p1, p2] = *pts {
+            return Ok(fill_triangle([p0, p1, p2], sub, &b, color, sink));
+        }
         // Convex and other y-monotone polygons: two chains, no edge list.
         if let Some(spans) = fill_monotone(pts, bbox, sub, &b, color, sink) {
             return Ok(spans);
