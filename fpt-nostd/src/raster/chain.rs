@@ -23,7 +23,7 @@
 //!   shared edges included.
 
 use super::edge::Dda32;
-use super::scan::{pair_rows, Bbox, SpanBounds, SpanSink};
+use super::scan::{pair_rows, Bbox, Pair, SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
 /// One boundary chain: the vertex its current edge ends at, the direction
@@ -152,7 +152,7 @@ pub(crate) fn fill_monotone<K: SpanSink>(
             break;
         }
         let run = l.y1.min(r.y1);
-        spans += pair_rows(&mut l.dda, &mut r.dda, true, b, y, run, color, sink);
+        spans += pair_rows(&mut l.dda, &mut r.dda, Pair::Span, b, y, run, color, sink);
         y = run;
     }
     Some(spans)
@@ -194,6 +194,18 @@ pub(crate) fn fill_triangle<K: SpanSink>(
     if y >= stop {
         return 0;
     }
+    // Which side the long edge is on: the sign of `m`'s offset from it
+    // (`|coordinates| < 2^13`: the products fit i32). On every row the
+    // left edge's exact x is at most the right one's, and so is its
+    // crossing (a monotone function of x): the span is `[left, right)`
+    // without comparing. Collinear vertices give equal crossings on every
+    // row, so no span at all.
+    let side = (m.x - t.x) * (u.y - t.y) - (m.y - t.y) * (u.x - t.x);
+    let pair = match side {
+        0 => return 0,
+        1.. => Pair::Ab,
+        _ => Pair::Ba,
+    };
     // `first ≤ y < end`: `t.y < u.y`, and `y` is one of the long edge's
     // active rows.
     let mut long = Dda32::start(t, u, sub, y);
@@ -202,13 +214,13 @@ pub(crate) fn fill_triangle<K: SpanSink>(
         // `t → m` is active on `[first, mid)`, which holds `y`.
         let mut e = Dda32::start(t, m, sub, y);
         let run = mid.min(stop);
-        spans += pair_rows(&mut long, &mut e, true, b, y, run, color, sink);
+        spans += pair_rows(&mut long, &mut e, pair, b, y, run, color, sink);
         y = run;
     }
     if y < stop {
         // `mid ≤ y < end`: `m → u` is active on row `y`.
         let mut e = Dda32::start(m, u, sub, y);
-        spans += pair_rows(&mut long, &mut e, true, b, y, stop, color, sink);
+        spans += pair_rows(&mut long, &mut e, pair, b, y, stop, color, sink);
     }
     spans
 }
