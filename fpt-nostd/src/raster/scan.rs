@@ -146,8 +146,7 @@ pub fn fill_polygon<K: SpanSink>(
     color: K::Color,
     sink: &mut K,
 ) -> Result<usize, FillError> {
-    let bbox = Bbox::of(pts);
-    fill_polygon_in(pts, &bbox, sub, rule, clip, edges, active, color, sink)
+    fill_polygon_in(pts, None, sub, rule, clip, edges, active, color, sink)
 }
 
 /// A polygon's bounding box (screen units) and the index of its first
@@ -186,11 +185,12 @@ impl Bbox {
     }
 }
 
-/// [`fill_polygon`] with `pts`' box already computed (`Bbox::of(pts)`).
+/// [`fill_polygon`] with `pts`' box if already computed (`Bbox::of(pts)`;
+/// else computed here when needed: a triangle does not need it).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fill_polygon_in<K: SpanSink>(
     pts: &[ScreenPt],
-    bbox: &Bbox,
+    bbox: Option<&Bbox>,
     sub: u32,
     rule: FillRule,
     clip: &SpanBounds,
@@ -206,6 +206,21 @@ pub(crate) fn fill_polygon_in<K: SpanSink>(
     if b.is_empty() || pts.len() < 3 {
         return Ok(0);
     }
+    // Triangles (most polygons of a tessellated mesh) within ±SMALL take
+    // the shortest set-up of the same spans, before the box rejects below:
+    // a triangle that misses `b` emits nothing there either, and costs
+    // about what the rejects would. (With the general path's capacity
+    // check, so that the outcome is the same.)
+    if let [p0, p1, p2] = *pts {
+        let near = |p: ScreenPt| p.x.abs() < SMALL && p.y.abs() < SMALL;
+        if sub <= 8 && edges.len() >= 3 && near(p0) && near(p1) && near(p2) {
+            return Ok(fill_triangle([p0, p1, p2], sub, &b, color, sink));
+        }
+    }
+    let bbox = &match bbox {
+        Some(b) => *b,
+        None => Bbox::of(pts),
+    };
     // Cheap reject on the horizontal extent (rows are handled by the edge
     // setup): crossing columns are ceil(x − ½), monotone in x.
     let Bbox {
@@ -245,11 +260,6 @@ pub(crate) fn fill_polygon_in<K: SpanSink>(
         return Err(FillError::Capacity);
     }
     if small {
-        // Triangles (most polygons of a tessellated mesh): the shortest
-        // set-up of the same spans.
-        if let [p0, p1, p2] = *pts {
-            return Ok(fill_triangle([p0, p1, p2], sub, &b, color, sink));
-        }
         // Convex and other y-monotone polygons: two chains, no edge list.
         if let Some(spans) = fill_monotone(pts, bbox, sub, &b, color, sink) {
             return Ok(spans);
