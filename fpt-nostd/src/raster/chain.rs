@@ -247,6 +247,18 @@ mod tests {
         }
     }
 
+    /// A band of 1 to 20 rows within the polygons' reach (`m` sub-pixel
+    /// units), between random columns.
+    fn random_band(rnd: &mut impl FnMut(i32) -> i32, m: i32, sub: u32) -> SpanBounds {
+        let (y0, h) = (rnd(m >> sub), 1 + rnd(20).abs());
+        SpanBounds {
+            x0: rnd(30),
+            y0,
+            x1: 30 + rnd(30).abs(),
+            y1: y0 + h,
+        }
+    }
+
     /// Random polygons (many y-monotone, many not), small and at the
     /// limit, cut by random bands: the chain walk, whenever it accepts,
     /// emits exactly the general active-edge fill's spans.
@@ -260,13 +272,7 @@ mod tests {
             let m = if k % 5 == 0 { SMALL - 1 } else { 40 << sub };
             let nv = 3 + (rnd(3).unsigned_abs() as usize);
             let pts: Vec<ScreenPt> = (0..nv).map(|_| pt(rnd(m), rnd(m))).collect();
-            let (y0, h) = (rnd(m >> sub), 1 + rnd(20).abs());
-            let b = SpanBounds {
-                x0: rnd(30),
-                y0,
-                x1: 30 + rnd(30).abs(),
-                y1: y0 + h,
-            };
+            let b = random_band(&mut rnd, m, sub);
             let mut fast = Rec(Vec::new(), b);
             let Some(n) = fill_monotone(&pts, &Bbox::of(&pts), sub, &b, (), &mut fast) else {
                 continue;
@@ -310,13 +316,7 @@ mod tests {
             if k % 11 == 0 {
                 tri[2] = tri[(k / 11) % 2]; // a repeated vertex
             }
-            let (y0, h) = (rnd(m >> sub), 1 + rnd(20).abs());
-            let b = SpanBounds {
-                x0: rnd(30),
-                y0,
-                x1: 30 + rnd(30).abs(),
-                y1: y0 + h,
-            };
+            let b = random_band(&mut rnd, m, sub);
             let mut fast = Rec(Vec::new(), b);
             let n = fill_triangle(tri, sub, &b, (), &mut fast);
             assert_eq!(n, fast.0.len());
