@@ -23,7 +23,7 @@
 //!   shared edges included.
 
 use super::edge::Dda32;
-use super::scan::{pair_rows, Bbox, SpanBounds, SpanSink};
+use super::scan::{pair_rows, Bbox, Pair, SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
 /// One boundary chain: the vertex its current edge ends at, the direction
@@ -152,10 +152,77 @@ pub(crate) fn fill_monotone<K: SpanSink>(
             break;
         }
         let run = l.y1.min(r.y1);
-        spans += pair_rows(&mut l.dda, &mut r.dda, true, b, y, run, color, sink);
+        spans += pair_rows(&mut l.dda, &mut r.dda, Pair::Span, b, y, run, color, sink);
         y = run;
     }
     Some(spans)
+}
+
+/// Fills the triangle `pts` within `b` (already intersected with the
+/// sink's bounds) and returns the number of spans: the spans
+/// [`fill_monotone`] (and the general fill) would emit, with less set-up.
+/// A triangle is always y-monotone: sorted by y into top `t`, middle `m`
+/// and bottom `u`, the long edge `t → u` is active on every row of the
+/// triangle, `t → m` on the rows above the middle vertex's and `m → u` on
+/// the rows from it on (the half-open rule of [`super::edge`]: the two
+/// short edges' row ranges meet at `m`'s row and do not overlap), and the
+/// two active edges run in opposite directions around it, so each row is
+/// `[min, max)` of the two crossings. No box, monotonicity pass or chain
+/// seek: three compare-and-swaps, three row bounds and two or three edge
+/// starts. The caller guarantees `|x|, |y| < edge::SMALL` and `sub ≤ 8`.
+#[inline(always)]
+pub(crate) fn fill_triangle<K: SpanSink>(
+    [mut t, mut m, mut u]: [ScreenPt; 3],
+    sub: u32,
+    b: &SpanBounds,
+    color: K::Color,
+    sink: &mut K,
+) -> usize {
+    if m.y < t.y {
+        core::mem::swap(&mut t, &mut m);
+    }
+    if u.y < m.y {
+        core::mem::swap(&mut m, &mut u);
+        if m.y < t.y {
+            core::mem::swap(&mut t, &mut m);
+        }
+    }
+    let (first, mid) = Dda32::rows(t, m, sub);
+    let end = Dda32::rows(m, u, sub).1;
+    let mut y = first.max(b.y0);
+    let stop = end.min(b.y1);
+    if y >= stop {
+        return 0;
+    }
+    // Which side the long edge is on: the sign of `m`'s offset from it
+    // (`|coordinates| < 2^13`: the products fit i32). On every row the
+    // left edge's exact x is at most the right one's, and so is its
+    // crossing (a monotone function of x): the span is `[left, right)`
+    // without comparing. Collinear vertices give equal crossings on every
+    // row, so no span at all.
+    let side = (m.x - t.x) * (u.y - t.y) - (m.y - t.y) * (u.x - t.x);
+    let pair = match side {
+        0 => return 0,
+        1.. => Pair::Ab,
+        _ => Pair::Ba,
+    };
+    // `first ≤ y < end`: `t.y < u.y`, and `y` is one of the long edge's
+    // active rows.
+    let mut long = Dda32::start(t, u, sub, y);
+    let mut spans = 0;
+    if y < mid {
+        // `t → m` is active on `[first, mid)`, which holds `y`.
+        let mut e = Dda32::start(t, m, sub, y);
+        let run = mid.min(stop);
+        spans += pair_rows(&mut long, &mut e, pair, b, y, run, color, sink);
+        y = run;
+    }
+    if y < stop {
+        // `mid ≤ y < end`: `m → u` is active on row `y`.
+        let mut e = Dda32::start(m, u, sub, y);
+        spans += pair_rows(&mut long, &mut e, pair, b, y, stop, color, sink);
+    }
+    spans
 }
 
 #[cfg(test)]
@@ -180,6 +247,18 @@ mod tests {
         }
     }
 
+    /// A band of 1 to 20 rows within the polygons' reach (`m` sub-pixel
+    /// units), between random columns.
+    fn random_band(rnd: &mut impl FnMut(i32) -> i32, m: i32, sub: u32) -> SpanBounds {
+        let (y0, h) = (rnd(m >> sub), 1 + rnd(20).abs());
+        SpanBounds {
+            x0: rnd(30),
+            y0,
+            x1: 30 + rnd(30).abs(),
+            y1: y0 + h,
+        }
+    }
+
     /// Random polygons (many y-monotone, many not), small and at the
     /// limit, cut by random bands: the chain walk, whenever it accepts,
     /// emits exactly the general active-edge fill's spans.
@@ -193,13 +272,7 @@ mod tests {
             let m = if k % 5 == 0 { SMALL - 1 } else { 40 << sub };
             let nv = 3 + (rnd(3).unsigned_abs() as usize);
             let pts: Vec<ScreenPt> = (0..nv).map(|_| pt(rnd(m), rnd(m))).collect();
-            let (y0, h) = (rnd(m >> sub), 1 + rnd(20).abs());
-            let b = SpanBounds {
-                x0: rnd(30),
-                y0,
-                x1: 30 + rnd(30).abs(),
-                y1: y0 + h,
-            };
+            let b = random_band(&mut rnd, m, sub);
             let mut fast = Rec(Vec::new(), b);
             let Some(n) = fill_monotone(&pts, &Bbox::of(&pts), sub, &b, (), &mut fast) else {
                 continue;
@@ -220,6 +293,40 @@ mod tests {
             }
         }
         assert!(accepted > 1000, "{accepted}");
+    }
+
+    /// Random triangles (small, at the limit, degenerate, with shared
+    /// rows), cut by random bands: the triangle path emits exactly the
+    /// chain walk's spans, so the general fill's.
+    #[test]
+    fn triangles_equal_the_chain_walk() {
+        let mut rng = crate::raster::tests::Rng(4242);
+        let mut rnd = |m: i32| rng.range(-m, m);
+        for k in 0..20_000 {
+            let sub = [0u32, 2, 4, 8][k % 4];
+            let m = match k % 5 {
+                0 => SMALL - 1,
+                1 => 3 << sub,
+                _ => 40 << sub,
+            };
+            let mut tri = [pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m))];
+            if k % 7 == 0 {
+                tri[1].y = tri[0].y; // a horizontal edge
+            }
+            if k % 11 == 0 {
+                tri[2] = tri[(k / 11) % 2]; // a repeated vertex
+            }
+            let b = random_band(&mut rnd, m, sub);
+            let mut fast = Rec(Vec::new(), b);
+            let n = fill_triangle(tri, sub, &b, (), &mut fast);
+            assert_eq!(n, fast.0.len());
+            let mut chain = Rec(Vec::new(), b);
+            let Some(c) = fill_monotone(&tri, &Bbox::of(&tri), sub, &b, (), &mut chain) else {
+                panic!("a triangle is y-monotone: {tri:?}")
+            };
+            assert_eq!(c, n);
+            assert_eq!(fast.0, chain.0, "{tri:?} {sub} {b:?}");
+        }
     }
 
     fn pt(x: i32, y: i32) -> ScreenPt {

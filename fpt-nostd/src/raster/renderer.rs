@@ -622,7 +622,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         }
         Ok(Ready {
             n: pts.len(),
-            bbox,
+            bbox: Some(bbox),
             first,
             end,
             rgb,
@@ -650,7 +650,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         let color = sink.color(&Paint { rgb: ready.rgb, id });
         let spans = match fill_polygon_in(
             pts,
-            &ready.bbox,
+            ready.bbox.as_ref(),
             sub,
             self.rule,
             &vp,
@@ -685,8 +685,8 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
 pub(crate) struct Ready {
     /// Points in `scratch.screen`.
     pub(crate) n: usize,
-    /// Their box.
-    pub(crate) bbox: Bbox,
+    /// Their box, when computed (the fill computes it when it needs it).
+    pub(crate) bbox: Option<Bbox>,
     /// First row the fill (or the outline) may touch.
     pub(crate) first: i32,
     /// One past the last.

@@ -15,7 +15,7 @@
 //!   nothing (edges start directly at the first row in bounds), so a band
 //!   renderer pays per band only for the polygons that reach it.
 
-use super::chain::fill_monotone;
+use super::chain::{fill_monotone, fill_triangle};
 use super::edge::{build_edges_with, Dda32, Edge, Stepper, SMALL};
 use super::transform::ScreenPt;
 use embedded_graphics::pixelcolor::Rgb888;
@@ -146,8 +146,7 @@ pub fn fill_polygon<K: SpanSink>(
     color: K::Color,
     sink: &mut K,
 ) -> Result<usize, FillError> {
-    let bbox = Bbox::of(pts);
-    fill_polygon_in(pts, &bbox, sub, rule, clip, edges, active, color, sink)
+    fill_polygon_in(pts, None, sub, rule, clip, edges, active, color, sink)
 }
 
 /// A polygon's bounding box (screen units) and the index of its first
@@ -186,11 +185,12 @@ impl Bbox {
     }
 }
 
-/// [`fill_polygon`] with `pts`' box already computed (`Bbox::of(pts)`).
+/// [`fill_polygon`] with `pts`' box if already computed (`Bbox::of(pts)`;
+/// else computed here when needed: a triangle does not need it).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fill_polygon_in<K: SpanSink>(
     pts: &[ScreenPt],
-    bbox: &Bbox,
+    bbox: Option<&Bbox>,
     sub: u32,
     rule: FillRule,
     clip: &SpanBounds,
@@ -206,6 +206,21 @@ pub(crate) fn fill_polygon_in<K: SpanSink>(
     if b.is_empty() || pts.len() < 3 {
         return Ok(0);
     }
+    // Triangles (most polygons of a tessellated mesh) within ±SMALL take
+    // the shortest set-up of the same spans, before the box rejects below:
+    // a triangle that misses `b` emits nothing there either, and costs
+    // about what the rejects would. (With the general path's capacity
+    // check, so that the outcome is the same.)
+    if let [p0, p1, p2] = *pts {
+        let near = |p: ScreenPt| p.x.abs() < SMALL && p.y.abs() < SMALL;
+        if sub <= 8 && edges.len() >= 3 && near(p0) && near(p1) && near(p2) {
+            return Ok(fill_triangle([p0, p1, p2], sub, &b, color, sink));
+        }
+    }
+    let bbox = &match bbox {
+        Some(b) => *b,
+        None => Bbox::of(pts),
+    };
     // Cheap reject on the horizontal extent (rows are handled by the edge
     // setup): crossing columns are ceil(x − ½), monotone in x.
     let Bbox {
@@ -277,31 +292,50 @@ fn two_edge_rows<K: SpanSink>(
     sink: &mut K,
 ) -> usize {
     let (mut ea, mut eb) = (edges[ia], edges[ib]);
-    let paint = ea.dir != eb.dir || rule == FillRule::EvenOdd;
+    let pair = if ea.dir != eb.dir || rule == FillRule::EvenOdd {
+        Pair::Span
+    } else {
+        Pair::Step
+    };
     if let (Some(mut da), Some(mut db)) = (ea.dda32(), eb.dda32()) {
         // Same loop in 32-bit registers (the usual case on screen).
-        let spans = pair_rows(&mut da, &mut db, paint, b, y, stop, color, sink);
+        let spans = pair_rows(&mut da, &mut db, pair, b, y, stop, color, sink);
         edges[ia].set_dda32(&da);
         edges[ib].set_dda32(&db);
         return spans;
     }
-    let spans = pair_rows(&mut ea, &mut eb, paint, b, y, stop, color, sink);
+    let spans = pair_rows(&mut ea, &mut eb, pair, b, y, stop, color, sink);
     edges[ia] = ea;
     edges[ib] = eb;
     spans
 }
 
+/// What [`pair_rows`] does on each row with the two crossings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Pair {
+    /// Nothing: the rows are only stepped.
+    Step,
+    /// Paints `[min, max)` of the two crossings.
+    Span,
+    /// Paints `[a, b)`: the caller knows `a`'s crossing is never right of
+    /// `b`'s (an empty span when they are equal), so no comparison orders
+    /// them.
+    Ab,
+    /// Paints `[b, a)`, likewise.
+    Ba,
+}
+
 /// Rows `[y, stop)` between the two steppers `a` and `b`, stepping both to
-/// row `stop`: with `paint`, each row's span `[min, max)` of their
-/// crossings clipped to `b`'s columns; without, steps only. Returns the
-/// spans emitted. The one row loop of the pairs of edges (`two_edge_rows`
-/// and the monotone chains, `super::chain`).
+/// row `stop`: each row's span (per `pair`) clipped to `b`'s columns.
+/// Returns the spans emitted. The one row loop of the pairs of edges
+/// (`two_edge_rows`, the monotone chains and the triangles,
+/// `super::chain`).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(super) fn pair_rows<S: Stepper, K: SpanSink>(
     a: &mut S,
     c: &mut S,
-    paint: bool,
+    pair: Pair,
     b: &SpanBounds,
     mut y: i32,
     stop: i32,
@@ -310,9 +344,14 @@ pub(super) fn pair_rows<S: Stepper, K: SpanSink>(
 ) -> usize {
     let mut spans = 0usize;
     while y < stop {
-        if paint {
+        if pair != Pair::Step {
             let (xa, xb) = (a.crossing(), c.crossing());
-            let (l, r) = if xa <= xb { (xa, xb) } else { (xb, xa) };
+            let (l, r) = match pair {
+                Pair::Ab => (xa, xb),
+                Pair::Ba => (xb, xa),
+                _ if xa <= xb => (xa, xb),
+                _ => (xb, xa),
+            };
             let (x0, x1) = (l.max(b.x0), r.min(b.x1));
             if x0 < x1 {
                 sink.span(y, x0, x1, color);

@@ -46,7 +46,6 @@ use crate::raster::clip::ClipVert;
 use crate::raster::int_path::q16_camera;
 use crate::raster::list::{DisplayList, Entry, Kind, Points};
 use crate::raster::renderer::Ready;
-use crate::raster::scan::Bbox;
 use crate::raster::transform::VertexPath;
 use crate::raster::vcache::{Slot, VertexCache};
 use crate::raster::{
@@ -458,10 +457,11 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
         if !ok {
             continue;
         }
-        let pts = &scratch.screen_mut()[..n];
         let ready = Ready {
             n,
-            bbox: Bbox::of(pts),
+            // The fill computes the box if it needs it (not for a
+            // triangle).
+            bbox: None,
             first: e.first,
             end: e.end,
             rgb: e.rgb,
