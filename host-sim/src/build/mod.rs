@@ -9,6 +9,7 @@
 
 mod auxiliary;
 mod bsp;
+mod bvh;
 mod feudal;
 mod rng;
 mod table;
@@ -61,6 +62,11 @@ impl Ctx<'_> {
     /// One one-way priority relation: polygon `p` against `plane`.
     pub fn relation_to_plane(&mut self, p: u32, plane: &Plane) -> Rel {
         self.relations += 1;
+        self.classify(p, plane)
+    }
+
+    /// Polygon `p` against `plane`, not counted as a relation.
+    pub fn classify(&self, p: u32, plane: &Plane) -> Rel {
         let pp = &self.polys[p as usize];
         match plane.relation(&pp.verts, self.tol) {
             Relation::Front => Rel::Front,
@@ -150,10 +156,12 @@ pub fn build(
             .stack_size(512 << 20)
             .spawn_scoped(s, || match method {
                 Method::Static => {
-                    feudal::build_group(table::Table::new(ids), feudal::Mode::Static, &mut ctx)
+                    let t = table::Table::new(ids, &ctx.polys);
+                    feudal::build_group(t, feudal::Mode::Static, &mut ctx)
                 }
                 Method::Dynamic => {
-                    feudal::build_group(table::Table::new(ids), feudal::Mode::Dynamic, &mut ctx)
+                    let t = table::Table::new(ids, &ctx.polys);
+                    feudal::build_group(t, feudal::Mode::Dynamic, &mut ctx)
                 }
                 Method::Bsp => bsp::build_bsp(ids, &mut ctx),
             })
