@@ -6,6 +6,7 @@ pub mod build;
 pub mod cli;
 pub mod edges;
 pub mod geom;
+pub mod memory;
 pub mod mesh;
 pub mod output;
 pub mod reference;

@@ -144,23 +144,22 @@ fn extract_levels(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) {
         if level.front.is_empty() && level.back.is_empty() {
             return;
         }
-        let n = finish_level(t, &taken);
+        finish_level(t, &taken);
         for q in due {
             if t.is_alive(q) {
                 t.watch(&mut watch, q);
             }
         }
-        ctx.placed(n);
+        ctx.placed(taken.iter().map(|&q| t.ids[q]));
         levels.push(level);
     }
 }
 
-/// Removes the `taken` members from the group; returns how many.
-fn finish_level(t: &mut Table, taken: &[usize]) -> usize {
+/// Removes the `taken` members from the group.
+fn finish_level(t: &mut Table, taken: &[usize]) {
     for &q in taken {
         t.remove(q);
     }
-    taken.len()
 }
 
 /// Dynamic steps 1 and 2. Returns the separating member if one was found
@@ -206,13 +205,13 @@ fn dynamic_phase(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) -> Optio
                     let mut level = Level::default();
                     let mut taken = Vec::new();
                     take(t, r, front, &mut level, &mut taken, ctx);
-                    let n = finish_level(t, &taken);
+                    finish_level(t, &taken);
                     for d in due {
                         if t.is_alive(d) {
                             t.watch(&mut watch, d);
                         }
                     }
-                    ctx.placed(n);
+                    ctx.placed(taken.iter().map(|&q| t.ids[q]));
                     levels.push(level);
                 }
                 None => {
@@ -347,7 +346,7 @@ fn make_switch_on(
             }
         }
     }
-    ctx.placed(on.len());
+    ctx.placed(on.iter().copied());
     let ft = t.subtable(&front, &front_pieces, ctx);
     let bt = t.subtable(&back, &back_pieces, ctx);
     drop(t);

@@ -416,7 +416,8 @@ mod tests {
             relations: 0,
             splittings: 0,
             rng: Rng::new(7),
-            placed: 0,
+            weight: vec![1.0; n],
+            placed: 0.0,
             total: n,
             progress: &mut progress,
         };
