@@ -245,6 +245,9 @@ pub fn run(a: &BuildArgs) -> CliResult {
     let options = crate::mesh::ImportOptions {
         keep_orientation: a.keep_orientation,
     };
+    // Reading the mesh is part of building it: running out of memory there
+    // gets the same message (with what was in use when it ran out).
+    crate::memory::set_build_estimate(1);
     let model = crate::mesh::load_with(&a.mesh, &options)
         .map_err(|e| cli_err!("{}: {e}", a.mesh.display()))?;
     for w in model.report.warning_lines() {
