@@ -153,8 +153,7 @@ impl Bvh {
 
     /// Visits the alive members whose boxes `plane` may not decide whole:
     /// calls `whole(side)` with `alive` count for boxes wholly in front
-    /// (`true`) or behind, and `each(i)` for the members of the other
-    /// leaves. With `slab_only`, boxes wholly on one side are skipped.
+    /// (`true`) or behind, and `each(i)` for the members of the other leaves.
     fn visit(
         &self,
         plane: &Plane,
