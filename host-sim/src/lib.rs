@@ -7,5 +7,6 @@
 pub use fpt_build::{build, edges, geom, mesh, scenes, seams, serialize, split, tree};
 
 pub mod cli;
+pub mod memory;
 pub mod output;
 pub mod reference;

@@ -1,6 +1,12 @@
 //! `fpt`: build, inspect, order and render feudal priority trees.
 
+/// Counts the heap (peak memory of builds), enforces `--max-memory`, and
+/// turns running out of memory into `error: ...` and status 2.
+#[global_allocator]
+static ALLOCATOR: host_sim::memory::Counting = host_sim::memory::Counting;
+
 fn main() {
+    host_sim::memory::installed();
     restore_sigpipe();
     std::process::exit(host_sim::cli::main_with_args(std::env::args_os()));
 }

@@ -161,6 +161,108 @@ fn closed_stdout_is_not_a_panic() {
     assert!(!err.contains("panicked"), "{err}");
 }
 
+/// A mesh that needs more heap than `--max-memory` allows is refused with
+/// the needs in MiB, status 2, and no tree file.
+#[test]
+fn too_little_memory_is_an_error_without_output() {
+    // A flat strip of 120 quads: open, and small.
+    let mut obj = String::new();
+    let n = 120;
+    for i in 0..=n {
+        for j in 0..=1 {
+            obj.push_str(&format!("v {i} {j} 0\n"));
+        }
+    }
+    for i in 0..n {
+        let a = 2 * i + 1;
+        obj.push_str(&format!("f {} {} {} {}\n", a, a + 2, a + 3, a + 1));
+    }
+    let mesh = write("strip.obj", obj.as_bytes());
+    let out_tree = tmp("strip-nomem.fpt");
+    let _ = std::fs::remove_file(&out_tree);
+    let out = fpt(&["build", s(&mesh), "-o", s(&out_tree), "--max-memory", "1"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    let last = err.lines().last().unwrap_or_default();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        last.starts_with("error: not enough memory to build this mesh (needs about ")
+            && last.ends_with(" MiB)"),
+        "{err}"
+    );
+    assert!(!out_tree.exists());
+    // With room enough it builds, and says why the strip is open.
+    let out = fpt(&["build", s(&mesh), "-o", s(&out_tree), "--max-memory", "200"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("the mesh is open: 242 edges")
+            && err.contains("draws both sides of every face in every view"),
+        "{err}"
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("peak heap"));
+}
+
+/// Running out of memory while building (here a virtual memory limit the
+/// estimate does not know of) is the same error, not an abort.
+#[cfg(target_os = "linux")]
+#[test]
+fn running_out_of_memory_while_building_is_an_error() {
+    let mesh = tmp("big-torus.obj");
+    let out_tree = tmp("big-torus.fpt");
+    let _ = std::fs::remove_file(&out_tree);
+    // A torus of 40,000 quads.
+    let (big, small, nu, nv) = (3.0f64, 1.0f64, 400usize, 100usize);
+    let mut obj = String::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            let (u, v) = (
+                i as f64 / nu as f64 * std::f64::consts::TAU,
+                j as f64 / nv as f64 * std::f64::consts::TAU,
+            );
+            let r = big + small * v.cos();
+            obj.push_str(&format!(
+                "v {} {} {}\n",
+                r * u.cos(),
+                r * u.sin(),
+                small * v.sin()
+            ));
+        }
+    }
+    let id = |i: usize, j: usize| (i % nu) * nv + (j % nv) + 1;
+    for i in 0..nu {
+        for j in 0..nv {
+            obj.push_str(&format!(
+                "f {} {} {} {}\n",
+                id(i, j),
+                id(i + 1, j),
+                id(i + 1, j + 1),
+                id(i, j + 1)
+            ));
+        }
+    }
+    std::fs::write(&mesh, obj).unwrap();
+    let exe = env!("CARGO_BIN_EXE_fpt");
+    let script = format!(
+        "ulimit -v 30000 && exec '{exe}' build '{}' -o '{}'",
+        mesh.display(),
+        out_tree.display()
+    );
+    let out = Command::new("sh").arg("-c").arg(script).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.lines()
+            .last()
+            .is_some_and(|l| l.starts_with("error: not enough memory to build this mesh")),
+        "{err}"
+    );
+    assert!(!out_tree.exists());
+}
+
 /// The `build.rs` recipe of `fpt_build`'s crate docs (load, build with the
 /// default seed, serialize with default options) writes the very bytes of
 /// `fpt build` with default options.

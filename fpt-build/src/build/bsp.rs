@@ -57,7 +57,7 @@ pub fn build_bsp(ids: Vec<u32>, ctx: &mut Ctx) -> Connecting {
             }
         }
     }
-    ctx.placed(on.len());
+    ctx.placed(on.iter().copied());
     Connecting {
         levels: Vec::new(),
         switch: Some(Box::new(Switch {

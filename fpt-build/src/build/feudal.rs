@@ -7,7 +7,7 @@
 //! polygon or a separating plane, then finishes what is left statically.
 
 use super::auxiliary::best_aux;
-use super::table::{Rel, Table};
+use super::table::{Rel, Table, Watch};
 use super::Ctx;
 use crate::geom::Plane;
 use crate::tree::{Connecting, Level, Switch};
@@ -27,8 +27,7 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
     let mut levels = Vec::new();
     if mode == Mode::Dynamic {
         if let Some(s) = dynamic_phase(&mut table, &mut levels, ctx) {
-            let t = std::mem::replace(&mut table, Table::new(Vec::new()));
-            let switch = make_switch(t, s, mode, ctx);
+            let switch = make_switch(table, s, mode, ctx);
             return Connecting {
                 levels,
                 switch: Some(Box::new(switch)),
@@ -37,11 +36,8 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
     }
     // Static from step 1 on (for dynamic: every remaining row is known, so
     // this computes nothing new).
-    for q in 0..table.len() {
-        if table.is_alive(q) {
-            table.compute_row(q, ctx);
-        }
-    }
+    let all: Vec<usize> = (0..table.len()).collect();
+    table.compute_rows(&all, ctx);
     extract_levels(&mut table, &mut levels, ctx);
     if table.alive_count() == 0 {
         return Connecting {
@@ -49,6 +45,7 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
             switch: None,
         };
     }
+    table.refresh_all(ctx);
     let switch = if let Some(s) = choose_separator(&table, ctx) {
         make_switch(table, s, mode, ctx)
     } else {
@@ -58,7 +55,7 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
         match aux {
             Some(a) => {
                 let rels = a.rels;
-                make_switch_on(table, a.plane, None, |p| rels[p], mode, ctx)
+                make_switch_on(table, a.plane, None, |_, p, _| rels[p], mode, ctx)
             }
             None => make_switch(table, s, mode, ctx),
         }
@@ -69,7 +66,8 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
     }
 }
 
-/// `Some(true)` for absolute front priority, `Some(false)` for absolute back.
+/// `Some(true)` for absolute front priority, `Some(false)` for absolute
+/// back; `q`'s counts must be exact.
 fn absolute(t: &Table, q: usize) -> Option<bool> {
     if !t.is_alive(q) || !t.has_row(q) {
         return None;
@@ -86,6 +84,17 @@ fn absolute(t: &Table, q: usize) -> Option<bool> {
     }
 }
 
+/// What must fall to zero for a row to become absolute: its cut count and
+/// the smaller of its front and back counts.
+fn absolute_slack([f, b, c]: [u32; 3]) -> u32 {
+    c.saturating_add(f.min(b))
+}
+
+/// What must fall to zero for a row to become absolute or separating.
+fn cut_slack([_, _, c]: [u32; 3]) -> u32 {
+    c
+}
+
 /// Puts `q` into the front (`front`) or back bunch of `level`, with the
 /// polygons in its plane: same orientation to the same bunch, reversed to
 /// the opposite one.
@@ -97,54 +106,60 @@ fn bunch(l: &mut Level, front: bool) -> &mut Vec<u32> {
     }
 }
 
-fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut [bool]) {
+/// Puts `q` and the untaken polygons in its plane into `level`; returns
+/// the members taken.
+fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut Vec<usize>, ctx: &Ctx) {
     bunch(level, front).push(t.ids[q]);
-    taken[q] = true;
-    for (p, tk) in taken.iter_mut().enumerate() {
-        if p == q || *tk || !t.is_alive(p) {
+    taken.push(q);
+    for (p, r) in t.coplanar(q, ctx) {
+        if taken.contains(&p) {
             continue;
         }
-        match t.rel(q, p) {
-            Rel::Same => bunch(level, front).push(t.ids[p]),
-            Rel::Opposite => bunch(level, !front).push(t.ids[p]),
-            _ => continue,
-        }
-        *tk = true;
+        bunch(level, front == (r == Rel::Same)).push(t.ids[p]);
+        taken.push(p);
     }
 }
 
 /// Static step 2: peel off all absolute priority polygons, level by level.
 fn extract_levels(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) {
+    let mut watch = Watch::new(absolute_slack);
+    t.refresh_all(ctx);
+    for q in 0..t.len() {
+        if t.is_alive(q) && t.has_row(q) {
+            t.watch(&mut watch, q);
+        }
+    }
     loop {
+        let due = t.due(&mut watch, ctx);
         let mut level = Level::default();
-        let mut taken = vec![false; t.len()];
-        for q in 0..t.len() {
-            if taken[q] {
+        let mut taken = Vec::new();
+        for &q in &due {
+            if taken.contains(&q) {
                 continue;
             }
             if let Some(front) = absolute(t, q) {
-                take(t, q, front, &mut level, &mut taken);
+                take(t, q, front, &mut level, &mut taken, ctx);
             }
         }
         if level.front.is_empty() && level.back.is_empty() {
             return;
         }
-        let n = finish_level(t, &taken);
-        ctx.placed(n);
+        finish_level(t, &taken);
+        for q in due {
+            if t.is_alive(q) {
+                t.watch(&mut watch, q);
+            }
+        }
+        ctx.placed(taken.iter().map(|&q| t.ids[q]));
         levels.push(level);
     }
 }
 
-/// Removes the `taken` members from the group; returns how many.
-fn finish_level(t: &mut Table, taken: &[bool]) -> usize {
-    let mut n = 0;
-    for (q, &tk) in taken.iter().enumerate() {
-        if tk {
-            t.remove(q);
-            n += 1;
-        }
+/// Removes the `taken` members from the group.
+fn finish_level(t: &mut Table, taken: &[usize]) {
+    for &q in taken {
+        t.remove(q);
     }
-    n
 }
 
 /// Dynamic steps 1 and 2. Returns the separating member if one was found
@@ -154,32 +169,58 @@ fn dynamic_phase(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) -> Optio
         .filter(|&q| t.is_alive(q) && !t.has_row(q))
         .collect();
     ctx.rng.shuffle(&mut order);
+    // Rows known from the parent group are examined as they were there.
+    let mut watch = Watch::new(cut_slack);
+    for q in 0..t.len() {
+        if t.is_alive(q) && t.has_row(q) {
+            t.watch(&mut watch, q);
+        }
+    }
     for q in order {
         if !t.is_alive(q) {
             continue;
         }
         t.compute_row(q, ctx);
+        t.watch(&mut watch, q);
         // Examine the new row, then re-examine the earlier ones after every
-        // removal: a removal may make them absolute or separating.
-        'examine: loop {
-            for r in std::iter::once(q).chain(0..t.len()) {
-                if !t.is_alive(r) || !t.has_row(r) {
-                    continue;
-                }
+        // removal: a removal may make them absolute or separating. Only rows
+        // whose cut count the removals may have emptied can have changed.
+        loop {
+            let due = t.due(&mut watch, ctx);
+            let first = due.contains(&q).then_some(q);
+            let mut found = None;
+            for r in first.into_iter().chain(due.iter().copied()) {
                 if let Some(front) = absolute(t, r) {
-                    let mut level = Level::default();
-                    let mut taken = vec![false; t.len()];
-                    take(t, r, front, &mut level, &mut taken);
-                    let n = finish_level(t, &taken);
-                    ctx.placed(n);
-                    levels.push(level);
-                    continue 'examine;
+                    found = Some(Err((r, front)));
+                    break;
                 }
                 if t.counts(r)[2] == 0 {
-                    return Some(r);
+                    found = Some(Ok(r));
+                    break;
                 }
             }
-            break;
+            match found {
+                Some(Ok(r)) => return Some(r),
+                Some(Err((r, front))) => {
+                    let mut level = Level::default();
+                    let mut taken = Vec::new();
+                    take(t, r, front, &mut level, &mut taken, ctx);
+                    finish_level(t, &taken);
+                    for d in due {
+                        if t.is_alive(d) {
+                            t.watch(&mut watch, d);
+                        }
+                    }
+                    ctx.placed(taken.iter().map(|&q| t.ids[q]));
+                    levels.push(level);
+                }
+                None => {
+                    for d in due {
+                        t.watch(&mut watch, d);
+                    }
+                    break;
+                }
+            }
         }
     }
     None
@@ -260,18 +301,25 @@ fn choose_splitter(t: &Table, ctx: &Ctx) -> usize {
 /// the groups in front and behind, splitting the polygons it cuts.
 fn make_switch(t: Table, s: usize, mode: Mode, ctx: &mut Ctx) -> Switch {
     let plane = ctx.polys[t.ids[s] as usize].plane;
-    let row: Vec<Rel> = (0..t.len()).map(|p| t.rel(s, p)).collect();
-    make_switch_on(t, plane, Some(s), |p| row[p], mode, ctx)
+    // The row of `s` again: its counts were kept, not its entries.
+    make_switch_on(
+        t,
+        plane,
+        Some(s),
+        move |c, _, id| c.classify(id, &plane),
+        mode,
+        ctx,
+    )
 }
 
-/// Makes a switch node on `plane`, given the relation `rel(p)` of each
-/// member to it (`Unknown` ones are computed); `member` is the polygon the
-/// plane was taken from, if any.
+/// Makes a switch node on `plane`, given the relation `rel(ctx, p, id)` of
+/// each member (local index `p`, polygon `id`) to it (`Unknown` ones are computed); `member` is the polygon
+/// the plane was taken from, if any.
 fn make_switch_on(
     t: Table,
     plane: Plane,
     member: Option<usize>,
-    rel: impl Fn(usize) -> Rel,
+    rel: impl Fn(&Ctx, usize, u32) -> Rel,
     mode: Mode,
     ctx: &mut Ctx,
 ) -> Switch {
@@ -283,7 +331,7 @@ fn make_switch_on(
             continue;
         }
         let pid = t.ids[p];
-        let r = match rel(p) {
+        let r = match rel(ctx, p, pid) {
             Rel::Unknown => ctx.relation_to_plane(pid, &plane),
             r => r,
         };
@@ -298,7 +346,7 @@ fn make_switch_on(
             }
         }
     }
-    ctx.placed(on.len());
+    ctx.placed(on.iter().copied());
     let ft = t.subtable(&front, &front_pieces, ctx);
     let bt = t.subtable(&back, &back_pieces, ctx);
     drop(t);

@@ -9,6 +9,7 @@
 
 mod auxiliary;
 mod bsp;
+mod bvh;
 mod feudal;
 mod rng;
 mod table;
@@ -24,10 +25,12 @@ use glam::DVec3;
 /// Seed used when none is given, so that builds are reproducible.
 pub const DEFAULT_SEED: u64 = 0x5EED_F00D;
 
-/// Receives progress while a tree is built: polygons placed so far, of total.
+/// Receives progress while a tree is built, in input polygons: a piece of
+/// a split polygon counts as its share of it, so `total` (the input
+/// polygon count) never grows and `placed` never goes back.
 pub trait Progress: Send {
-    /// Called from time to time with the polygons placed in the tree so far
-    /// and the number of polygons still to place plus those placed.
+    /// Called from time to time with the (share of) input polygons placed
+    /// in the tree so far, of `total`.
     fn update(&mut self, placed: usize, total: usize);
 }
 
@@ -46,7 +49,9 @@ pub(crate) struct Ctx<'a> {
     pub relations: u64,
     pub splittings: usize,
     pub rng: Rng,
-    placed: usize,
+    /// Share of an input polygon each polygon stands for.
+    weight: Vec<f64>,
+    placed: f64,
     total: usize,
     progress: &'a mut dyn Progress,
 }
@@ -61,6 +66,11 @@ impl Ctx<'_> {
     /// One one-way priority relation: polygon `p` against `plane`.
     pub fn relation_to_plane(&mut self, p: u32, plane: &Plane) -> Rel {
         self.relations += 1;
+        self.classify(p, plane)
+    }
+
+    /// Polygon `p` against `plane`, not counted as a relation.
+    pub fn classify(&self, p: u32, plane: &Plane) -> Rel {
         let pp = &self.polys[p as usize];
         match plane.relation(&pp.verts, self.tol) {
             Relation::Front => Rel::Front,
@@ -76,8 +86,12 @@ impl Ctx<'_> {
     pub fn split(&mut self, id: u32, plane: &Plane) -> (Vec<u32>, Vec<u32>) {
         let pieces = split(&self.polys[id as usize], plane, self.tol);
         self.splittings += 1;
-        // One polygon became several: the total to place grows.
-        self.total += pieces.front.len() + pieces.back.len() - 1;
+        // The pieces share their polygon's weight, so the total stays.
+        let share =
+            self.weight[id as usize] / (pieces.front.len() + pieces.back.len()).max(1) as f64;
+        for _ in 0..pieces.front.len() + pieces.back.len() {
+            self.weight.push(share);
+        }
         let push = |v: Vec<Polygon>, polys: &mut Vec<Polygon>| -> Vec<u32> {
             v.into_iter()
                 .map(|p| {
@@ -91,10 +105,13 @@ impl Ctx<'_> {
         (f, b)
     }
 
-    /// Records that `n` more polygons have their place in the tree.
-    pub fn placed(&mut self, n: usize) {
-        self.placed += n;
-        self.progress.update(self.placed, self.total);
+    /// Records that the polygons `ids` have their place in the tree.
+    pub fn placed(&mut self, ids: impl IntoIterator<Item = u32>) {
+        for id in ids {
+            self.placed += self.weight[id as usize];
+        }
+        let placed = (self.placed.round() as usize).min(self.total);
+        self.progress.update(placed, self.total);
     }
 }
 
@@ -138,28 +155,39 @@ pub fn build(
         relations: 0,
         splittings: 0,
         rng: Rng::new(seed),
-        placed: 0,
+        weight: vec![1.0; input_polygons],
+        placed: 0.0,
         total: input_polygons,
         progress,
     };
     let ids: Vec<u32> = (0..input_polygons as u32).collect();
     // The builders recurse once per switch node; a BSP tree of a hostile
     // model can be thousands deep, more than a default thread stack holds.
+    // Without the memory for such a stack (a memory limit), build on this
+    // thread rather than fail.
+    let job = std::sync::Mutex::new(Some((ids, &mut ctx)));
+    let run = || match job.lock().ok().and_then(|mut j| j.take()) {
+        Some((ids, ctx)) => match method {
+            Method::Static => {
+                let t = table::Table::new(ids, &ctx.polys);
+                feudal::build_group(t, feudal::Mode::Static, ctx)
+            }
+            Method::Dynamic => {
+                let t = table::Table::new(ids, &ctx.polys);
+                feudal::build_group(t, feudal::Mode::Dynamic, ctx)
+            }
+            Method::Bsp => bsp::build_bsp(ids, ctx),
+        },
+        None => Connecting::default(),
+    };
     let root = std::thread::scope(|s| {
-        std::thread::Builder::new()
+        match std::thread::Builder::new()
             .stack_size(512 << 20)
-            .spawn_scoped(s, || match method {
-                Method::Static => {
-                    feudal::build_group(table::Table::new(ids), feudal::Mode::Static, &mut ctx)
-                }
-                Method::Dynamic => {
-                    feudal::build_group(table::Table::new(ids), feudal::Mode::Dynamic, &mut ctx)
-                }
-                Method::Bsp => bsp::build_bsp(ids, &mut ctx),
-            })
-            .expect("spawning the builder thread")
-            .join()
-            .unwrap_or_else(|e| std::panic::resume_unwind(e))
+            .spawn_scoped(s, run)
+        {
+            Ok(h) => h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)),
+            Err(_) => run(),
+        }
     });
     let (relations, splittings) = (ctx.relations, ctx.splittings);
     let work = ctx.polys;

@@ -1,14 +1,35 @@
-//! The one-way priority table of a group of polygons.
+//! The one-way priority table of a group of polygons, kept as counts.
 //!
-//! Row `q` holds the relation of every other polygon `p` of the group to the
-//! plane of `q`, and the counts of its front, back and cut columns among the
-//! polygons still in the group. Rows are computed on demand (dynamic
-//! preprocessing computes them lazily, static all at once); every relation
-//! actually computed is counted, as the paper counts its cost.
+//! Row `q` of the paper's table classifies every other member against the
+//! plane of `q`; the builders only ever use its counts (front, back, cut
+//! among the members still in the group) and, for the chosen polygon, the
+//! row itself once. So no row is stored: a row is computed when needed
+//! ([`Table::compute_row`]), its counts kept per polygon, and the row of the
+//! switch polygon is recomputed when the group is divided. Memory is linear
+//! in the group's size instead of the n×n table (1.2 GiB at 25,000
+//! polygons).
+//!
+//! Counts are kept exact lazily. Removing members changes every row's
+//! counts; rather than classifying each removed member against every row,
+//! each row remembers how many members had been removed when its counts
+//! were last exact (`stamp`). Removals only lower counts, so a row whose
+//! `slack` (what must reach zero for it to matter: its cut count, or its
+//! cut count plus the smaller of front and back) exceeds the removals since
+//! then cannot have become absolute or separating, and is left alone. A
+//! [`Watch`] orders rows by when that can first happen.
+//!
+//! Rows are counted through a bounding-volume hierarchy ([`super::bvh`]),
+//! so a row costs about √n classifications, and several rows are counted
+//! on all cores at once. Every row computed counts the relations of the
+//! paper's table (one per other member), as the paper counts its cost.
 
+use super::bvh::Bvh;
 use super::Ctx;
+use crate::geom::{Plane, Polygon, Relation, Tolerance};
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
-/// A relation as stored in the table.
+/// A relation of a polygon to a plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u8)]
 pub enum Rel {
@@ -26,50 +47,113 @@ pub enum Rel {
     Unknown = 5,
 }
 
-impl Rel {
-    fn flipped(self) -> Rel {
-        match self {
-            Rel::Front => Rel::Back,
-            Rel::Back => Rel::Front,
-            Rel::Same => Rel::Opposite,
-            Rel::Opposite => Rel::Same,
-            r => r,
-        }
-    }
-}
-
 /// The table of one group; members are addressed by local index.
 #[derive(Clone, Debug)]
 pub struct Table {
     /// Local index → polygon id in [`Ctx::polys`].
     pub ids: Vec<u32>,
-    m: usize,
-    rel: Vec<Rel>,
     has_row: Vec<bool>,
     alive: Vec<bool>,
-    /// Front, back and cut counts of each computed row among alive members.
+    /// Front, back and cut counts of each computed row, exact when `stamp`
+    /// equals `removed`.
     counts: Vec<[u32; 3]>,
+    stamp: Vec<u32>,
+    removed: u32,
+    /// The members removed, in order: `log[stamp..]` are those a row with
+    /// that stamp still counts.
+    log: Vec<u32>,
     alive_count: usize,
+    bvh: Bvh,
+}
+
+/// Rows waiting until their counts could pass a test (see the module docs).
+pub struct Watch {
+    heap: BinaryHeap<Reverse<(u64, u32)>>,
+    slack: fn([u32; 3]) -> u32,
+}
+
+impl Watch {
+    /// Watches rows for the test whose necessary condition is `slack == 0`.
+    pub fn new(slack: fn([u32; 3]) -> u32) -> Watch {
+        Watch {
+            heap: BinaryHeap::new(),
+            slack,
+        }
+    }
+}
+
+/// Rows counted per thread at least, when counting on several threads: a
+/// thread is started per call, which on a loaded machine waits for a time
+/// slice, so only large batches are worth it.
+const PER_THREAD: usize = 1024;
+
+/// The cores to count on (asked once: the question reads files).
+fn threads() -> usize {
+    static THREADS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    *THREADS.get_or_init(|| std::thread::available_parallelism().map_or(1, usize::from))
+}
+
+/// Applies `f` to every row of `rows`, on several threads when there are
+/// many.
+fn count_rows(rows: &[usize], f: impl Fn(usize) -> [u32; 3] + Sync) -> Vec<[u32; 3]> {
+    if rows.len() < 2 * PER_THREAD || threads() < 2 {
+        return rows.iter().map(|&q| f(q)).collect();
+    }
+    let chunk = rows.len().div_ceil(threads());
+    let f = &f;
+    std::thread::scope(|s| {
+        let handles: Vec<_> = rows
+            .chunks(chunk)
+            .map(|part| s.spawn(move || part.iter().map(|&q| f(q)).collect::<Vec<_>>()))
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    })
+}
+
+/// Counts with `x` classified against `plane` added (`add`) or taken out.
+fn adjust(c: &mut [u32; 3], x: &Polygon, plane: &Plane, tol: Tolerance, add: bool) {
+    let i = match plane.relation(&x.verts, tol) {
+        Relation::Front => 0,
+        Relation::Back => 1,
+        Relation::Cut => 2,
+        Relation::Coplanar => return,
+    };
+    c[i] = if add { c[i] + 1 } else { c[i] - 1 };
+}
+
+/// `stamp` of a row never counted.
+const NEVER: u32 = u32::MAX;
+
+/// Up to how many removals a row's counts are corrected one removed
+/// member at a time rather than counted again through the hierarchy.
+fn incremental_limit(alive: usize) -> u32 {
+    // A count through the hierarchy opens about √n leaves.
+    (4.0 * (alive as f64).sqrt()).max(32.0) as u32
 }
 
 impl Table {
     /// A table of `ids` with no row computed.
-    pub fn new(ids: Vec<u32>) -> Table {
+    pub fn new(ids: Vec<u32>, polys: &[Polygon]) -> Table {
         let m = ids.len();
         Table {
+            bvh: Bvh::new(&ids, polys),
             ids,
-            m,
-            rel: vec![Rel::Unknown; m * m],
             has_row: vec![false; m],
             alive: vec![true; m],
             counts: vec![[0; 3]; m],
+            stamp: vec![0; m],
+            removed: 0,
+            log: Vec::new(),
             alive_count: m,
         }
     }
 
     /// Number of members.
     pub fn len(&self) -> usize {
-        self.m
+        self.ids.len()
     }
 
     /// Members still in the group.
@@ -87,134 +171,290 @@ impl Table {
         self.has_row[q]
     }
 
-    /// Relation of `p` to the plane of `q`.
-    pub fn rel(&self, q: usize, p: usize) -> Rel {
-        self.rel[q * self.m + p]
-    }
-
-    /// Front, back and cut counts of row `q` among alive members.
+    /// Front, back and cut counts of row `q` among alive members: exact
+    /// after [`Table::compute_row`], [`Table::refresh`] or [`Table::due`]
+    /// and until the next removal.
     pub fn counts(&self, q: usize) -> [u32; 3] {
+        debug_assert_eq!(self.stamp[q], self.removed, "stale counts of row {q}");
         self.counts[q]
     }
 
-    /// Computes row `q` against the alive members. A polygon in the plane
-    /// of an already computed row copies that row instead (the paper's
-    /// shortcut for coplanar polygons: no relation computed).
-    pub fn compute_row(&mut self, q: usize, ctx: &mut Ctx) {
-        if self.has_row[q] {
-            return;
-        }
-        let m = self.m;
-        let twin = (0..m).find(|&p| {
-            p != q
-                && self.alive[p]
-                && self.has_row[p]
-                && matches!(self.rel(p, q), Rel::Same | Rel::Opposite)
+    /// Makes the counts of `rows` (computed ones) exact.
+    pub fn refresh(&mut self, rows: &[usize], ctx: &Ctx) {
+        let rows: Vec<usize> = rows
+            .iter()
+            .copied()
+            .filter(|&q| self.has_row[q] && self.stamp[q] != self.removed)
+            .collect();
+        let limit = incremental_limit(self.alive_count);
+        let (polys, tol) = (&ctx.polys, ctx.tol);
+        let counts = count_rows(&rows, |q| {
+            let plane = polys[self.ids[q] as usize].plane;
+            let stamp = self.stamp[q];
+            if stamp != NEVER && self.removed - stamp <= limit {
+                // Take out the members removed since the counts were exact.
+                let mut c = self.counts[q];
+                for &x in &self.log[stamp as usize..] {
+                    adjust(
+                        &mut c,
+                        &polys[self.ids[x as usize] as usize],
+                        &plane,
+                        tol,
+                        false,
+                    );
+                }
+                c
+            } else {
+                self.bvh
+                    .counts(&plane, q, &self.alive, &self.ids, polys, tol)
+            }
         });
-        if let Some(p) = twin {
-            let flip = self.rel(p, q) == Rel::Opposite;
-            for x in 0..m {
-                self.rel[q * m + x] = if x == q {
-                    Rel::Unknown
-                } else if x == p {
-                    // Coplanarity is symmetric, orientation included.
-                    self.rel(p, q)
-                } else if flip {
-                    self.rel(p, x).flipped()
-                } else {
-                    self.rel(p, x)
-                };
-            }
-            // Entries copied from p's row for members p never saw (pieces
-            // made later) are unknown: compute those.
-            for x in 0..m {
-                if x != q && self.alive[x] && self.rel[q * m + x] == Rel::Unknown {
-                    self.rel[q * m + x] = ctx.relation(self.ids[x], self.ids[q]);
-                }
-            }
-        } else {
-            let qid = self.ids[q];
-            for p in 0..m {
-                if p != q && self.alive[p] {
-                    self.rel[q * m + p] = ctx.relation(self.ids[p], qid);
-                }
-            }
+        for (q, c) in rows.into_iter().zip(counts) {
+            self.counts[q] = c;
+            self.stamp[q] = self.removed;
         }
-        self.has_row[q] = true;
-        self.recount(q);
     }
 
-    fn recount(&mut self, q: usize) {
-        let mut c = [0u32; 3];
-        for p in 0..self.m {
-            if p != q && self.alive[p] {
-                let r = self.rel(q, p) as usize;
-                if r < 3 {
-                    c[r] += 1;
-                }
-            }
-        }
-        self.counts[q] = c;
+    /// Makes the counts of every alive computed row exact.
+    pub fn refresh_all(&mut self, ctx: &Ctx) {
+        let rows: Vec<usize> = (0..self.len()).filter(|&q| self.alive[q]).collect();
+        self.refresh(&rows, ctx);
     }
 
-    /// Takes member `p` out of the group, updating the computed rows.
+    /// Computes the rows `qs` (those not computed yet) against the alive
+    /// members.
+    pub fn compute_rows(&mut self, qs: &[usize], ctx: &mut Ctx) {
+        let mut new = Vec::new();
+        for &q in qs {
+            if !self.has_row[q] && self.alive[q] {
+                self.has_row[q] = true;
+                // Not yet counted: `refresh` below counts it.
+                self.stamp[q] = NEVER;
+                ctx.relations += self.alive_count.saturating_sub(1) as u64;
+                new.push(q);
+            }
+        }
+        self.refresh(&new, ctx);
+    }
+
+    /// Computes row `q` against the alive members.
+    pub fn compute_row(&mut self, q: usize, ctx: &mut Ctx) {
+        self.compute_rows(&[q], ctx);
+    }
+
+    /// Takes member `p` out of the group.
     pub fn remove(&mut self, p: usize) {
         if !self.alive[p] {
             return;
         }
         self.alive[p] = false;
         self.alive_count -= 1;
-        for q in 0..self.m {
-            if self.alive[q] && self.has_row[q] {
-                let r = self.rel(q, p) as usize;
-                if r < 3 {
-                    self.counts[q][r] -= 1;
-                }
+        self.removed += 1;
+        self.log.push(p as u32);
+        self.bvh.remove(p);
+    }
+
+    /// The alive members other than `q` in the plane of `q`, ascending,
+    /// with their orientation against it.
+    pub fn coplanar(&self, q: usize, ctx: &Ctx) -> Vec<(usize, Rel)> {
+        let plane = ctx.polys[self.ids[q] as usize].plane;
+        self.bvh
+            .coplanar(&plane, q, &self.alive, &self.ids, &ctx.polys, ctx.tol)
+            .into_iter()
+            .map(|p| {
+                let n = ctx.polys[self.ids[p] as usize].plane.normal;
+                (
+                    p,
+                    if n.dot(plane.normal) >= 0.0 {
+                        Rel::Same
+                    } else {
+                        Rel::Opposite
+                    },
+                )
+            })
+            .collect()
+    }
+
+    /// Starts watching row `q` (alive, computed, exact counts).
+    pub fn watch(&self, w: &mut Watch, q: usize) {
+        let at = u64::from(self.stamp[q]) + u64::from((w.slack)(self.counts[q]));
+        w.heap.push(Reverse((at, q as u32)));
+    }
+
+    /// The watched rows whose slack the removals may have used up, with
+    /// exact counts, ascending; they are no longer watched.
+    pub fn due(&mut self, w: &mut Watch, ctx: &Ctx) -> Vec<usize> {
+        let mut v = Vec::new();
+        while let Some(&Reverse((at, q))) = w.heap.peek() {
+            if at > u64::from(self.removed) {
+                break;
+            }
+            w.heap.pop();
+            let q = q as usize;
+            if self.alive[q] {
+                v.push(q);
             }
         }
+        v.sort_unstable();
+        v.dedup();
+        self.refresh(&v, ctx);
+        v
     }
 
     /// The table of a subgroup: `members` (local indices of this table) and
     /// new `pieces` (polygon id, local index of the polygon it was split
-    /// from). Rows known here stay known; entries that involve a piece are
-    /// taken from its parent where the plane is the same, else computed.
+    /// from). A member keeps its row (computed or not); a piece lies in its
+    /// parent's plane and has its parent's. Counts are made exact: from
+    /// this table's counts, when they are exact and the members left out
+    /// are fewer than those kept (take out what left, add the pieces),
+    /// otherwise counted again.
     pub fn subtable(&self, members: &[usize], pieces: &[(u32, usize)], ctx: &mut Ctx) -> Table {
         let mut ids: Vec<u32> = members.iter().map(|&i| self.ids[i]).collect();
         ids.extend(pieces.iter().map(|&(id, _)| id));
-        let mut t = Table::new(ids);
-        let m = t.m;
-        // Origin in this table of each new member: (old index, is piece).
-        let origin: Vec<(usize, bool)> = members
+        let mut t = Table::new(ids, &ctx.polys);
+        let origin: Vec<usize> = members
             .iter()
-            .map(|&i| (i, false))
-            .chain(pieces.iter().map(|&(_, parent)| (parent, true)))
+            .copied()
+            .chain(pieces.iter().map(|&(_, parent)| parent))
             .collect();
-        for q in 0..m {
-            let oq = origin[q].0;
-            if !self.has_row[oq] {
-                continue;
-            }
-            // A piece lies in its parent's plane: the parent's row is its row.
-            for (p, &(op, p_piece)) in origin.iter().enumerate() {
-                if p == q {
-                    continue;
-                }
-                let r = if op == oq {
-                    Rel::Same
-                } else if !p_piece {
-                    self.rel(oq, op)
-                } else {
-                    ctx.relation(t.ids[p], t.ids[q])
-                };
-                t.rel[q * m + p] = r;
-            }
-            t.has_row[q] = true;
+        let mut kept = vec![false; self.len()];
+        for &i in members {
+            kept[i] = true;
         }
-        for q in 0..m {
-            if t.has_row[q] {
-                t.recount(q);
+        // Alive members that do not come along (local index here, id).
+        let gone: Vec<usize> = (0..self.len())
+            .filter(|&i| self.alive[i] && !kept[i])
+            .collect();
+        let mut rows = Vec::new();
+        for (q, &o) in origin.iter().enumerate() {
+            if self.has_row[o] {
+                t.has_row[q] = true;
+                t.stamp[q] = NEVER;
+                rows.push(q);
             }
         }
+        // Entries of a known row against the new pieces are new relations.
+        ctx.relations += (rows.len() * pieces.len()) as u64;
+        if gone.len() + pieces.len() < t.len() {
+            let gone_ids: Vec<u32> = gone.iter().map(|&i| self.ids[i]).collect();
+            let piece_ids: Vec<u32> = pieces.iter().map(|&(id, _)| id).collect();
+            let gone_bvh = Bvh::new(&gone_ids, &ctx.polys);
+            let piece_bvh = Bvh::new(&piece_ids, &ctx.polys);
+            let (all_gone, all_pieces) = (vec![true; gone.len()], vec![true; pieces.len()]);
+            let (polys, tol) = (&ctx.polys, ctx.tol);
+            let n_members = members.len();
+            let exact: Vec<usize> = rows
+                .iter()
+                .copied()
+                .filter(|&q| self.stamp[origin[q]] == self.removed)
+                .collect();
+            let counts = count_rows(&exact, |q| {
+                let o = origin[q];
+                let plane = polys[t.ids[q] as usize].plane;
+                // A piece's row is its parent's, which did not count the
+                // parent itself; the parent is among those gone.
+                let skip_gone = gone.binary_search(&o).unwrap_or(usize::MAX);
+                let skip_piece = q.checked_sub(n_members).unwrap_or(usize::MAX);
+                let c = self.counts[o];
+                let g = gone_bvh.counts(&plane, skip_gone, &all_gone, &gone_ids, polys, tol);
+                let p = piece_bvh.counts(&plane, skip_piece, &all_pieces, &piece_ids, polys, tol);
+                [c[0] - g[0] + p[0], c[1] - g[1] + p[1], c[2] - g[2] + p[2]]
+            });
+            for (q, c) in exact.into_iter().zip(counts) {
+                t.counts[q] = c;
+                t.stamp[q] = 0;
+            }
+        }
+        t.refresh(&rows, ctx);
         t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::build::{NoProgress, Rng};
+    use crate::geom::bounds;
+    use glam::DVec3;
+
+    /// Row `q` of the paper's full table, counted polygon by polygon.
+    fn full_row(t: &Table, q: usize, ctx: &Ctx) -> [u32; 3] {
+        let plane = ctx.polys[t.ids[q] as usize].plane;
+        let mut c = [0; 3];
+        for p in (0..t.len()).filter(|&p| p != q && t.is_alive(p)) {
+            match ctx.classify(t.ids[p], &plane) {
+                Rel::Front => c[0] += 1,
+                Rel::Back => c[1] += 1,
+                Rel::Cut => c[2] += 1,
+                _ => {}
+            }
+        }
+        c
+    }
+
+    fn check(t: &Table, ctx: &Ctx) {
+        let mut rows = 0;
+        for q in (0..t.len()).filter(|&q| t.is_alive(q) && t.has_row(q)) {
+            assert_eq!(t.counts(q), full_row(t, q, ctx), "row {q}");
+            rows += 1;
+        }
+        assert!(rows > 0);
+    }
+
+    /// The counts kept through the hierarchy, through removals (corrected
+    /// one by one, or counted again) and through subtables (from the
+    /// parent's counts, or counted again) equal the full table's.
+    #[test]
+    fn counts_match_the_full_table() {
+        let mut progress = NoProgress;
+        let polys = crate::scenes::torus(30, 14).polygons;
+        let (lo, hi) = bounds(&polys);
+        let n = polys.len();
+        let mut ctx = Ctx {
+            polys,
+            tol: Tolerance::for_diagonal((hi - lo).length()),
+            relations: 0,
+            splittings: 0,
+            rng: Rng::new(7),
+            weight: vec![1.0; n],
+            placed: 0.0,
+            total: n,
+            progress: &mut progress,
+        };
+        let mut t = Table::new((0..n as u32).collect(), &ctx.polys);
+        let all: Vec<usize> = (0..n).collect();
+        t.compute_rows(&all, &mut ctx);
+        check(&t, &ctx);
+        for removals in [3, 150] {
+            for _ in 0..removals {
+                let p = ctx.rng.below(n);
+                t.remove(p);
+            }
+            t.refresh_all(&ctx);
+            check(&t, &ctx);
+        }
+        // A plane that leaves most of the torus in front of it.
+        let x = lo.x + 0.2 * (hi.x - lo.x);
+        let plane = Plane {
+            normal: DVec3::X,
+            d: -x,
+        };
+        let (mut front, mut pieces) = (Vec::new(), Vec::new());
+        for p in (0..t.len()).filter(|&p| t.is_alive(p)) {
+            match ctx.classify(t.ids[p], &plane) {
+                Rel::Front => front.push(p),
+                Rel::Cut => {
+                    let (f, _) = ctx.split(t.ids[p], &plane);
+                    pieces.extend(f.into_iter().map(|id| (id, p)));
+                }
+                _ => {}
+            }
+        }
+        assert!(!pieces.is_empty());
+        // Most members kept: from the parent's counts; few: counted again.
+        for keep in [front.len(), 5] {
+            let sub = t.subtable(&front[..keep], &pieces, &mut ctx);
+            check(&sub, &ctx);
+        }
     }
 }

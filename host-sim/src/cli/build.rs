@@ -9,6 +9,7 @@ use fpt_nostd::effects::Effects;
 use fpt_nostd::format::VertexFormat;
 use fpt_nostd::raster::{Libm, Orbit};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -32,19 +33,24 @@ pub fn parse_vertex_format(s: &str) -> Result<VertexFormat, CliError> {
         .ok_or_else(|| cli_err!("unknown vertex format '{s}' (expected f32, q16 or q32)"))
 }
 
-/// A progress bar on stderr that appears only once a build has run for
-/// about a second, so quick builds print nothing.
+/// Build progress on stderr. On a terminal: a bar that appears once a
+/// build has run for about a second (quick builds print nothing), redrawn
+/// every 200 ms with elapsed time and ETA; its total is the input polygon
+/// count and never grows. Otherwise: a plain line at most every 10 s.
 struct Bar {
     bar: ProgressBar,
     start: Instant,
     shown: bool,
+    tty: bool,
+    last_line: Instant,
+    quiet: bool,
 }
 
 impl Bar {
     fn new() -> Bar {
         let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
         if let Ok(style) = ProgressStyle::with_template(
-            "{spinner} building [{bar:40}] {pos}/{len} polygons placed",
+            "{spinner} building [{bar:40}] {pos}/{len} input polygons placed, {elapsed}, ETA {eta}",
         ) {
             bar.set_style(style.progress_chars("=> "));
         }
@@ -52,18 +58,39 @@ impl Bar {
             bar,
             start: Instant::now(),
             shown: false,
+            tty: std::io::stderr().is_terminal(),
+            last_line: Instant::now(),
+            quiet: false,
         }
+    }
+
+    /// A bar that shows only on a terminal (benchmarks print tables).
+    fn quiet() -> Bar {
+        let mut b = Bar::new();
+        b.quiet = true;
+        b
     }
 }
 
 impl Progress for Bar {
     fn update(&mut self, placed: usize, total: usize) {
-        if !self.shown && self.start.elapsed() > Duration::from_secs(1) {
-            self.bar.set_draw_target(ProgressDrawTarget::stderr());
-            self.shown = true;
-        }
         self.bar.set_length(total as u64);
         self.bar.set_position(placed as u64);
+        let elapsed = self.start.elapsed();
+        if self.tty {
+            if !self.shown && elapsed > Duration::from_secs(1) {
+                self.bar.set_draw_target(ProgressDrawTarget::stderr());
+                self.bar.enable_steady_tick(Duration::from_millis(200));
+                self.shown = true;
+            }
+        } else if !self.quiet && self.last_line.elapsed() >= Duration::from_secs(10) {
+            self.last_line = Instant::now();
+            let pct = 100.0 * placed as f64 / total.max(1) as f64;
+            eprintln!(
+                "building: {placed} of {total} input polygons placed ({pct:.0} %), {:.0} s",
+                elapsed.as_secs_f64()
+            );
+        }
     }
 }
 
@@ -71,6 +98,46 @@ impl Drop for Bar {
     fn drop(&mut self) {
         self.bar.finish_and_clear();
     }
+}
+
+/// Heap a build of `polygons` input polygons needs, about, in bytes:
+/// measured peaks (`fpt bench-build --scaling`) are 1.0–1.9 KiB per input
+/// polygon; this allows 3 KiB and 16 MiB besides.
+pub fn build_estimate(polygons: usize) -> usize {
+    (16 << 20) + polygons.saturating_mul(3 << 10)
+}
+
+/// Refuses a build that will not fit `--max-memory`, and tells the
+/// allocator what the build needs for its message if memory runs out.
+fn check_memory(a: &BuildArgs, polygons: usize) -> CliResult {
+    let need = crate::memory::in_use() + build_estimate(polygons);
+    let mib = need.div_ceil(1 << 20);
+    if let Some(max) = a.max_memory {
+        let max = usize::try_from(max)
+            .unwrap_or(usize::MAX)
+            .saturating_mul(1 << 20);
+        if need > max {
+            return Err(cli_err!(
+                "not enough memory to build this mesh (needs about {mib} MiB)"
+            ));
+        }
+        crate::memory::set_limit(max);
+    }
+    crate::memory::set_build_estimate(mib);
+    Ok(())
+}
+
+/// Why the mesh is open and what that costs, when it is.
+fn open_lines(report: &crate::mesh::ImportReport) -> Option<String> {
+    let n = report.boundary_edges;
+    (n > 0).then(|| {
+        format!(
+            "note: the mesh is open: {n} edge{} not shared by exactly two faces winding \
+             opposite ways (holes, non-manifold or inconsistently wound edges); an open tree \
+             draws both sides of every face in every view (no back-face culling)",
+            if n == 1 { " is" } else { "s are" }
+        )
+    })
 }
 
 /// The statistics as the JSON object `fpt build --stats` writes.
@@ -178,6 +245,9 @@ pub fn run(a: &BuildArgs) -> CliResult {
     let options = crate::mesh::ImportOptions {
         keep_orientation: a.keep_orientation,
     };
+    // Reading the mesh is part of building it: running out of memory there
+    // gets the same message (with what was in use when it ran out).
+    crate::memory::set_build_estimate(1);
     let model = crate::mesh::load_with(&a.mesh, &options)
         .map_err(|e| cli_err!("{}: {e}", a.mesh.display()))?;
     for w in model.report.warning_lines() {
@@ -191,12 +261,23 @@ pub fn run(a: &BuildArgs) -> CliResult {
     } else if a.open {
         false
     } else {
+        if !model.closed {
+            if let Some(l) = open_lines(&model.report) {
+                eprintln!("{l}");
+            }
+        }
         model.closed
     };
+    check_memory(a, model.polygons.len())?;
+    crate::memory::reset_peak();
     let tree = {
         let mut bar = Bar::new();
         build(model.polygons, closed, method, a.seed, &mut bar)
     };
+    crate::memory::set_build_estimate(0);
+    let peak = crate::memory::peak().map_or_else(String::new, |p| {
+        format!(", peak heap {:.1} MiB", p as f64 / f64::from(1 << 20))
+    });
     let effects = scene_effects(a, &tree)?;
     let opts = crate::serialize::SerializeOptions {
         vertex_format,
@@ -212,7 +293,7 @@ pub fn run(a: &BuildArgs) -> CliResult {
     let s = &tree.stats;
     println!("effects: {effects}");
     println!(
-        "{}: {} {} tree, {} -> {} polygons, {} splittings, {} switch nodes, depth {}, {:.1} ms, {} bytes",
+        "{}: {} {} tree, {} -> {} polygons, {} splittings, {} switch nodes, depth {}, {:.1} ms, {} bytes{peak}",
         a.output.display(),
         if closed { "closed" } else { "open" },
         method.name(),
@@ -256,35 +337,91 @@ fn meshes_in(dir: &Path) -> Vec<PathBuf> {
     v
 }
 
-/// `fpt bench-build --scaling`: build time against polygon count.
-fn bench_scaling() -> CliResult {
-    println!("| polygons | method | output | splittings | relations | build ms |");
-    println!("|---|---|---|---|---|---|");
-    for (major, minor) in [(38, 20), (54, 28), (78, 39), (110, 55), (156, 78)] {
-        let scene = crate::scenes::torus(major, minor);
-        for method in [Method::Static, Method::Dynamic, Method::Bsp] {
-            let mut bar = Bar::new();
-            let seed = crate::build::DEFAULT_SEED;
-            let t = build(scene.polygons.clone(), true, method, seed, &mut bar);
-            let s = &t.stats;
-            println!(
-                "| {} | {} | {} | {} | {} | {:.1} |",
-                s.input_polygons,
-                method.name(),
-                s.output_polygons,
-                s.splittings,
-                s.relations,
-                s.build_ms
-            );
+/// The least-squares slope of `ln y` against `ln x`: the exponent `k` of
+/// `y ≈ c·x^k`; `None` with fewer than two distinct sizes.
+pub fn growth_exponent(points: &[(f64, f64)]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    let n = pts.len() as f64;
+    let (mx, my) = pts
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let sxx: f64 = pts.iter().map(|(x, _)| (x - mx).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+    (pts.len() >= 2 && sxx > 1e-12).then(|| sxy / sxx)
+}
+
+/// `fpt bench-build --scaling`: the static build against size, for the
+/// meshes given or for faceted tori.
+fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
+    let mut inputs: Vec<(String, Vec<crate::geom::Polygon>, bool)> = Vec::new();
+    if a.meshes.is_empty() {
+        let mut size = 760usize;
+        while size <= a.max_polygons.max(760) {
+            // A torus of about `size` quads, twice as many around as across.
+            let minor = ((size as f64 / 2.0).sqrt()).round().max(3.0) as usize;
+            let major = (size / minor).max(3);
+            let scene = crate::scenes::torus(major, minor);
+            inputs.push((format!("torus {major}×{minor}"), scene.polygons, true));
+            size *= 2;
+        }
+    } else {
+        for path in &a.meshes {
+            let model = crate::mesh::load(path).map_err(|e| cli_err!("{}: {e}", path.display()))?;
+            let name = path
+                .file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+            inputs.push((name, model.polygons, model.closed));
         }
     }
+    println!("| input | polygons | output | out/in | build s | peak heap MiB | bytes/polygon |");
+    println!("|---|---|---|---|---|---|---|");
+    let (mut times, mut peaks) = (Vec::new(), Vec::new());
+    for (name, polygons, closed) in inputs {
+        let n = polygons.len();
+        crate::memory::reset_peak();
+        let base = crate::memory::in_use();
+        let t = build(
+            polygons,
+            closed,
+            Method::Static,
+            crate::build::DEFAULT_SEED,
+            &mut Bar::quiet(),
+        );
+        let peak =
+            crate::memory::peak().map(|p| p.saturating_sub(base) as f64 / f64::from(1 << 20));
+        let bytes =
+            crate::serialize::serialize(&t, &crate::serialize::SerializeOptions::default())?;
+        let s = &t.stats;
+        let secs = s.build_ms / 1e3;
+        times.push((n as f64, secs));
+        if let Some(p) = peak {
+            peaks.push((n as f64, p));
+        }
+        println!(
+            "| {name} | {n} | {} | {:.2} | {secs:.2} | {} | {:.1} |",
+            s.output_polygons,
+            s.output_polygons as f64 / n.max(1) as f64,
+            peak.map_or_else(|| "-".to_string(), |p| format!("{p:.1}")),
+            bytes.len() as f64 / s.output_polygons.max(1) as f64,
+        );
+    }
+    let show = |e: Option<f64>| e.map_or_else(|| "-".to_string(), |e| format!("{e:.2}"));
+    println!(
+        "fitted growth: build time ~ n^{}, peak heap ~ n^{}",
+        show(growth_exponent(&times)),
+        show(growth_exponent(&peaks))
+    );
     Ok(())
 }
 
 /// `fpt bench-build`: static, dynamic and BSP side by side per model.
 pub fn bench(a: &BenchBuildArgs) -> CliResult {
     if a.scaling {
-        return bench_scaling();
+        return bench_scaling(a);
     }
     let meshes = if a.meshes.is_empty() {
         let dir = shared_models_dir()

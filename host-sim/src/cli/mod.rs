@@ -120,6 +120,10 @@ pub struct BuildArgs {
     /// clipping out.
     #[arg(long, allow_hyphen_values = true)]
     pub orbit: Option<String>,
+    /// Heap the build may use, in MiB: a mesh that needs more is refused
+    /// with an error (exit status 2) before or while building.
+    #[arg(long = "max-memory", value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_memory: Option<u64>,
 }
 
 /// Arguments of `fpt polygons`.
@@ -157,10 +161,14 @@ pub struct BenchBuildArgs {
     /// Builds per method and model; times are averaged.
     #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     pub runs: u32,
-    /// Instead of meshes: build faceted tori of 750 to 12,000 polygons and
-    /// show how build time grows with the polygon count.
+    /// Build time, peak heap, output polygons and bytes per polygon of the
+    /// static build against size, with fitted growth exponents: for the
+    /// meshes given, or for faceted tori of 760 to 70,000 polygons.
     #[arg(long)]
     pub scaling: bool,
+    /// With --scaling and no meshes: the largest torus, in polygons.
+    #[arg(long = "max-polygons", default_value_t = 70_000)]
+    pub max_polygons: usize,
 }
 
 /// Arguments of `fpt bench-order`.
