@@ -24,6 +24,7 @@ use crate::tree::Method;
 use clap::Args;
 use embedded_graphics::pixelcolor::Rgb888;
 use fpt_nostd::effects::Effects;
+use fpt_nostd::format::UpAxis;
 use fpt_nostd::raster::ShadeMode;
 use fpt_nostd::reader::Tree;
 use std::path::{Path, PathBuf};
@@ -103,7 +104,12 @@ fn demo_scene(show: &Show, out: &Path) -> CliResult {
         DEFAULT_SEED,
         &mut NoProgress,
     );
-    let bytes = serialize(&tree, &SerializeOptions::default())?;
+    // The scenes are z-up: recorded, so `fpt render TREE` shows them upright.
+    let opts = SerializeOptions {
+        up: UpAxis::Z,
+        ..SerializeOptions::default()
+    };
+    let bytes = serialize(&tree, &opts)?;
     let t = Tree::from_bytes(&bytes)
         .map_err(|e| cli_err!("{}: the serialized tree does not validate: {e}", s.name))?;
     let tree_path = out.join(format!("{}.fpt", s.name));
@@ -133,9 +139,9 @@ fn demo_scene(show: &Show, out: &Path) -> CliResult {
             camera: CameraSpec::Orbit {
                 yaw,
                 pitch,
-                distance: Some(show.distance * f64::from(t.bounding_radius())),
+                distance: Some(show.distance),
                 fov,
-                z_up: true,
+                up: UpAxis::Z,
             },
             format: show.format,
             band: None,
@@ -219,9 +225,9 @@ fn demo_effects(out: &Path) -> CliResult {
             camera: CameraSpec::Orbit {
                 yaw: 35.0,
                 pitch: 25.0,
-                distance: Some(2.2 * f64::from(t.bounding_radius())),
+                distance: Some(2.2),
                 fov: 40.0,
-                z_up: true,
+                up: UpAxis::Z,
             },
             format,
             band: None,
