@@ -37,6 +37,7 @@ use crate::geom::Polygon;
 use std::fmt;
 use std::path::Path;
 
+pub use obj::write_obj_mtl;
 pub use prepare::{from_faces, from_faces_with, is_closed, is_closed_faces};
 
 /// A mesh ready for the tree builders.

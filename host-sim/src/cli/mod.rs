@@ -17,7 +17,7 @@ pub mod frames;
 mod inspect;
 pub mod mcu_bench;
 mod render;
-mod turntable;
+pub mod turntable;
 
 /// A failure reported to the user as `error: MESSAGE`, exit status 2.
 #[derive(Debug)]

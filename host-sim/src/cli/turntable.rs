@@ -26,6 +26,8 @@ use crate::cli_err;
 use crate::output::write_atomic;
 use clap::Args;
 use embedded_graphics::pixelcolor::Rgb888;
+use fpt_nostd::raster::ShadeMode;
+use fpt_nostd::reader::Tree;
 use std::path::PathBuf;
 
 /// Most frames a turntable may have.
@@ -73,6 +75,27 @@ fn delay_of(fps: u32) -> u16 {
     ((100 + fps / 2) / fps.max(1)).clamp(2, 100) as u16
 }
 
+/// One turntable: picture size, frames, rate, the first frame's camera
+/// and how the model is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spin {
+    /// Width in pixels (at most [`MAX_SIDE`]).
+    pub w: u32,
+    /// Height in pixels (at most [`MAX_SIDE`]).
+    pub h: u32,
+    /// Frames in one turn.
+    pub frames: u32,
+    /// Frames per second.
+    pub fps: u32,
+    /// The camera of frame 0; an orbit's yaw advances by `360° / frames`
+    /// each frame.
+    pub camera: CameraSpec,
+    /// Shading mode.
+    pub shade: ShadeMode,
+    /// Background colour.
+    pub background: Rgb888,
+}
+
 /// `fpt turntable`.
 pub fn run(a: &TurntableArgs) -> CliResult {
     let (w, h) = parse_size(&a.size)?;
@@ -99,8 +122,16 @@ pub fn run(a: &TurntableArgs) -> CliResult {
     let shade = parse_shade(&a.shade)?;
     let bytes = read_tree(&a.tree)?;
     let tree = open_tree(&bytes, &a.tree)?;
-    let first = orbit_camera(&a.orbit, &tree, w, h)?;
-    let gif = encode(&tree, first, w, h, a, shade, Rgb888::new(r, g, b))?;
+    let spin = Spin {
+        w,
+        h,
+        frames: a.frames,
+        fps: a.fps,
+        camera: orbit_camera(&a.orbit, &tree, w, h)?,
+        shade,
+        background: Rgb888::new(r, g, b),
+    };
+    let gif = encode(&tree, &spin, &a.precision)?;
     write_atomic(&a.output, &gif).map_err(|e| cli_err!("{}: {e}", a.output.display()))?;
     println!(
         "{}: {w}x{h}, {} frames at {} fps ({} ms a frame), {} bytes",
@@ -113,16 +144,10 @@ pub fn run(a: &TurntableArgs) -> CliResult {
     Ok(())
 }
 
-/// Draws the frames and encodes the GIF in memory.
-fn encode(
-    tree: &fpt_nostd::reader::Tree<'_>,
-    first: CameraSpec,
-    w: u32,
-    h: u32,
-    a: &TurntableArgs,
-    shade: fpt_nostd::raster::ShadeMode,
-    background: Rgb888,
-) -> Result<Vec<u8>, CliError> {
+/// Draws the frames of `spin` with arithmetic `precision` (a
+/// `--precision` name) and encodes the GIF in memory.
+pub fn encode(tree: &Tree<'_>, spin: &Spin, precision: &str) -> Result<Vec<u8>, CliError> {
+    let (w, h) = (spin.w, spin.h);
     let (gw, gh) = (
         u16::try_from(w).map_err(|_| cli_err!("--size: {w} is too wide for a GIF"))?,
         u16::try_from(h).map_err(|_| cli_err!("--size: {h} is too tall for a GIF"))?,
@@ -133,8 +158,8 @@ fn encode(
             gif::Encoder::new(&mut out, gw, gh, &[]).map_err(|e| cli_err!("GIF encoder: {e}"))?;
         enc.set_repeat(gif::Repeat::Infinite)
             .map_err(|e| cli_err!("GIF encoder: {e}"))?;
-        for k in 0..a.frames {
-            let camera = match first {
+        for k in 0..spin.frames {
+            let camera = match spin.camera {
                 CameraSpec::Orbit {
                     yaw,
                     pitch,
@@ -142,7 +167,7 @@ fn encode(
                     fov,
                     up,
                 } => CameraSpec::Orbit {
-                    yaw: yaw + 360.0 * f64::from(k) / f64::from(a.frames),
+                    yaw: yaw + 360.0 * f64::from(k) / f64::from(spin.frames),
                     pitch,
                     distance,
                     fov,
@@ -156,17 +181,17 @@ fn encode(
                 camera,
                 format: Format::Rgb888,
                 band: None,
-                shade,
-                background,
+                shade: spin.shade,
+                background: spin.background,
                 ids: false,
                 effects: None,
                 gray_levels: None,
             };
-            let Image::Rgb888(rgb) = render_job(tree, &job, &a.precision)?.image else {
+            let Image::Rgb888(rgb) = render_job(tree, &job, precision)?.image else {
                 return Err(cli_err!("the renderer returned no 24-bit picture"));
             };
             let mut frame = gif::Frame::from_rgb_speed(gw, gh, &rgb, 10);
-            frame.delay = delay_of(a.fps);
+            frame.delay = delay_of(spin.fps);
             enc.write_frame(&frame)
                 .map_err(|e| cli_err!("GIF encoder: {e}"))?;
         }
