@@ -232,6 +232,15 @@ impl MeshFormat {
         }
     }
 
+    /// The up axis `fpt build --up auto` records for files of this format:
+    /// z for STL (CAD parts are z-up), y for the others.
+    pub fn up_axis(self) -> fpt_nostd::format::UpAxis {
+        match self {
+            MeshFormat::Stl => fpt_nostd::format::UpAxis::Z,
+            _ => fpt_nostd::format::UpAxis::Y,
+        }
+    }
+
     /// The short name used in messages, e.g. `"OBJ"`.
     pub fn name(self) -> &'static str {
         match self {

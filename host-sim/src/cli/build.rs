@@ -171,16 +171,16 @@ fn forced_closed_line(report: &crate::mesh::ImportReport) -> Option<String> {
     })
 }
 
-/// The up axis `fpt build --up NAME` records for `mesh`: `auto` is z for
-/// STL files (CAD parts are z-up) and y for the other formats.
+/// The up axis `fpt build --up NAME` records for `mesh`: `auto` is the
+/// format's ([`crate::mesh::MeshFormat::up_axis`]: z for STL, y for the
+/// others).
 pub fn up_axis_for(name: &str, mesh: &Path) -> Result<UpAxis, CliError> {
     if name == "auto" {
-        let stl = mesh
+        let format = mesh
             .extension()
             .and_then(|e| e.to_str())
-            .and_then(crate::mesh::MeshFormat::from_extension)
-            == Some(crate::mesh::MeshFormat::Stl);
-        return Ok(if stl { UpAxis::Z } else { UpAxis::Y });
+            .and_then(crate::mesh::MeshFormat::from_extension);
+        return Ok(format.map_or(UpAxis::Y, |f| f.up_axis()));
     }
     UpAxis::from_name(name)
         .ok_or_else(|| cli_err!("unknown up axis '{name}' (expected auto, x, y or z)"))
