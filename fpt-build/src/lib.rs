@@ -36,9 +36,12 @@
 //! }
 //! ```
 //!
-//! The same bytes as `fpt build part.stl -o part.fpt` with default options
+//! The same bytes as `fpt build part.obj -o part.fpt` with default options
 //! (tested in `host-sim/tests/cli_build.rs`; `fpt-build/examples/build_rs.rs`
-//! is the same recipe as a program).
+//! is the same recipe as a program). For an STL file `fpt build` also
+//! records z as the model's up axis (header byte 23, read by viewers such
+//! as `fpt render`): `SerializeOptions { up: MeshFormat::Stl.up_axis(),
+//! ..Default::default() }` gives its bytes.
 #![deny(unsafe_code, missing_docs)]
 
 pub mod build;

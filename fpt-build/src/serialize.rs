@@ -32,8 +32,8 @@ use std::fmt;
 
 pub use fpt_nostd::format::VertexFormat;
 use fpt_nostd::format::{
-    crc32, header as h, polygon as pg, Counts, Sections, FLAG_CLOSED, HEADER_LEN, MAGIC, MAX_SHIFT,
-    NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION,
+    crc32, header as h, polygon as pg, Counts, Sections, UpAxis, FLAG_CLOSED, HEADER_LEN, MAGIC,
+    MAX_SHIFT, NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION,
 };
 use glam::DVec3;
 
@@ -50,6 +50,8 @@ pub struct SerializeOptions {
     /// as they are; `None` stores the defaults for the tree's kind
     /// ([`fpt_nostd::effects::Effects::defaults`]).
     pub effects: Option<u32>,
+    /// The model's up axis, recorded for viewers (header byte 23).
+    pub up: UpAxis,
 }
 
 impl Default for SerializeOptions {
@@ -57,6 +59,7 @@ impl Default for SerializeOptions {
         SerializeOptions {
             vertex_format: VertexFormat::F32,
             effects: None,
+            up: UpAxis::Y,
         }
     }
 }
@@ -461,7 +464,12 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         .effects
         .unwrap_or(fpt_nostd::effects::Effects::defaults(tree.closed).bits());
     put_u32(&mut out, effects);
-    out.extend_from_slice(&[opts.vertex_format.code(), enc.shift, index_size as u8, 0]);
+    out.extend_from_slice(&[
+        opts.vertex_format.code(),
+        enc.shift,
+        index_size as u8,
+        opts.up.code(),
+    ]);
     put_u32(&mut out, count(tree.root.depth())?);
     for c in [
         counts.vertices,
@@ -610,11 +618,13 @@ mod tests {
             let opts = SerializeOptions {
                 vertex_format: f,
                 effects: Some(0xABCD),
+                up: UpAxis::Z,
             };
             let bytes = serialize(&t, &opts).unwrap();
             let r = Tree::from_bytes(&bytes).unwrap();
             assert_eq!(r.vertex_format(), f);
             assert_eq!(r.effects(), 0xABCD);
+            assert_eq!(r.up_axis(), UpAxis::Z);
             assert!(!r.is_closed());
             // 12 corners, but the x/y corners repeat on each z: 12 distinct.
             assert_eq!(r.vertex_count(), 12);
@@ -646,13 +656,40 @@ mod tests {
     }
 
     #[test]
+    fn up_axis_is_recorded_and_checked() {
+        let t = sample(DVec3::ZERO);
+        for up in UpAxis::ALL {
+            let opts = SerializeOptions {
+                up,
+                ..SerializeOptions::default()
+            };
+            let mut bytes = serialize(&t, &opts).unwrap();
+            assert_eq!(bytes[h::UP_AXIS], up.code());
+            assert_eq!(Tree::from_bytes(&bytes).unwrap().up_axis(), up);
+            // An unknown code is refused (with a valid checksum).
+            bytes[h::UP_AXIS] = 3;
+            let n = bytes.len() - 4;
+            let crc = crc32(&bytes[..n]);
+            bytes[n..].copy_from_slice(&crc.to_le_bytes());
+            assert_eq!(
+                Tree::from_bytes(&bytes).unwrap_err(),
+                fpt_nostd::format::FormatError::BadHeader("up_axis")
+            );
+        }
+        // The default is y, code 0: what files written before the field
+        // existed hold.
+        let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+        assert_eq!(bytes[h::UP_AXIS], 0);
+    }
+
+    #[test]
     fn q32_shift_is_the_largest_that_fits() {
         let t = sample(DVec3::ZERO);
         let bytes = serialize(
             &t,
             &SerializeOptions {
                 vertex_format: VertexFormat::Q32,
-                effects: None,
+                ..SerializeOptions::default()
             },
         )
         .unwrap();

@@ -30,7 +30,7 @@
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
 //! | 22 | `u8` | index_size | bytes per vertex index: 2 (`u16`) or 4 (`u32`) |
-//! | 23 | `u8` | reserved | 0 |
+//! | 23 | `u8` | up_axis | [`UpAxis`] code, the model's up axis as the builder was told or guessed it: 0 `y` (also: not recorded, as in files written before it existed), 1 `x`, 2 `z`; any other value is an error |
 //! | 24 | `u32` | max_depth | connecting nodes on the longest root-to-leaf path (root alone: 1) |
 //! | 28 | `u32` | vertex_count | entries in the vertex section |
 //! | 32 | `u32` | polygon_count | entries in the polygon section |
@@ -181,8 +181,8 @@ pub mod header {
     pub const SHIFT: usize = 21;
     /// `u8` bytes per vertex index.
     pub const INDEX_SIZE: usize = 22;
-    /// `u8` reserved, 0.
-    pub const RESERVED8: usize = 23;
+    /// `u8` up axis code ([`super::UpAxis`]).
+    pub const UP_AXIS: usize = 23;
     /// `u32` maximum depth.
     pub const MAX_DEPTH: usize = 24;
     /// `u32` vertex count.
@@ -293,6 +293,67 @@ impl VertexFormat {
     /// The format called `name` (as [`VertexFormat::name`] spells it).
     pub fn from_name(name: &str) -> Option<VertexFormat> {
         Self::ALL.into_iter().find(|f| f.name() == name)
+    }
+}
+
+/// The model's up axis, recorded in the header by the builder so that a
+/// viewer (`fpt render`, `fpt turntable`) shows the model upright without
+/// being told. The renderer itself does not use it: it only draws through
+/// the camera it is given.
+///
+/// ```
+/// use fpt_nostd::format::UpAxis;
+/// assert_eq!(UpAxis::from_code(0), Some(UpAxis::Y));
+/// assert_eq!(UpAxis::Z.code(), 2);
+/// assert_eq!(UpAxis::from_name("x"), Some(UpAxis::X));
+/// assert_eq!(UpAxis::from_code(3), None);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum UpAxis {
+    /// `+y` is up (code 0, also files that record nothing).
+    #[default]
+    Y,
+    /// `+x` is up (code 1).
+    X,
+    /// `+z` is up (code 2), as in most CAD files.
+    Z,
+}
+
+impl UpAxis {
+    /// All axes, in code order.
+    pub const ALL: [UpAxis; 3] = [UpAxis::Y, UpAxis::X, UpAxis::Z];
+
+    /// The code stored in the header.
+    pub const fn code(self) -> u8 {
+        match self {
+            UpAxis::Y => 0,
+            UpAxis::X => 1,
+            UpAxis::Z => 2,
+        }
+    }
+
+    /// The axis with header code `c`.
+    pub const fn from_code(c: u8) -> Option<UpAxis> {
+        match c {
+            0 => Some(UpAxis::Y),
+            1 => Some(UpAxis::X),
+            2 => Some(UpAxis::Z),
+            _ => None,
+        }
+    }
+
+    /// The command-line name: `x`, `y` or `z`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            UpAxis::Y => "y",
+            UpAxis::X => "x",
+            UpAxis::Z => "z",
+        }
+    }
+
+    /// The axis called `name` (as [`UpAxis::name`] spells it).
+    pub fn from_name(name: &str) -> Option<UpAxis> {
+        Self::ALL.into_iter().find(|a| a.name() == name)
     }
 }
 

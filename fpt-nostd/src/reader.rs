@@ -77,7 +77,7 @@
 
 use crate::format::{
     crc32, header as h, le_f32, le_u32, node as nd, polygon as pg, rd, rd_f32, rd_f32x3, rd_f64,
-    rd_i16, rd_i32, rd_u16, rd_u32, rd_u8, rec, run as rn, Counts, FormatError, Sections,
+    rd_i16, rd_i32, rd_u16, rd_u32, rd_u8, rec, run as rn, Counts, FormatError, Sections, UpAxis,
     VertexFormat, CRC_LEN, FLAG_CLOSED, HEADER_LEN, MAGIC, MAX_SHIFT, NODE_LEN, POLYGON_LEN,
     Q16_MAX, RUN_LEN, SWITCH_LEN, VERSION,
 };
@@ -388,6 +388,7 @@ pub struct Tree<'a> {
     effects: u32,
     max_depth: u32,
     radius: f32,
+    up: UpAxis,
 }
 
 /// One polygon of a [`Tree`].
@@ -550,9 +551,8 @@ impl<'a> Tree<'a> {
         if index_size != 2 && index_size != 4 {
             return Err(FormatError::BadHeader("index_size"));
         }
-        if rd_u8(bytes, h::RESERVED8) != 0 {
-            return Err(FormatError::BadHeader("reserved"));
-        }
+        let up =
+            UpAxis::from_code(rd_u8(bytes, h::UP_AXIS)).ok_or(FormatError::BadHeader("up_axis"))?;
         let counts = Counts {
             vertices: rd_u32(bytes, h::VERTEX_COUNT),
             polygons: rd_u32(bytes, h::POLYGON_COUNT),
@@ -626,6 +626,7 @@ impl<'a> Tree<'a> {
             effects: rd_u32(bytes, h::EFFECTS),
             max_depth: rd_u32(bytes, h::MAX_DEPTH),
             radius,
+            up,
         };
         tree.check_vertices()?;
         tree.check_polygons()?;
@@ -645,6 +646,12 @@ impl<'a> Tree<'a> {
     /// The scene's effect flags, as stored.
     pub fn effects(&self) -> u32 {
         self.effects
+    }
+
+    /// The model's up axis as the builder recorded it ([`UpAxis::Y`] for
+    /// files that record none).
+    pub fn up_axis(&self) -> UpAxis {
+        self.up
     }
 
     /// The origin (bounding box centre) in model coordinates; every vertex

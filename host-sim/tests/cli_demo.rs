@@ -16,16 +16,19 @@ fn demo_writes_every_file_it_lists() {
         String::from_utf8_lossy(&out.stderr)
     );
     let text = String::from_utf8_lossy(&out.stdout);
-    let mut pngs = 0;
+    let (mut pngs, mut gifs) = (0, 0);
     for word in text.split_whitespace() {
         let p = std::path::Path::new(word);
-        if !p.starts_with(&dir) || !(word.ends_with(".png") || word.ends_with(".fpt")) {
+        if !p.starts_with(&dir) || ![".png", ".fpt", ".gif"].iter().any(|e| word.ends_with(e)) {
             continue;
         }
         let bytes = std::fs::read(p).unwrap_or_else(|e| panic!("{word}: {e}"));
         if word.ends_with(".png") {
             assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"), "{word}");
             pngs += 1;
+        } else if word.ends_with(".gif") {
+            assert!(bytes.starts_with(b"GIF89a"), "{word}");
+            gifs += 1;
         } else if word.ends_with(".fpt") {
             assert!(
                 fpt_nostd::reader::Tree::from_bytes(&bytes).is_ok(),
@@ -33,8 +36,10 @@ fn demo_writes_every_file_it_lists() {
             );
         }
     }
-    // Four vise, four house and three city views, four effect pictures.
-    assert_eq!(pngs, 15, "{text}");
+    // Four vise, four house and three city views, four effect pictures,
+    // the robot; its turntable.
+    assert_eq!((pngs, gifs), (16, 1), "{text}");
+    assert!(dir.join("robot.obj").exists() && dir.join("robot.mtl").exists());
     for name in [
         "vise_outline",
         "vise_depth_cue",

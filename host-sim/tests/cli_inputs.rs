@@ -5,14 +5,10 @@
 
 mod common;
 
-use common::{fpt, s, tmp, CUBE_OBJ};
-use embedded_graphics::pixelcolor::Rgb888;
-use embedded_graphics::prelude::{OriginDimensions, Point};
-use embedded_graphics_simulator::SimulatorDisplay;
+use common::{colours, error_line, fpt, s, stderr, tmp, CUBE_OBJ};
 use glam::DVec3;
 use host_sim::mesh::{load_bytes, ImportOptions, MeshFormat};
 use host_sim::reference::{zbuffer, Camera, Projection, RefOptions};
-use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
@@ -20,20 +16,6 @@ fn write(name: &str, text: &str) -> PathBuf {
     let p = tmp(name);
     std::fs::write(&p, text).unwrap();
     p
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-/// Exit status 2 and exactly one line on stderr, `error: ...`; returns it.
-fn error_line(out: &Output, what: &str) -> String {
-    assert_eq!(out.status.code(), Some(2), "{what}: {}", stderr(out));
-    let err = stderr(out);
-    let lines: Vec<&str> = err.lines().collect();
-    assert_eq!(lines.len(), 1, "{what}: {err:?}");
-    assert!(lines[0].starts_with("error: "), "{what}: {err:?}");
-    lines[0].to_string()
 }
 
 /// OBJ text of unit cubes at `offsets` (faces outward, or inward for the
@@ -247,15 +229,6 @@ fn mixed_open_and_closed_parts_and_forced_closed_are_warned() {
 }
 
 /// The colours of a PNG.
-fn colours(path: &Path) -> HashSet<Rgb888> {
-    let d = SimulatorDisplay::<Rgb888>::load_png(path).unwrap();
-    let size = d.size();
-    (0..size.height)
-        .flat_map(|y| (0..size.width).map(move |x| (x, y)))
-        .map(|(x, y)| d.get_pixel(Point::new(x as i32, y as i32)))
-        .collect()
-}
-
 /// A unit cube in OFF whose x faces are white, y faces mid grey and z
 /// faces dark grey: drawn unlit to 4 grey levels with dithering, it uses all
 /// four (white alone; 128 between levels 1 and 2; 40 between 0 and 1).

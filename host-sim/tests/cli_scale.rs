@@ -97,7 +97,20 @@ fn cameras(scale: f64, offset: DVec3) -> Vec<(&'static str, Vec<String>)> {
         ("orbit", args(&["--yaw", "30", "--pitch", "20"])),
         (
             "distance",
-            args(&["--yaw", "-60", "--pitch", "35", "--distance", &distance]),
+            args(&[
+                "--yaw",
+                "-60",
+                "--pitch",
+                "35",
+                "--distance",
+                &distance,
+                "--distance-units",
+                "model",
+            ]),
+        ),
+        (
+            "distance-radii",
+            args(&["--yaw", "-60", "--pitch", "35", "--distance", "2.5"]),
         ),
         (
             "parallel",

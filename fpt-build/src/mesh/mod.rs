@@ -37,6 +37,7 @@ use crate::geom::Polygon;
 use std::fmt;
 use std::path::Path;
 
+pub use obj::write_obj_mtl;
 pub use prepare::{from_faces, from_faces_with, is_closed, is_closed_faces};
 
 /// A mesh ready for the tree builders.
@@ -76,6 +77,11 @@ pub struct ImportReport {
     pub orientation_kept: bool,
     /// Edges not shared by exactly two faces in opposite directions.
     pub boundary_edges: usize,
+    /// OBJ `mtllib` files not found next to the OBJ file.
+    pub missing_material_files: usize,
+    /// OBJ `usemtl` materials with a diffuse colour in no material file
+    /// (counted when every material file was found).
+    pub undefined_materials: usize,
 }
 
 /// The largest bounding-box diagonal a model may have: trees store sizes
@@ -159,12 +165,33 @@ impl ImportReport {
         })
     }
 
+    /// The line about OBJ materials whose colours are missing, else
+    /// `None`: their faces are drawn in the default grey.
+    pub fn material_line(&self) -> Option<String> {
+        match (self.missing_material_files, self.undefined_materials) {
+            (0, 0) => None,
+            (0, n) => Some(format!(
+                "warning: {} used by usemtl {} no Kd in the material files; {} faces are grey",
+                count(n, "material"),
+                if n == 1 { "has" } else { "have" },
+                if n == 1 { "its" } else { "their" }
+            )),
+            (n, _) => Some(format!(
+                "warning: {} named by mtllib {} not found next to the OBJ file; \
+                 faces without a material colour are grey",
+                count(n, "material file"),
+                if n == 1 { "was" } else { "were" }
+            )),
+        }
+    }
+
     /// Every warning line of the import, in the order they are printed.
     pub fn warning_lines(&self) -> Vec<String> {
         [
             self.warning_line(),
             self.orientation_line(),
             self.mixed_line(),
+            self.material_line(),
         ]
         .into_iter()
         .flatten()
@@ -202,6 +229,15 @@ impl MeshFormat {
             "stl" => Some(MeshFormat::Stl),
             "ply" => Some(MeshFormat::Ply),
             _ => None,
+        }
+    }
+
+    /// The up axis `fpt build --up auto` records for files of this format:
+    /// z for STL (CAD parts are z-up), y for the others.
+    pub fn up_axis(self) -> fpt_nostd::format::UpAxis {
+        match self {
+            MeshFormat::Stl => fpt_nostd::format::UpAxis::Z,
+            _ => fpt_nostd::format::UpAxis::Y,
         }
     }
 
@@ -388,6 +424,8 @@ pub(crate) struct RawMesh {
     pub vertices: Vec<[f64; 3]>,
     pub faces: Vec<Vec<u32>>,
     pub colors: Option<Vec<[u8; 3]>>,
+    /// An OBJ file's `mtllib` files and faces' `usemtl` materials.
+    pub obj_materials: obj::ObjMaterials,
     /// Lines the parser skipped without knowing what they were (only the
     /// formats that skip anything count them).
     pub unknown_lines: usize,
@@ -418,7 +456,16 @@ pub fn load_with(path: &Path, options: &ImportOptions) -> Result<Model, MeshErro
         .unwrap_or_default();
     let format = MeshFormat::from_extension(&ext).ok_or(MeshError::UnknownFormat(ext))?;
     let bytes = std::fs::read(path)?;
-    parse_raw(format, &bytes)?.into_model(format, options)
+    let mut raw = parse_raw(format, &bytes)?;
+    let mut materials = obj::MaterialReport::default();
+    if format == MeshFormat::Obj {
+        let dir = path.parent().unwrap_or(Path::new("."));
+        materials = obj::apply_materials(&mut raw, dir)?;
+    }
+    let mut model = raw.into_model(format, options)?;
+    model.report.missing_material_files = materials.missing_files;
+    model.report.undefined_materials = materials.undefined;
+    Ok(model)
 }
 
 /// Parses a mesh of `format` from memory.

@@ -2,24 +2,154 @@
 //!
 //! A first pass over the text does what `tobj` does not: it joins lines
 //! ending in `\` with the next one, accepts CRLF, strips `#` comments, keeps
-//! only `v` and `f` records (so `g`, `o`, `s`, `usemtl`, `mtllib`, `vt`, `vn`,
-//! `l`, ... are ignored whatever their content), reduces `v/t/n` and `v//n`
-//! face corners to the position index, and checks every number and index
-//! with the line it is on, so errors name their line. `tobj` then reads the
-//! cleaned text with `triangulate: false` so n-gons stay whole.
+//! only `v` and `f` records (so `g`, `o`, `s`, `vt`, `vn`, `l`, ... are
+//! ignored whatever their content), reduces `v/t/n` and `v//n` face corners
+//! to the position index, and checks every number and index with the line
+//! it is on, so errors name their line. `tobj` then reads the cleaned text
+//! with `triangulate: false` so n-gons stay whole.
+//!
+//! Materials: the first pass also notes the `mtllib` file names and the
+//! `usemtl` material of every face ([`ObjMaterials`]). Parsing bytes alone
+//! gives no colours; [`apply_materials`], which [`super::load_with`] calls
+//! with the OBJ's folder, reads the material files found there (through
+//! `tobj::load_mtl_buf`) and gives each face its material's diffuse colour
+//! `Kd` (0–1 per channel, scaled to 0–255). Faces without a material, or
+//! whose material is defined in no file read, keep the default grey.
 //!
 //! Faces keep file order (across all groups and objects): face `i` is the
 //! `i`-th `f` record of the file. Negative indices count back from the last
 //! vertex defined so far.
 
 use super::{MeshError, RawMesh};
+use crate::geom::DEFAULT_COLOR;
+use std::collections::HashMap;
+use std::path::Path;
 
 const FORMAT: &str = "OBJ";
+
+/// No material (a face before any `usemtl`, or after an empty one).
+const NO_MATERIAL: u32 = u32::MAX;
+
+/// The materials an OBJ file names.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct ObjMaterials {
+    /// The file names of its `mtllib` records, in order, without repeats.
+    pub libs: Vec<String>,
+    /// The material names its `usemtl` records use, in first-use order.
+    pub names: Vec<String>,
+    /// For every face in file order: its index in `names`, or
+    /// [`NO_MATERIAL`].
+    pub face: Vec<u32>,
+}
+
+/// What [`apply_materials`] could not do, for the import report.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct MaterialReport {
+    /// `mtllib` files that do not exist next to the OBJ.
+    pub missing_files: usize,
+    /// Materials used by `usemtl` with a `Kd` in no file read (counted only
+    /// when `mtllib` names files and every one was found).
+    pub undefined: usize,
+}
+
+/// Gives every face of `raw` the `Kd` colour of its `usemtl` material,
+/// reading the `mtllib` files from `dir`. Leaves `raw.colors` alone when no
+/// face gets a material colour. A material file that exists but is not a
+/// valid MTL file is an error naming it.
+pub(crate) fn apply_materials(raw: &mut RawMesh, dir: &Path) -> Result<MaterialReport, MeshError> {
+    let m = &raw.obj_materials;
+    let mut report = MaterialReport::default();
+    if m.names.is_empty() {
+        return Ok(report);
+    }
+    let mut kd: HashMap<String, [u8; 3]> = HashMap::new();
+    for lib in &m.libs {
+        let path = dir.join(lib);
+        let bytes = match std::fs::read(&path) {
+            Ok(b) => b,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                report.missing_files += 1;
+                continue;
+            }
+            Err(e) => {
+                return Err(MeshError::parse("MTL", format!("{}: {e}", path.display())));
+            }
+        };
+        let (materials, _) = tobj::load_mtl_buf(&mut &bytes[..])
+            .map_err(|e| MeshError::parse("MTL", format!("{}: {e}", path.display())))?;
+        for mat in materials {
+            if let Some(d) = mat.diffuse {
+                // The first definition of a name wins, as in file order.
+                kd.entry(mat.name).or_insert(d.map(channel));
+            }
+        }
+    }
+    let colours: Vec<Option<[u8; 3]>> = m.names.iter().map(|n| kd.get(n).copied()).collect();
+    if report.missing_files == 0 && !m.libs.is_empty() {
+        report.undefined = colours.iter().filter(|c| c.is_none()).count();
+    }
+    if colours.iter().all(Option::is_none) {
+        return Ok(report);
+    }
+    let face_colour = |&i: &u32| {
+        colours
+            .get(i as usize)
+            .copied()
+            .flatten()
+            .unwrap_or(DEFAULT_COLOR)
+    };
+    raw.colors = Some(m.face.iter().map(face_colour).collect());
+    Ok(report)
+}
+
+/// An OBJ text of `polygons` (each with its own vertices, which the import
+/// welds again) using materials named after their colours, and the text of
+/// the material file `mtl_name` it refers to, with a `Kd` per colour that
+/// reads back as exactly that colour. For the demo and tests: a coloured
+/// model that goes through the import as a user's files would.
+pub fn write_obj_mtl(polygons: &[crate::geom::Polygon], mtl_name: &str) -> (String, String) {
+    use std::fmt::Write;
+    let name = |c: [u8; 3]| format!("rgb_{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
+    let mut obj = format!("# written by fpt\nmtllib {mtl_name}\n");
+    let mut mtl = String::from("# written by fpt\n");
+    let mut seen: Vec<[u8; 3]> = Vec::new();
+    let mut current = None;
+    let mut next = 1usize;
+    for p in polygons {
+        if !seen.contains(&p.color) {
+            seen.push(p.color);
+            let [r, g, b] = p.color.map(|x| f64::from(x) / 255.0);
+            let _ = write!(mtl, "newmtl {}\nKd {r:.6} {g:.6} {b:.6}\n", name(p.color));
+        }
+        if current != Some(p.color) {
+            current = Some(p.color);
+            let _ = writeln!(obj, "usemtl {}", name(p.color));
+        }
+        for v in &p.verts {
+            let _ = writeln!(obj, "v {} {} {}", v.x, v.y, v.z);
+        }
+        obj.push('f');
+        for i in 0..p.verts.len() {
+            let _ = write!(obj, " {}", next + i);
+        }
+        obj.push('\n');
+        next += p.verts.len();
+    }
+    (obj, mtl)
+}
+
+/// A `Kd` channel (0–1, clamped; NaN is 0) as 0–255.
+fn channel(x: f64) -> u8 {
+    if x.is_nan() {
+        return 0;
+    }
+    (x.clamp(0.0, 1.0) * 255.0).round() as u8
+}
 
 /// Parses an OBJ file.
 pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
     let text = String::from_utf8_lossy(bytes);
-    let (clean, unknown_lines) = preprocess(&text)?;
+    let (clean, unknown_lines, obj_materials) = preprocess(&text)?;
     let options = tobj::LoadOptions {
         triangulate: false,
         single_index: false,
@@ -34,6 +164,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
 
     let mut raw = RawMesh {
         unknown_lines,
+        obj_materials,
         ..RawMesh::default()
     };
     for model in &models {
@@ -69,15 +200,27 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
     Ok(raw)
 }
 
+/// What the first pass has seen so far.
+#[derive(Default)]
+struct Pass {
+    /// `v` records so far, to resolve and check indices.
+    vertices: u64,
+    /// The current `usemtl` material (index into `materials.names`).
+    current: Option<u32>,
+    /// Where each name is in `materials.names`.
+    index: HashMap<String, u32>,
+    materials: ObjMaterials,
+}
+
 /// Joins continuation lines and keeps only checked, simplified `v` and `f`
 /// records, one per line; also returns the number of logical lines that are
 /// no OBJ statement at all ([`KEYWORDS`]), which tells a file of another
-/// kind from an OBJ file without faces.
-fn preprocess(text: &str) -> Result<(String, usize), MeshError> {
+/// kind from an OBJ file without faces, and the materials named.
+fn preprocess(text: &str) -> Result<(String, usize, ObjMaterials), MeshError> {
     let mut out = String::with_capacity(text.len().min(1 << 26));
     let mut logical = String::new();
     let mut first_line = 1usize;
-    let mut vertices = 0u64;
+    let mut pass = Pass::default();
     let mut unknown = 0usize;
     for (k, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
@@ -90,13 +233,13 @@ fn preprocess(text: &str) -> Result<(String, usize), MeshError> {
             continue;
         }
         logical.push_str(line);
-        unknown += usize::from(!record(&logical, first_line, &mut vertices, &mut out)?);
+        unknown += usize::from(!record(&logical, first_line, &mut pass, &mut out)?);
         logical.clear();
     }
     if !logical.is_empty() {
-        unknown += usize::from(!record(&logical, first_line, &mut vertices, &mut out)?);
+        unknown += usize::from(!record(&logical, first_line, &mut pass, &mut out)?);
     }
-    Ok((out, unknown))
+    Ok((out, unknown, pass.materials))
 }
 
 /// The statements of the OBJ format (geometry, grouping, display and
@@ -139,13 +282,36 @@ const KEYWORDS: [&str; 34] = [
 ];
 
 /// Checks one logical line and appends its simplified form to `out` when it
-/// is a `v` or `f` record. `vertices` counts the `v` records so far, to
-/// resolve and check indices. Returns whether the line is understood: blank,
-/// a comment or an OBJ statement ([`KEYWORDS`]).
-fn record(line: &str, at: usize, vertices: &mut u64, out: &mut String) -> Result<bool, MeshError> {
+/// is a `v` or `f` record; notes `mtllib` and `usemtl` in `pass`. Returns
+/// whether the line is understood: blank, a comment or an OBJ statement
+/// ([`KEYWORDS`]).
+fn record(line: &str, at: usize, pass: &mut Pass, out: &mut String) -> Result<bool, MeshError> {
     let line = line.split('#').next().unwrap_or("");
     let mut words = line.split_whitespace();
+    let vertices = &mut pass.vertices;
     match words.next() {
+        Some("mtllib") => {
+            for lib in words {
+                if !pass.materials.libs.iter().any(|l| l == lib) {
+                    pass.materials.libs.push(lib.to_string());
+                }
+            }
+        }
+        Some("usemtl") => {
+            // The name is the rest of the line, as `newmtl` names are.
+            let name = line.trim_start()["usemtl".len()..].trim();
+            let names = &mut pass.materials.names;
+            pass.current = if name.is_empty() {
+                None
+            } else {
+                let next = u32::try_from(names.len()).unwrap_or(NO_MATERIAL);
+                let i = *pass.index.entry(name.to_string()).or_insert(next);
+                if i == next {
+                    names.push(name.to_string());
+                }
+                Some(i)
+            };
+        }
         Some("v") => {
             let coords: Vec<&str> = words.collect();
             // x y z, optionally w (homogeneous) or r g b (colour, dropped).
@@ -175,6 +341,9 @@ fn record(line: &str, at: usize, vertices: &mut u64, out: &mut String) -> Result
             *vertices += 1;
         }
         Some("f") => {
+            pass.materials
+                .face
+                .push(pass.current.unwrap_or(NO_MATERIAL));
             out.push('f');
             for corner in words {
                 let v = corner.split('/').next().unwrap_or("");
@@ -350,5 +519,105 @@ mod tests {
             e.to_string(),
             "no faces found in the OBJ file (2 lines not understood)"
         );
+    }
+
+    /// A unit cube whose first three faces use material `red`, the next
+    /// two `blue` and the last none (after an empty `usemtl`).
+    const MATERIAL_CUBE: &str = "mtllib cube.mtl other.mtl\n\
+        v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+        usemtl red\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nusemtl blue\nf 2 3 7 6\n\
+        usemtl red\nusemtl blue\nf 3 4 8 7\nusemtl\nf 4 1 5 8\n";
+
+    #[test]
+    fn usemtl_is_noted_per_face() {
+        let raw = parse(MATERIAL_CUBE.as_bytes()).unwrap();
+        let m = &raw.obj_materials;
+        assert_eq!(m.libs, ["cube.mtl", "other.mtl"]);
+        assert_eq!(m.names, ["red", "blue"]);
+        assert_eq!(m.face, [0, 0, 0, 1, 1, NO_MATERIAL]);
+        // From bytes alone no colour is given.
+        assert!(raw.colors.is_none());
+    }
+
+    fn scratch(name: &str) -> std::path::PathBuf {
+        let d = std::env::temp_dir().join(format!("fpt-obj-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    #[test]
+    fn kd_of_the_material_files_colours_the_faces() {
+        let d = scratch("kd");
+        std::fs::write(
+            d.join("cube.mtl"),
+            "newmtl red\nKa 0 0 0\nKd 1 0 0.25\n\nnewmtl blue\nKd 0 0 1\n",
+        )
+        .unwrap();
+        // `other.mtl` redefines red: the first definition wins.
+        std::fs::write(d.join("other.mtl"), "newmtl red\nKd 0 1 0\n").unwrap();
+        let mut raw = parse(MATERIAL_CUBE.as_bytes()).unwrap();
+        let report = apply_materials(&mut raw, &d).unwrap();
+        assert_eq!(report, MaterialReport::default());
+        let (r, b, g) = ([255, 0, 64], [0, 0, 255], DEFAULT_COLOR);
+        assert_eq!(raw.colors.unwrap(), [r, r, r, b, b, g]);
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn missing_or_incomplete_material_files_are_reported() {
+        let d = scratch("missing");
+        // Only one of the two files, defining one of the two materials.
+        std::fs::write(d.join("cube.mtl"), "newmtl blue\nKd 0 0 1\n").unwrap();
+        let mut raw = parse(MATERIAL_CUBE.as_bytes()).unwrap();
+        let report = apply_materials(&mut raw, &d).unwrap();
+        assert_eq!(report.missing_files, 1);
+        let g = DEFAULT_COLOR;
+        assert_eq!(raw.colors.unwrap(), [g, g, g, [0, 0, 255], [0, 0, 255], g]);
+        // Both files, `red` nowhere: one undefined material.
+        std::fs::write(d.join("other.mtl"), "newmtl green\nKd 0 1 0\n").unwrap();
+        let mut raw = parse(MATERIAL_CUBE.as_bytes()).unwrap();
+        let report = apply_materials(&mut raw, &d).unwrap();
+        assert_eq!((report.missing_files, report.undefined), (0, 1));
+        // No file at all: no colour, one missing... two missing files.
+        let empty = scratch("none");
+        let mut raw = parse(MATERIAL_CUBE.as_bytes()).unwrap();
+        let report = apply_materials(&mut raw, &empty).unwrap();
+        assert_eq!(report.missing_files, 2);
+        assert!(raw.colors.is_none());
+        // A material file that is no MTL file is an error naming it.
+        std::fs::write(empty.join("cube.mtl"), "newmtl a\nKd 1 x 0\n").unwrap();
+        let mut raw = parse(MATERIAL_CUBE.as_bytes()).unwrap();
+        let e = apply_materials(&mut raw, &empty).unwrap_err().to_string();
+        assert!(
+            e.starts_with("invalid MTL file: ") && e.contains("cube.mtl"),
+            "{e}"
+        );
+        let _ = std::fs::remove_dir_all(&d);
+        let _ = std::fs::remove_dir_all(&empty);
+    }
+
+    #[test]
+    fn written_obj_and_mtl_read_back_with_their_colours() {
+        let scene = crate::scenes::robot();
+        let d = scratch("written");
+        let (obj, mtl) = write_obj_mtl(&scene.polygons, "robot.mtl");
+        std::fs::write(d.join("robot.obj"), obj).unwrap();
+        std::fs::write(d.join("robot.mtl"), mtl).unwrap();
+        let m = crate::mesh::load(&d.join("robot.obj")).unwrap();
+        assert!(m.closed);
+        assert_eq!(m.report.warning_lines(), Vec::<String>::new());
+        for p in &m.polygons {
+            assert_eq!(p.color, scene.polygons[p.source as usize].color);
+        }
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn kd_channels_are_clamped_and_rounded() {
+        assert_eq!(channel(0.5), 128);
+        assert_eq!(channel(-1.0), 0);
+        assert_eq!(channel(7.0), 255);
+        assert_eq!(channel(f64::NAN), 0);
     }
 }

@@ -71,8 +71,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
     let mut raw = RawMesh {
         vertices: Vec::with_capacity(capped_capacity(nv, bytes.len(), 6)),
         faces: Vec::with_capacity(capped_capacity(nf, bytes.len(), 2)),
-        colors: None,
-        unknown_lines: 0,
+        ..RawMesh::default()
     };
     for _ in 0..nv {
         let r = records.next().ok_or_else(|| {

@@ -1,9 +1,12 @@
 //! PLY reader (ASCII, binary little and big endian), through `ply-rs`.
 //!
 //! Uses the `vertex` element's `x y z` (any numeric type) and the `face`
-//! element's `vertex_indices` (or `vertex_index`) list; optional per-face
-//! `red green blue` become face colours. Other elements and properties are
-//! ignored. Faces are numbered in file order.
+//! element's `vertex_indices` (or `vertex_index`) list. Colours: a face's
+//! own `red green blue` when the face element has them, else the mean of
+//! its vertices' `red green blue` when every one of its vertices has them
+//! (smooth vertex colours become flat face colours), else the default grey;
+//! integer channels are 0–255, float channels 0–1. Other elements and
+//! properties are ignored. Faces are numbered in file order.
 //!
 //! `ply-rs` trusts its input more than we may: a number in the header too
 //! large for u64 makes it panic, and an element count far beyond the data
@@ -31,6 +34,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
     let mut raw = RawMesh::default();
     let vertices = ply.payload.get("vertex").map_or(&[][..], |v| &v[..]);
     raw.vertices.reserve(vertices.len());
+    let mut vertex_colors = Vec::with_capacity(vertices.len());
     for (k, v) in vertices.iter().enumerate() {
         let coord = |name: &str| {
             v.get(name).and_then(scalar).ok_or_else(|| {
@@ -38,6 +42,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
             })
         };
         raw.vertices.push([coord("x")?, coord("y")?, coord("z")?]);
+        vertex_colors.push(rgb_of(v));
     }
     let faces = ply.payload.get("face").map_or(&[][..], |f| &f[..]);
     raw.faces.reserve(faces.len());
@@ -56,15 +61,10 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
                 format!("face {k}: vertex indices must be a list of non-negative integers"),
             )
         })?;
+        let own = rgb_of(f).or_else(|| mean_color(&indices, &vertex_colors));
+        any_color |= own.is_some();
+        colors.push(own.unwrap_or(DEFAULT_COLOR));
         raw.faces.push(indices);
-        let rgb = ["red", "green", "blue"].map(|c| f.get(c).and_then(color_channel));
-        match rgb {
-            [Some(r), Some(g), Some(b)] => {
-                any_color = true;
-                colors.push([r, g, b]);
-            }
-            _ => colors.push(DEFAULT_COLOR),
-        }
     }
     raw.colors = any_color.then_some(colors);
     Ok(raw)
@@ -140,6 +140,29 @@ fn scalar(p: &Property) -> Option<f64> {
         Property::Double(x) => x,
         _ => return None,
     })
+}
+
+/// An element's `red green blue` colour, when it has all three.
+fn rgb_of(e: &DefaultElement) -> Option<[u8; 3]> {
+    let [r, g, b] = ["red", "green", "blue"].map(|c| e.get(c).and_then(color_channel));
+    Some([r?, g?, b?])
+}
+
+/// The mean colour of vertices `indices` (rounded), when every one has a
+/// colour (an index out of range has none: the import reports it).
+fn mean_color(indices: &[u32], colors: &[Option<[u8; 3]>]) -> Option<[u8; 3]> {
+    if indices.is_empty() {
+        return None;
+    }
+    let mut sum = [0u64; 3];
+    for &i in indices {
+        let c = colors.get(i as usize).copied().flatten()?;
+        for (s, x) in sum.iter_mut().zip(c) {
+            *s += u64::from(x);
+        }
+    }
+    let n = indices.len() as u64;
+    Some(sum.map(|s| ((s + n / 2) / n) as u8))
 }
 
 /// A colour channel: integers are 0–255 (clamped), floats 0–1.
@@ -303,5 +326,44 @@ pub(crate) mod tests {
             load_bytes(MeshFormat::Ply, s.as_bytes()),
             Err(MeshError::NoFaces { .. })
         ));
+    }
+
+    #[test]
+    fn vertex_colours_become_face_colours_and_face_colours_win() {
+        // Vertex colours only: each face gets its vertices' mean.
+        let text = "ply\nformat ascii 1.0\nelement vertex 4\n\
+             property float x\nproperty float y\nproperty float z\n\
+             property uchar red\nproperty uchar green\nproperty uchar blue\n\
+             element face 4\nproperty list uchar int vertex_indices\nend_header\n\
+             0 0 0 0 0 0\n1 0 0 255 0 0\n0 1 0 0 255 0\n0 0 1 0 0 255\n\
+             3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+        let m = load_bytes(MeshFormat::Ply, text.as_bytes()).unwrap();
+        let by_source = |m: &crate::mesh::Model, k: u32| {
+            m.polygons.iter().find(|p| p.source == k).unwrap().color
+        };
+        assert_eq!(by_source(&m, 0), [85, 85, 0]);
+        assert_eq!(by_source(&m, 2), [85, 85, 85]);
+        // Float vertex channels are 0-1.
+        let float = text
+            .replace("uchar red", "float red")
+            .replace("uchar green", "float green")
+            .replace("uchar blue", "float blue")
+            .replace("1 0 0 255 0 0", "1 0 0 1.0 0 0")
+            .replace("0 1 0 0 255 0", "0 1 0 0 1.0 0")
+            .replace("0 0 1 0 0 255", "0 0 1 0 0 1.0");
+        let m = load_bytes(MeshFormat::Ply, float.as_bytes()).unwrap();
+        assert_eq!(by_source(&m, 0), [85, 85, 0]);
+        // A face colour wins over its vertices'.
+        let both = text
+            .replace(
+                "vertex_indices\nend_header",
+                "vertex_indices\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header",
+            )
+            .replace("3 0 2 1\n", "3 0 2 1 9 8 7\n")
+            .replace("3 0 1 3\n", "3 0 1 3 1 2 3\n")
+            .replace("3 1 2 3\n", "3 1 2 3 1 2 3\n")
+            .replace("3 0 3 2\n", "3 0 3 2 1 2 3\n");
+        let m = load_bytes(MeshFormat::Ply, both.as_bytes()).unwrap();
+        assert_eq!(by_source(&m, 0), [9, 8, 7]);
     }
 }

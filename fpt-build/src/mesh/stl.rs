@@ -36,8 +36,7 @@ fn parse_binary(bytes: &[u8], n: usize) -> Result<RawMesh, MeshError> {
     let mut raw = RawMesh {
         vertices: Vec::with_capacity(3 * n),
         faces: Vec::with_capacity(n),
-        colors: None,
-        unknown_lines: 0,
+        ..RawMesh::default()
     };
     let f32_at = |rec: &[u8], off: usize| -> f64 {
         let b = [rec[off], rec[off + 1], rec[off + 2], rec[off + 3]];

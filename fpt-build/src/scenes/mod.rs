@@ -18,6 +18,7 @@ mod city;
 mod hard;
 mod house;
 pub(crate) mod parts;
+mod robot;
 mod torus;
 mod vise;
 
@@ -27,6 +28,7 @@ pub use hard::{
     slivers,
 };
 pub use house::house;
+pub use robot::robot;
 pub use torus::torus;
 pub use vise::vise;
 

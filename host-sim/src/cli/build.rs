@@ -6,7 +6,7 @@ use crate::cli_err;
 use crate::output::write_atomic;
 use crate::tree::{FpTree, Method, Stats};
 use fpt_nostd::effects::Effects;
-use fpt_nostd::format::VertexFormat;
+use fpt_nostd::format::{UpAxis, VertexFormat};
 use fpt_nostd::raster::{Libm, Orbit};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
@@ -238,18 +238,43 @@ fn forced_closed_line(report: &crate::mesh::ImportReport) -> Option<String> {
     })
 }
 
+/// The up axis `fpt build --up NAME` records for `mesh`: `auto` is the
+/// format's ([`crate::mesh::MeshFormat::up_axis`]: z for STL, y for the
+/// others).
+pub fn up_axis_for(name: &str, mesh: &Path) -> Result<UpAxis, CliError> {
+    if name == "auto" {
+        let format = mesh
+            .extension()
+            .and_then(|e| e.to_str())
+            .and_then(crate::mesh::MeshFormat::from_extension);
+        return Ok(format.map_or(UpAxis::Y, |f| f.up_axis()));
+    }
+    UpAxis::from_name(name)
+        .ok_or_else(|| cli_err!("unknown up axis '{name}' (expected auto, x, y or z)"))
+}
+
 /// `fpt build`.
 pub fn run(a: &BuildArgs) -> CliResult {
     let method = parse_method(&a.method)?;
     let vertex_format = parse_vertex_format(&a.vertex_format)?;
+    let up = up_axis_for(&a.up, &a.mesh)?;
+    let color = match &a.color {
+        Some(c) => Some(super::render::parse_rgb("--color", c)?),
+        None => None,
+    };
     let options = crate::mesh::ImportOptions {
         keep_orientation: a.keep_orientation,
     };
     // Reading the mesh is part of building it: running out of memory there
     // gets the same message (with what was in use when it ran out).
     crate::memory::set_build_estimate(1);
-    let model = crate::mesh::load_with(&a.mesh, &options)
+    let mut model = crate::mesh::load_with(&a.mesh, &options)
         .map_err(|e| cli_err!("{}: {e}", a.mesh.display()))?;
+    if let Some(c) = color {
+        for p in &mut model.polygons {
+            p.color = c;
+        }
+    }
     for w in model.report.warning_lines() {
         eprintln!("{w}");
     }
@@ -282,6 +307,7 @@ pub fn run(a: &BuildArgs) -> CliResult {
     let opts = crate::serialize::SerializeOptions {
         vertex_format,
         effects: Some(effects.bits()),
+        up,
     };
     let bytes = crate::serialize::serialize(&tree, &opts)?;
     // Stats first: if it cannot be written, no tree file appears either.
@@ -291,7 +317,7 @@ pub fn run(a: &BuildArgs) -> CliResult {
     }
     write_atomic(&a.output, &bytes).map_err(|e| cli_err!("{}: {e}", a.output.display()))?;
     let s = &tree.stats;
-    println!("effects: {effects}");
+    println!("effects: {effects}; up axis: {}", up.name());
     println!(
         "{}: {} {} tree, {} -> {} polygons, {} splittings, {} switch nodes, depth {}, {:.1} ms, {} bytes{peak}",
         a.output.display(),

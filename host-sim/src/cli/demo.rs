@@ -9,11 +9,15 @@
 //! 4 sub-pixel bits: the firmware's configuration) into the framebuffer
 //! format a small display would use, and saves them as PNG; then draws the
 //! vise again with optional effects (outlines, depth cue) and on simulated
-//! monochrome and 4-level grey panels (ordered dithering). It prints the
-//! build statistics and where every file is.
+//! monochrome and 4-level grey panels (ordered dithering). Last, a
+//! coloured model through the path a user's file takes: a toy robot in six
+//! materials is written as OBJ + MTL, read back by the mesh import (its
+//! colours from `usemtl` and `Kd`), built, rendered and spun into a
+//! turntable GIF. It prints the build statistics and where every file is.
 
 use super::display::Panel;
 use super::render::{render_job, save_png, save_png_as, CameraSpec, Format, Job};
+use super::turntable::{encode, Spin};
 use super::CliResult;
 use crate::build::{build, NoProgress, DEFAULT_SEED};
 use crate::cli_err;
@@ -24,6 +28,7 @@ use crate::tree::Method;
 use clap::Args;
 use embedded_graphics::pixelcolor::Rgb888;
 use fpt_nostd::effects::Effects;
+use fpt_nostd::format::UpAxis;
 use fpt_nostd::raster::ShadeMode;
 use fpt_nostd::reader::Tree;
 use std::path::{Path, PathBuf};
@@ -103,7 +108,12 @@ fn demo_scene(show: &Show, out: &Path) -> CliResult {
         DEFAULT_SEED,
         &mut NoProgress,
     );
-    let bytes = serialize(&tree, &SerializeOptions::default())?;
+    // The scenes are z-up: recorded, so `fpt render TREE` shows them upright.
+    let opts = SerializeOptions {
+        up: UpAxis::Z,
+        ..SerializeOptions::default()
+    };
+    let bytes = serialize(&tree, &opts)?;
     let t = Tree::from_bytes(&bytes)
         .map_err(|e| cli_err!("{}: the serialized tree does not validate: {e}", s.name))?;
     let tree_path = out.join(format!("{}.fpt", s.name));
@@ -133,9 +143,9 @@ fn demo_scene(show: &Show, out: &Path) -> CliResult {
             camera: CameraSpec::Orbit {
                 yaw,
                 pitch,
-                distance: Some(show.distance * f64::from(t.bounding_radius())),
+                distance: Some(show.distance),
                 fov,
-                z_up: true,
+                up: UpAxis::Z,
             },
             format: show.format,
             band: None,
@@ -219,9 +229,9 @@ fn demo_effects(out: &Path) -> CliResult {
             camera: CameraSpec::Orbit {
                 yaw: 35.0,
                 pitch: 25.0,
-                distance: Some(2.2 * f64::from(t.bounding_radius())),
+                distance: Some(2.2),
                 fov: 40.0,
-                z_up: true,
+                up: UpAxis::Z,
             },
             format,
             band: None,
@@ -239,6 +249,100 @@ fn demo_effects(out: &Path) -> CliResult {
     Ok(())
 }
 
+/// The coloured model: written as OBJ + MTL, imported, built, rendered
+/// and spun.
+fn demo_coloured(out: &Path) -> CliResult {
+    let scene = crate::scenes::robot();
+    let (obj, mtl) = crate::mesh::write_obj_mtl(&scene.polygons, "robot.mtl");
+    let obj_path = out.join("robot.obj");
+    for (path, text) in [(out.join("robot.mtl"), mtl), (obj_path.clone(), obj)] {
+        write_atomic(&path, text.as_bytes()).map_err(|e| cli_err!("{}: {e}", path.display()))?;
+    }
+    let model =
+        crate::mesh::load(&obj_path).map_err(|e| cli_err!("{}: {e}", obj_path.display()))?;
+    let mut materials: Vec<[u8; 3]> = model.polygons.iter().map(|p| p.color).collect();
+    materials.sort_unstable();
+    materials.dedup();
+    let tree = build(
+        model.polygons,
+        model.closed,
+        Method::Static,
+        DEFAULT_SEED,
+        &mut NoProgress,
+    );
+    let opts = SerializeOptions {
+        up: UpAxis::Z,
+        ..SerializeOptions::default()
+    };
+    let bytes = serialize(&tree, &opts)?;
+    let t = Tree::from_bytes(&bytes)
+        .map_err(|e| cli_err!("robot: the serialized tree does not validate: {e}"))?;
+    let tree_path = out.join("robot.fpt");
+    write_atomic(&tree_path, &bytes).map_err(|e| cli_err!("{}: {e}", tree_path.display()))?;
+    let st = &tree.stats;
+    println!(
+        "robot: {} written as OBJ + MTL and read back: {} materials, {} polygons -> {}; \
+         {} bytes -> {}",
+        obj_path.display(),
+        materials.len(),
+        st.input_polygons,
+        st.output_polygons,
+        bytes.len(),
+        tree_path.display()
+    );
+    let background = Rgb888::new(30, 34, 44);
+    let camera = |yaw: f64, pitch: f64| CameraSpec::Orbit {
+        yaw,
+        pitch,
+        distance: Some(3.0),
+        fov: 40.0,
+        up: UpAxis::Z,
+    };
+    let job = Job {
+        w: W,
+        h: H,
+        camera: camera(35.0, 25.0),
+        format: Format::Rgb888,
+        band: None,
+        shade: ShadeMode::Lambert,
+        background,
+        ids: false,
+        effects: None,
+        gray_levels: None,
+    };
+    let r = render_job(&t, &job, PRECISION)?;
+    let png = out.join("robot_1.png");
+    save_png(&r.image, W, H, &png)?;
+    println!(
+        "  {}  yaw   35° pitch  25° perspective {} polygons drawn, {:.2} ms",
+        png.display(),
+        r.stats.drawn,
+        r.ms
+    );
+    let spin = Spin {
+        w: 160,
+        h: 120,
+        frames: 36,
+        fps: 12,
+        camera: camera(35.0, 20.0),
+        shade: ShadeMode::Lambert,
+        background,
+    };
+    let gif = encode(&t, &spin, PRECISION)?;
+    let gif_path = out.join("robot_spin.gif");
+    write_atomic(&gif_path, &gif).map_err(|e| cli_err!("{}: {e}", gif_path.display()))?;
+    println!(
+        "  {}  {}x{} turntable, {} frames at {} fps, {} bytes",
+        gif_path.display(),
+        spin.w,
+        spin.h,
+        spin.frames,
+        spin.fps,
+        gif.len()
+    );
+    Ok(())
+}
+
 /// `fpt demo`.
 pub fn run(a: &DemoArgs) -> CliResult {
     std::fs::create_dir_all(&a.out).map_err(|e| cli_err!("{}: {e}", a.out.display()))?;
@@ -250,9 +354,12 @@ pub fn run(a: &DemoArgs) -> CliResult {
         demo_scene(&show, &a.out)?;
     }
     demo_effects(&a.out)?;
+    demo_coloured(&a.out)?;
     println!(
-        "render a tree yourself: fpt render {} -o view.png --yaw 30 --pitch 20 --up z",
-        a.out.join("house.fpt").display()
+        "render a tree yourself: fpt render {} -o view.png [--yaw 30 --pitch 20]; \
+         spin it: fpt turntable {} -o spin.gif",
+        a.out.join("house.fpt").display(),
+        a.out.join("robot.fpt").display()
     );
     Ok(())
 }

@@ -103,7 +103,7 @@ pub fn polygons(a: &PolygonsArgs) -> CliResult {
         .filter_map(|id| tree.polygon(id))
         .map(|p| {
             let verts: Vec<[f64; 3]> = (0..p.vertex_count()).map(|i| p.vertex_model(i)).collect();
-            json!({"id": p.id(), "source": p.source(), "vertices": verts})
+            json!({"id": p.id(), "source": p.source(), "color": p.color(), "vertices": verts})
         })
         .collect();
     let out = json!({"closed": tree.is_closed(), "polygons": polys});
@@ -165,6 +165,7 @@ pub fn info(a: &InfoArgs) -> CliResult {
         format.vertex_len()
     );
     println!("index size:        {} bytes", t.index_size());
+    println!("up axis:           {}", t.up_axis().name());
     println!("origin:            {} {} {}", o[0], o[1], o[2]);
     println!("half extent:       {} {} {}", e[0], e[1], e[2]);
     println!("bounding radius:   {}", t.bounding_radius());

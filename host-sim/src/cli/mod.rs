@@ -17,6 +17,7 @@ pub mod frames;
 mod inspect;
 pub mod mcu_bench;
 mod render;
+pub mod turntable;
 
 /// A failure reported to the user as `error: MESSAGE`, exit status 2.
 #[derive(Debug)]
@@ -66,6 +67,8 @@ enum Command {
     Frames(frames::FramesArgs),
     /// Render a tree to PNG through the no_std pipeline.
     Render(render::RenderArgs),
+    /// Render the model spinning once about its up axis as an animated GIF.
+    Turntable(turntable::TurntableArgs),
     /// Build, render and save the demo scenes (vise, house, city) as PNG.
     Demo(demo::DemoArgs),
     /// Measure error against time of every arithmetic configuration.
@@ -124,6 +127,14 @@ pub struct BuildArgs {
     /// with an error (exit status 2) before or while building.
     #[arg(long = "max-memory", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_memory: Option<u64>,
+    /// The model's up axis, recorded in the tree for `fpt render` and
+    /// `fpt turntable`: auto (z for STL files, y for the others), x, y or z.
+    #[arg(long, default_value = "auto", value_parser = ["auto", "x", "y", "z"])]
+    pub up: String,
+    /// One colour R,G,B (0–255 each) for the whole mesh, instead of the
+    /// file's (OBJ materials' Kd, PLY face or vertex colours) or grey.
+    #[arg(long)]
+    pub color: Option<String>,
 }
 
 /// Arguments of `fpt polygons`.
@@ -246,6 +257,7 @@ where
         Command::BenchOrder(a) => inspect::bench_order(&a),
         Command::Frames(a) => frames::run(&a),
         Command::Render(a) => render::run(&a),
+        Command::Turntable(a) => turntable::run(&a),
         Command::Demo(a) => demo::run(&a),
         Command::BenchAccuracy(a) => accuracy::run(&a),
         Command::McuBench(a) => mcu_bench::run(&a),

@@ -2,9 +2,10 @@
 //!
 //! ```text
 //! fpt render TREE -o OUT.png [--size WxH]
-//!     (--mvp M00,M01,...,M33 | --yaw DEG --pitch DEG [--distance D] [--fov DEG])
-//!     [--ids IDS.bin] [--format rgb888|rgb565|gray8|mono] [--band N]
-//!     [--precision NAME] [--shade lambert|flat|grey] [--up y|z]
+//!     [--mvp M00,M01,...,M33 | [--yaw DEG] [--pitch DEG] [--distance D]
+//!      [--distance-units radii|model] [--fov DEG] [--up auto|x|y|z]]
+//!     [--background R,G,B] [--ids IDS.bin] [--format rgb888|rgb565|gray8|mono]
+//!     [--band N] [--precision NAME] [--shade lambert|flat|grey]
 //!     [--effects LIST] [--gray-levels N] [--display PANEL]
 //! ```
 //!
@@ -12,10 +13,16 @@
 //!   the pixel conventions are those of [`fpt_nostd::raster::camera`]). The
 //!   walk's view comes from the matrix ([`fpt_nostd::render::MatrixView`])
 //!   and the near clip from its near plane ([`fpt_nostd::render::near_w_for`]).
-//! * Orbit: around the bounding-sphere centre, `--distance` defaulting to 3×
-//!   the radius, `--fov` (vertical, degrees) to 40; `--fov 0` is parallel.
-//!   The orbit is y-up ([`fpt_nostd::raster::camera`]); `--up z` turns a
-//!   z-up model (the procedural scenes) upright first.
+//! * Orbit ([`OrbitArgs`]): around the bounding-sphere centre, `--yaw`
+//!   defaulting to 35 and `--pitch` to 25 (a three-quarter view),
+//!   `--distance` in bounding radii (as `fpt build --orbit`; or model units
+//!   with `--distance-units model`) defaulting to 3 or what frames the
+//!   bounding sphere (`camera::framing_distance`), `--fov` (vertical, degrees) to
+//!   40; `--fov 0` is parallel. The orbit is y-up
+//!   ([`fpt_nostd::raster::camera`]); `--up` turns a model whose up axis
+//!   is another upright first, by default the axis the tree records
+//!   ([`fpt_nostd::format::UpAxis`], `fpt build --up`).
+//! * `--background R,G,B`: the colour behind the model (default black).
 //! * `--ids`: `W·H` little-endian `u32`, row-major from the top-left: the
 //!   source face index + 1 of the polygon drawn at each pixel, 0 for
 //!   background.
@@ -58,7 +65,7 @@ use fpt_nostd::render::{BandBuffer, FaceIds, Frame, TreeRenderer};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-pub use camera::CameraSpec;
+pub use camera::{camera_of, orbit_camera, CameraSpec, OrbitArgs};
 
 /// The names `--precision` accepts: vertex path and math library, then
 /// the sub-pixel bits.
@@ -157,28 +164,14 @@ pub struct RenderArgs {
     #[arg(long, default_value = "320x240")]
     pub size: String,
     /// Model → clip matrix: 16 numbers, row-major, comma-separated.
-    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["yaw", "pitch", "distance", "fov"])]
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["yaw", "pitch", "distance", "fov", "up"])]
     pub mvp: Option<String>,
-    /// Orbit: rotation about the y axis, degrees (0 looks down −z).
-    #[arg(
-        long,
-        allow_hyphen_values = true,
-        requires = "pitch",
-        required_unless_present = "mvp"
-    )]
-    pub yaw: Option<f64>,
-    /// Orbit: elevation, degrees.
-    #[arg(long, allow_hyphen_values = true, requires = "yaw")]
-    pub pitch: Option<f64>,
-    /// Orbit: distance from the bounding-sphere centre (default 3× radius).
-    #[arg(long, allow_negative_numbers = true)]
-    pub distance: Option<f64>,
-    /// Orbit: vertical field of view, degrees; 0 is a parallel projection.
-    #[arg(long, default_value_t = 40.0, allow_negative_numbers = true)]
-    pub fov: f64,
-    /// Orbit: the model's up axis (y, or z for z-up models).
-    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
-    pub up: String,
+    /// The orbit camera (when no --mvp).
+    #[command(flatten)]
+    pub orbit: OrbitArgs,
+    /// Background colour R,G,B (0–255 each).
+    #[arg(long, default_value = "0,0,0")]
+    pub background: String,
     /// Also write the source face id + 1 of every pixel (u32 LE, 0 = none).
     #[arg(long)]
     pub ids: Option<PathBuf>,
@@ -585,38 +578,48 @@ pub fn parse_shade(s: &str) -> Result<ShadeMode, CliError> {
     }
 }
 
-/// The camera of the arguments, checked.
-fn camera_of(a: &RenderArgs) -> Result<CameraSpec, CliError> {
-    if let Some(m) = &a.mvp {
-        return Ok(CameraSpec::Mvp(parse_mvp(m)?));
-    }
-    let (Some(yaw), Some(pitch)) = (a.yaw, a.pitch) else {
-        return Err(cli_err!("give either --mvp or --yaw and --pitch"));
+/// Parses a colour `R,G,B` (three whole numbers 0–255) for `what`.
+pub fn parse_rgb(what: &str, s: &str) -> Result<[u8; 3], CliError> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [r, g, b] = parts.as_slice() else {
+        return Err(cli_err!(
+            "{what} needs R,G,B (three numbers 0-255), got '{s}'"
+        ));
     };
-    if !(yaw.is_finite() && pitch.is_finite()) {
-        return Err(cli_err!("--yaw and --pitch must be finite"));
+    let c = |t: &str| -> Result<u8, CliError> {
+        t.parse::<u8>()
+            .map_err(|_| cli_err!("{what}: '{t}' is not a whole number in 0-255"))
+    };
+    Ok([c(r)?, c(g)?, c(b)?])
+}
+
+/// Reads a tree file (validated by [`open_tree`]).
+pub fn read_tree(path: &Path) -> Result<Vec<u8>, CliError> {
+    std::fs::read(path).map_err(|e| cli_err!("{}: {e}", path.display()))
+}
+
+/// Validates the bytes of tree file `path`, refusing models too large to
+/// render.
+pub fn open_tree<'a>(bytes: &'a [u8], path: &Path) -> Result<Tree<'a>, CliError> {
+    let tree = Tree::from_bytes(bytes)
+        .map_err(|e| cli_err!("{}: not a valid tree file: {e}", path.display()))?;
+    // `fpt build` refuses such models ([`crate::mesh::MAX_SIZE`]); a file
+    // from elsewhere would be drawn blank (the orbit's eye overflows f32).
+    let radius = f64::from(tree.bounding_radius());
+    if radius > 0.5 * crate::mesh::MAX_SIZE {
+        return Err(cli_err!(
+            "{}: the model is too large to render: its bounding radius is {radius:e}, more than {:e}",
+            path.display(),
+            0.5 * crate::mesh::MAX_SIZE
+        ));
     }
-    if let Some(d) = a.distance {
-        if !(d.is_finite() && d > 0.0 && d < f64::from(f32::MAX)) {
-            return Err(cli_err!("--distance must be a positive number, got {d}"));
-        }
-    }
-    if !(a.fov.is_finite() && (0.0..180.0).contains(&a.fov)) {
-        return Err(cli_err!("--fov must be in [0, 180) degrees, got {}", a.fov));
-    }
-    Ok(CameraSpec::Orbit {
-        yaw,
-        pitch,
-        distance: a.distance,
-        fov: a.fov,
-        z_up: a.up == "z",
-    })
+    Ok(tree)
 }
 
 /// `fpt render`.
 pub fn run(a: &RenderArgs) -> CliResult {
     let (w, h) = parse_size(&a.size)?;
-    let camera = camera_of(a)?;
+    let [r, g, b] = parse_rgb("--background", &a.background)?;
     let format = Format::parse(&a.format)?;
     let shade = parse_shade(&a.shade)?;
     let effects = match &a.effects {
@@ -632,19 +635,9 @@ pub fn run(a: &RenderArgs) -> CliResult {
     if a.band == Some(0) {
         return Err(cli_err!("--band must be at least 1"));
     }
-    let bytes = std::fs::read(&a.tree).map_err(|e| cli_err!("{}: {e}", a.tree.display()))?;
-    let tree = Tree::from_bytes(&bytes)
-        .map_err(|e| cli_err!("{}: not a valid tree file: {e}", a.tree.display()))?;
-    // `fpt build` refuses such models ([`crate::mesh::MAX_SIZE`]); a file
-    // from elsewhere would be drawn blank (the orbit's eye overflows f32).
-    let radius = f64::from(tree.bounding_radius());
-    if radius > 0.5 * crate::mesh::MAX_SIZE {
-        return Err(cli_err!(
-            "{}: the model is too large to render: its bounding radius is {radius:e}, more than {:e}",
-            a.tree.display(),
-            0.5 * crate::mesh::MAX_SIZE
-        ));
-    }
+    let bytes = read_tree(&a.tree)?;
+    let tree = open_tree(&bytes, &a.tree)?;
+    let camera = camera_of(a.mvp.as_deref(), &a.orbit, &tree, w, h)?;
     let job = Job {
         w,
         h,
@@ -652,7 +645,7 @@ pub fn run(a: &RenderArgs) -> CliResult {
         format,
         band: a.band,
         shade,
-        background: Rgb888::new(0, 0, 0),
+        background: Rgb888::new(r, g, b),
         ids: a.ids.is_some(),
         effects,
         gray_levels: a.gray_levels,

@@ -355,7 +355,7 @@ pub fn camera_spec(config: &Config, tree: &Tree<'_>, view: ViewSpec, w: u32, h: 
             pitch: view.pitch,
             distance: None,
             fov: FOV_DEG,
-            z_up: false,
+            up: fpt_nostd::format::UpAxis::Y,
         }
     } else {
         CameraSpec::Mvp(orbit_rows(tree, view, w, h))

@@ -10,6 +10,10 @@
 //! near the bounding radius, where the model has radius about 1, and
 //! scaling back exactly.
 
+use super::{parse_mvp, CliError};
+use crate::cli_err;
+use clap::Args;
+use fpt_nostd::format::UpAxis;
 use fpt_nostd::order::View;
 use fpt_nostd::raster::{MathFns, Orbit};
 use fpt_nostd::reader::Tree;
@@ -21,18 +25,19 @@ pub enum CameraSpec {
     /// A model → clip matrix, row-major.
     Mvp([[f64; 4]; 4]),
     /// An orbit around the bounding-sphere centre; angles in degrees,
-    /// distance `None` for 3× the bounding radius, fov 0 for parallel.
+    /// distance in bounding radii (`None` for 3), fov 0 for parallel.
     Orbit {
-        /// Degrees about the y axis.
+        /// Degrees about the up axis.
         yaw: f64,
         /// Degrees of elevation.
         pitch: f64,
-        /// Distance from the centre.
+        /// Distance from the centre in bounding radii.
         distance: Option<f64>,
         /// Vertical field of view, degrees.
         fov: f64,
-        /// The model is z-up (the orbit itself is y-up).
-        z_up: bool,
+        /// The model's up axis (the orbit itself is y-up: the model is
+        /// turned so that this axis points up first).
+        up: UpAxis,
     },
 }
 
@@ -54,7 +59,7 @@ impl CameraSpec {
                 pitch,
                 distance,
                 fov,
-                z_up,
+                up,
             } => {
                 let r = f64::from(tree.bounding_radius());
                 let r = if r.is_finite() && r > 0.0 { r } else { 1.0 };
@@ -68,7 +73,7 @@ impl CameraSpec {
                 // representable the frame is bit for bit the one composed
                 // in model units.
                 let e = log2_floor(r);
-                let d = distance.unwrap_or(3.0 * r) * pow2(-e);
+                let d = (distance.unwrap_or(3.0) * r) * pow2(-e);
                 let o = Orbit::new(
                     [0.0; 3],
                     yaw.to_radians() as f32,
@@ -77,12 +82,15 @@ impl CameraSpec {
                     fov.to_radians() as f32,
                 );
                 let mut cam = o.camera::<M>(w as f32 / h as f32);
-                if z_up {
-                    // M · R with R taking model (x, y, z) to orbit space
-                    // (x, z, −y), a rotation: an exact column permutation.
-                    for row in cam.matrix.0.iter_mut() {
-                        *row = [row[0], -row[2], row[1], row[3]];
-                    }
+                // M · R with R a rotation taking the model's up axis to
+                // orbit space's y: an exact column permutation. z up:
+                // (x, y, z) → (x, z, −y); x up: (x, y, z) → (−y, x, z).
+                for row in cam.matrix.0.iter_mut() {
+                    *row = match up {
+                        UpAxis::Y => *row,
+                        UpAxis::Z => [row[0], -row[2], row[1], row[3]],
+                        UpAxis::X => [row[1], -row[0], row[2], row[3]],
+                    };
                 }
                 let unit_view = MatrixView::of(&rows_f64(&cam.matrix), [0.0; 3]);
                 // Model units: M · S(2^−e). The renderer normalises the
@@ -108,6 +116,120 @@ impl CameraSpec {
                 frame
             }
         }
+    }
+}
+
+/// The orbit options of `fpt render` and `fpt turntable`. Without any,
+/// the picture is a three-quarter view (yaw 35°, pitch 25°) that frames the
+/// model's bounding sphere, upright by the axis the tree records.
+#[derive(Args, Clone, Debug)]
+pub struct OrbitArgs {
+    /// Orbit: rotation about the up axis, degrees (0 looks along −z for a
+    /// y-up model) [default: 35]. Negative values are fine: --yaw=-30.
+    #[arg(long, allow_hyphen_values = true)]
+    pub yaw: Option<f64>,
+    /// Orbit: elevation, degrees [default: 25]; negative looks from below.
+    #[arg(long, allow_hyphen_values = true)]
+    pub pitch: Option<f64>,
+    /// Orbit: distance from the bounding-sphere centre, in bounding radii
+    /// (as `fpt build --orbit`) [default: 3, or farther when the picture's
+    /// narrower side would cut the bounding sphere].
+    #[arg(long, allow_hyphen_values = true)]
+    pub distance: Option<f64>,
+    /// Units of --distance: radii (bounding radii) or model (model units).
+    #[arg(long = "distance-units", default_value = "radii", value_parser = ["radii", "model"])]
+    pub distance_units: String,
+    /// Orbit: vertical field of view, degrees; 0 is a parallel projection.
+    #[arg(long, default_value_t = 40.0, allow_hyphen_values = true)]
+    pub fov: f64,
+    /// The model's up axis: auto (what the tree records: `fpt build --up`),
+    /// x, y or z.
+    #[arg(long, default_value = "auto", value_parser = ["auto", "x", "y", "z"])]
+    pub up: String,
+}
+
+/// Default yaw of an orbit when none is given: a three-quarter view.
+pub const DEFAULT_YAW: f64 = 35.0;
+/// Default pitch of an orbit when none is given.
+pub const DEFAULT_PITCH: f64 = 25.0;
+
+/// The default orbit distance in bounding radii for a `w × h` picture:
+/// 3, or farther when the bounding sphere would not fit the narrower of the
+/// two fields of view (a tall picture, a narrow `fov_deg`). Parallel
+/// projections show `distance / 2` above and below the centre.
+pub fn framing_distance(fov_deg: f64, w: u32, h: u32) -> f64 {
+    let aspect = f64::from(w) / f64::from(h);
+    let need = if fov_deg > 0.0 {
+        let half_v = 0.5 * fov_deg.to_radians();
+        let half_h = (half_v.tan() * aspect).atan();
+        1.0 / half_v.min(half_h).sin()
+    } else {
+        2.0 / aspect.min(1.0)
+    };
+    need.max(3.0)
+}
+
+/// The orbit camera of `o` for `tree` in a `w × h` picture, checked: any
+/// finite angles, a positive distance, a field of view in [0, 180).
+pub fn orbit_camera(
+    o: &OrbitArgs,
+    tree: &Tree<'_>,
+    w: u32,
+    h: u32,
+) -> Result<CameraSpec, CliError> {
+    let yaw = o.yaw.unwrap_or(DEFAULT_YAW);
+    let pitch = o.pitch.unwrap_or(DEFAULT_PITCH);
+    if !(yaw.is_finite() && pitch.is_finite()) {
+        return Err(cli_err!("--yaw and --pitch must be finite numbers"));
+    }
+    if !(o.fov.is_finite() && (0.0..180.0).contains(&o.fov)) {
+        return Err(cli_err!("--fov must be in [0, 180) degrees, got {}", o.fov));
+    }
+    let r = f64::from(tree.bounding_radius());
+    let distance = match o.distance {
+        None => framing_distance(o.fov, w, h),
+        Some(d) => {
+            if !(d.is_finite() && d > 0.0) {
+                return Err(cli_err!("--distance must be a positive number, got {d}"));
+            }
+            if o.distance_units == "model" && r > 0.0 {
+                d / r
+            } else {
+                d
+            }
+        }
+    };
+    // The eye, in units of about the radius, must be an `f32`.
+    if !(distance.is_finite() && distance < 0.25 * f64::from(f32::MAX)) {
+        return Err(cli_err!(
+            "--distance is too large: {distance:e} bounding radii"
+        ));
+    }
+    let up = match o.up.as_str() {
+        "auto" => tree.up_axis(),
+        name => UpAxis::from_name(name)
+            .ok_or_else(|| cli_err!("unknown up axis '{name}' (expected auto, x, y or z)"))?,
+    };
+    Ok(CameraSpec::Orbit {
+        yaw,
+        pitch,
+        distance: Some(distance),
+        fov: o.fov,
+        up,
+    })
+}
+
+/// The camera of `--mvp` when given, else the orbit's.
+pub fn camera_of(
+    mvp: Option<&str>,
+    o: &OrbitArgs,
+    tree: &Tree<'_>,
+    w: u32,
+    h: u32,
+) -> Result<CameraSpec, CliError> {
+    match mvp {
+        Some(m) => Ok(CameraSpec::Mvp(parse_mvp(m)?)),
+        None => orbit_camera(o, tree, w, h),
     }
 }
 
@@ -208,7 +330,7 @@ mod tests {
                 pitch,
                 distance: None,
                 fov,
-                z_up: false,
+                up: UpAxis::Y,
             };
             type M = <FixedPrecision<4> as Precision>::Math;
             assert_eq!(

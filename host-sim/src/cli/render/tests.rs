@@ -161,8 +161,10 @@ fn bad_input_exits_with_status_2() {
         ],
         vec![&t, "-o", &o, "--mvp", "1,0,0,0,1,0,0,0,0,0,1,0,0,0,0,1"],
         vec![&t, "-o", &o, "--mvp", "1,2,3"],
-        vec![&t, "-o", &o, "--yaw", "0"],
-        vec![&t, "-o", &o],
+        vec![&t, "-o", &o, "--yaw", "nan"],
+        vec![&t, "-o", &o, "--up", "w"],
+        vec![&t, "-o", &o, "--background", "0,0,256"],
+        vec![&t, "-o", &o, "--distance", "0"],
         vec![&t, "-o", &o, "--yaw", "0", "--pitch", "0", "--band", "0"],
         vec![
             &t,
