@@ -41,6 +41,7 @@ fn cube_file(name: &str, format: VertexFormat) -> PathBuf {
     let opts = SerializeOptions {
         vertex_format: format,
         effects: Some(3),
+        ..SerializeOptions::default()
     };
     let bytes = serialize(&tree, &opts).unwrap();
     let path =

@@ -131,7 +131,7 @@ proptest! {
         c in corruption(),
     ) {
         let t = random_tree(seed, n, closed, bsp, 1.0, DVec3::new(0.5, -2.0, 1.0));
-        let opts = SerializeOptions { vertex_format: VertexFormat::ALL[format], effects: None };
+        let opts = SerializeOptions { vertex_format: VertexFormat::ALL[format], ..SerializeOptions::default() };
         let original = serialize(&t, &opts).unwrap();
         prop_assert!(exercise(&original));
 

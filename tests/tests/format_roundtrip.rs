@@ -17,6 +17,7 @@ fn opts(f: VertexFormat) -> SerializeOptions {
     SerializeOptions {
         vertex_format: f,
         effects: Some(0x1234_5678),
+        ..SerializeOptions::default()
     }
 }
 

@@ -4,6 +4,7 @@
 
 use super::{finite3_f32, Tree};
 use crate::format::{polygon as pg, rd_f32x3, rd_u32, FormatError, VertexFormat, NO_SWITCH};
+use crate::format::{EDGE_LEN, EDGE_SOFT};
 
 impl Tree<'_> {
     /// `f32` vertices finite; every vertex index below the vertex count.
@@ -46,6 +47,16 @@ impl Tree<'_> {
             None if self.counts.indices != 0 => Err(FormatError::BadHeader("index_count")),
             _ => Ok(()),
         }
+    }
+
+    /// Every edge record has a known kind.
+    pub(super) fn check_edges(&self) -> Result<(), FormatError> {
+        for (j, r) in self.g.edges.chunks_exact(EDGE_LEN).enumerate() {
+            if r[3] > EDGE_SOFT {
+                return Err(FormatError::BadEdge(j as u32));
+            }
+        }
+        Ok(())
     }
 
     /// The runs tile the polygons (non-empty, in order, the last ending at

@@ -107,6 +107,7 @@ pub fn scene_tree_as(name: &str, vertex_format: VertexFormat) -> Result<Vec<u8>,
     let opts = SerializeOptions {
         vertex_format,
         effects: None,
+        ..SerializeOptions::default()
     };
     serialize(&tree, &opts).map_err(|e| cli_err!("{name}: {e}"))
 }
