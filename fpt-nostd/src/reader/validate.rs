@@ -3,8 +3,8 @@
 //! [`crate::reader`]). Each is linear in its section and allocates nothing.
 
 use super::{finite3_f32, Tree};
+use crate::format::EDGE_SOFT;
 use crate::format::{polygon as pg, rd_f32x3, rd_u32, FormatError, VertexFormat, NO_SWITCH};
-use crate::format::{EDGE_LEN, EDGE_SOFT};
 
 impl Tree<'_> {
     /// `f32` vertices finite; every vertex index below the vertex count.
@@ -51,9 +51,10 @@ impl Tree<'_> {
 
     /// Every edge record has a known kind.
     pub(super) fn check_edges(&self) -> Result<(), FormatError> {
-        for (j, r) in self.g.edges.chunks_exact(EDGE_LEN).enumerate() {
-            if r[3] > EDGE_SOFT {
-                return Err(FormatError::BadEdge(j as u32));
+        for j in 0..self.counts.edges {
+            match self.g.edge_record(j as usize) {
+                Some(r) if r[3] <= EDGE_SOFT => {}
+                _ => return Err(FormatError::BadEdge(j)),
             }
         }
         Ok(())
