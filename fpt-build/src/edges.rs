@@ -13,6 +13,14 @@
 //! partly overlaps its neighbour's, stays an outline: at worst a line too
 //! many, never a missing silhouette.
 //!
+//! **Feature edges** (the optional edge section of a file, written when
+//! the scene declares `outline`; [`edge_kinds`]): every edge of every
+//! polygon gets a kind. Inner edges as above are hidden; an edge shared
+//! with a neighbour of the same colour whose plane turns by at most the
+//! crease angle is *soft* (drawn only as a silhouette, so a tessellated
+//! curved surface shows its outline, not its facets); the rest (sharper
+//! than the crease, a colour change, a mesh boundary) are drawn.
+//!
 //! Only 8 bits are stored per polygon: edges from the 9th on are always
 //! outlines. That is not rare once seams are repaired (T-junction vertices
 //! lengthen loops): counted with [`lost_inner_edges`] on the procedural
@@ -45,12 +53,7 @@ impl FaceKey {
 /// edges are inner edges (`true`), per loop, edge `i` from vertex `i` to
 /// `i + 1`.
 pub fn inner_edges(loops: &[&[u32]], keys: &[FaceKey]) -> Vec<Vec<bool>> {
-    let mut by_edge: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-    for (p, l) in loops.iter().enumerate() {
-        for (a, b) in edges(l) {
-            by_edge.entry((a, b)).or_default().push(p);
-        }
-    }
+    let by_edge = edge_map(loops);
     loops
         .iter()
         .enumerate()
@@ -89,6 +92,76 @@ pub fn lost_inner_edges(loops: &[&[u32]], keys: &[FaceKey]) -> usize {
         .iter()
         .map(|inner| inner.iter().skip(8).filter(|&&b| b).count())
         .sum()
+}
+
+/// The default crease angle in degrees (`fpt build --crease`).
+pub const DEFAULT_CREASE_DEG: f32 = 30.0;
+
+/// The kind of every edge of every loop, as the file's edge section stores
+/// it (`fpt_nostd::format`): `(kind, neighbour normal × 127)`, edge `i`
+/// from vertex `i` to `i + 1`. `normals` are the loops' unit plane
+/// normals; an edge whose neighbour of the same colour turns by at most
+/// `crease_deg` degrees is soft.
+pub fn edge_kinds(
+    loops: &[&[u32]],
+    keys: &[FaceKey],
+    normals: &[[f32; 3]],
+    crease_deg: f32,
+) -> Vec<Vec<(u8, [i8; 3])>> {
+    use fpt_nostd::format::{EDGE_DRAWN, EDGE_HIDDEN, EDGE_SOFT};
+    let by_edge = edge_map(loops);
+    let cos_crease = f64::from(crease_deg).to_radians().cos();
+    let dot = |a: &[f32; 3], b: &[f32; 3]| {
+        (0..3)
+            .map(|k| f64::from(a[k]) * f64::from(b[k]))
+            .sum::<f64>()
+    };
+    loops
+        .iter()
+        .enumerate()
+        .map(|(p, l)| {
+            edges(l)
+                .map(|(a, b)| {
+                    let across: Vec<usize> = if a == b {
+                        vec![]
+                    } else {
+                        by_edge
+                            .get(&(b, a))
+                            .map(|qs| qs.iter().copied().filter(|&q| q != p).collect())
+                            .unwrap_or_default()
+                    };
+                    if across.iter().any(|&q| keys[q].same_face(&keys[p])) {
+                        return (EDGE_HIDDEN, [0; 3]);
+                    }
+                    // The smoothest neighbour of the same colour.
+                    let soft = across
+                        .iter()
+                        .filter(|&&q| keys[q].color == keys[p].color)
+                        .map(|&q| (dot(&normals[p], &normals[q]), q))
+                        .filter(|&(c, _)| c >= cos_crease)
+                        .max_by(|x, y| x.0.total_cmp(&y.0));
+                    match soft {
+                        Some((_, q)) => (
+                            EDGE_SOFT,
+                            normals[q].map(|c| (c * 127.0).round().clamp(-127.0, 127.0) as i8),
+                        ),
+                        None => (EDGE_DRAWN, [0; 3]),
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Which polygons have each directed edge.
+fn edge_map(loops: &[&[u32]]) -> HashMap<(u32, u32), Vec<usize>> {
+    let mut by_edge: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    for (p, l) in loops.iter().enumerate() {
+        for (a, b) in edges(l) {
+            by_edge.entry((a, b)).or_default().push(p);
+        }
+    }
+    by_edge
 }
 
 fn edges(l: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
@@ -141,5 +214,56 @@ mod tests {
         let keys = [key(1, 1), key(1, 1), key(1, 1)];
         assert_eq!(hidden_edges(&loops, &keys)[0], 0b1);
         assert_eq!(lost_inner_edges(&loops, &keys), 1);
+    }
+
+    #[test]
+    fn edge_kinds_follow_the_crease_angle() {
+        use fpt_nostd::format::{EDGE_DRAWN, EDGE_HIDDEN, EDGE_SOFT};
+        // Polygon 0 shares edge 0 → 1 with polygon 1 (turned by 20°),
+        // edge 1 → 2 with polygon 2 (turned by 60°), edge 2 → 0 with
+        // polygon 3, a piece of its own face; polygon 4 is a 10-gon whose
+        // edge 9 (9 → 0) is shared with polygon 5 of the same face.
+        let (s, c) = 20f32.to_radians().sin_cos();
+        let (s6, c6) = 60f32.to_radians().sin_cos();
+        let n0 = [0.0, 0.0, 1.0];
+        let normals = [n0, [s, 0.0, c], [s6, 0.0, c6], n0, n0, n0];
+        let l0 = [0u32, 1, 2];
+        let l1 = [1u32, 0, 3];
+        let l2 = [2u32, 1, 4];
+        let l3 = [0u32, 2, 5];
+        let big: Vec<u32> = (10..20).collect();
+        let l5 = [10u32, 19, 30];
+        let loops: Vec<&[u32]> = vec![&l0, &l1, &l2, &l3, &big, &l5];
+        let keys = [
+            key(1, 1),
+            key(2, 2),
+            key(3, 3),
+            key(1, 1),
+            key(4, 4),
+            key(4, 4),
+        ];
+        let k = edge_kinds(&loops, &keys, &normals, 30.0);
+        let n1 = [(s * 127.0).round() as i8, 0, (c * 127.0).round() as i8];
+        assert_eq!(
+            k[0],
+            vec![(EDGE_SOFT, n1), (EDGE_DRAWN, [0; 3]), (EDGE_HIDDEN, [0; 3])]
+        );
+        // A smaller crease makes the 20° edge a feature edge.
+        assert_eq!(
+            edge_kinds(&loops, &keys, &normals, 10.0)[0][0].0,
+            EDGE_DRAWN
+        );
+        // Every edge of the 10-gon has its kind, the 10th included.
+        assert_eq!(k[4].len(), 10);
+        assert_eq!(k[4][9].0, EDGE_HIDDEN);
+        assert!(k[4][..9].iter().all(|e| e.0 == EDGE_DRAWN));
+        // A different colour is always an outline.
+        let mut other = key(2, 2);
+        other.color = [9, 9, 9];
+        let keys = [key(1, 1), other, key(3, 3), key(1, 1), key(4, 4), key(4, 4)];
+        assert_eq!(
+            edge_kinds(&loops, &keys, &normals, 30.0)[0][0].0,
+            EDGE_DRAWN
+        );
     }
 }

@@ -33,16 +33,17 @@ use std::fmt;
 pub use fpt_nostd::format::VertexFormat;
 use fpt_nostd::format::{
     crc32, header as h, polygon as pg, Counts, Sections, UpAxis, FLAG_CLOSED, HEADER_LEN, MAGIC,
-    MAX_SHIFT, NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION,
+    MAX_SHIFT, NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION_OPTIONAL, VERSION_PLAIN,
 };
+use fpt_nostd::format::{EDGE_LEN, FLAG_EDGES};
 use glam::DVec3;
 
-use crate::edges::{hidden_edges, FaceKey};
+use crate::edges::{edge_kinds, hidden_edges, FaceKey, DEFAULT_CREASE_DEG};
 use crate::geom::Plane;
 use crate::tree::{Connecting, FpTree};
 
 /// Choices made when writing a file.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SerializeOptions {
     /// How vertices are encoded.
     pub vertex_format: VertexFormat,
@@ -52,6 +53,10 @@ pub struct SerializeOptions {
     pub effects: Option<u32>,
     /// The model's up axis, recorded for viewers (header byte 23).
     pub up: UpAxis,
+    /// The crease angle in degrees: two faces meeting at a sharper angle
+    /// have a feature edge between them (the `outline` effect's edge
+    /// section, written when the effects include `outline`).
+    pub crease_deg: f32,
 }
 
 impl Default for SerializeOptions {
@@ -60,6 +65,7 @@ impl Default for SerializeOptions {
             vertex_format: VertexFormat::F32,
             effects: None,
             up: UpAxis::Y,
+            crease_deg: DEFAULT_CREASE_DEG,
         }
     }
 }
@@ -414,8 +420,13 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         node_recs.push([first_bunch, levels, switch]);
     }
 
-    // Outline masks (see `crate::edges`).
-    let hidden = {
+    let effects = opts
+        .effects
+        .unwrap_or(fpt_nostd::effects::Effects::defaults(tree.closed).bits());
+    let outline = effects & fpt_nostd::effects::Effects::OUTLINE.bits() != 0;
+    // Outline masks, and the edge section's kinds with outlines (see
+    // `crate::edges`).
+    let (hidden, kinds) = {
         let ends = first_index
             .iter()
             .skip(1)
@@ -438,7 +449,13 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
                 }
             })
             .collect();
-        hidden_edges(&loops, &keys)
+        let kinds = if outline {
+            let normals: Vec<[f32; 3]> = planes.iter().map(|p| [p[0], p[1], p[2]]).collect();
+            edge_kinds(&loops, &keys, &normals, opts.crease_deg)
+        } else {
+            vec![]
+        };
+        (hidden_edges(&loops, &keys), kinds)
     };
 
     let count = |n: usize| u32::try_from(n).map_err(too_large);
@@ -450,19 +467,26 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         nodes: count(node_recs.len())?,
         switches: count(switch_planes.len())?,
         runs: count(runs.len())?,
+        edges: if outline { count(indices.len())? } else { 0 },
     };
     let s =
         Sections::new(&counts, opts.vertex_format, index_size).ok_or(SerializeError::TooLarge)?;
 
     let mut out = Vec::with_capacity(s.file_len);
     out.extend_from_slice(&MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
+    let version = if outline {
+        VERSION_OPTIONAL
+    } else {
+        VERSION_PLAIN
+    };
+    out.extend_from_slice(&version.to_le_bytes());
     out.extend_from_slice(&(HEADER_LEN as u16).to_le_bytes());
     put_u32(&mut out, s.file_len as u32);
-    put_u32(&mut out, if tree.closed { FLAG_CLOSED } else { 0 });
-    let effects = opts
-        .effects
-        .unwrap_or(fpt_nostd::effects::Effects::defaults(tree.closed).bits());
+    let edge_flag = if outline { FLAG_EDGES } else { 0 };
+    put_u32(
+        &mut out,
+        edge_flag | if tree.closed { FLAG_CLOSED } else { 0 },
+    );
     put_u32(&mut out, effects);
     out.extend_from_slice(&[
         opts.vertex_format.code(),
@@ -511,6 +535,11 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
             put_u32(&mut out, i);
         }
     }
+    out.resize(s.edges, 0);
+    for &(kind, n) in kinds.iter().flatten() {
+        out.extend_from_slice(&[n[0] as u8, n[1] as u8, n[2] as u8, kind]);
+    }
+    debug_assert_eq!(out.len(), s.edges + counts.edges as usize * EDGE_LEN);
     out.resize(s.runs, 0);
     for &(plane, end) in &runs {
         put_plane(&mut out, plane);
@@ -619,6 +648,7 @@ mod tests {
                 vertex_format: f,
                 effects: Some(0xABCD),
                 up: UpAxis::Z,
+                ..SerializeOptions::default()
             };
             let bytes = serialize(&t, &opts).unwrap();
             let r = Tree::from_bytes(&bytes).unwrap();
@@ -680,6 +710,79 @@ mod tests {
         // existed hold.
         let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
         assert_eq!(bytes[h::UP_AXIS], 0);
+    }
+
+    #[test]
+    fn the_edge_section_is_written_with_outlines_only_and_validated() {
+        use fpt_nostd::effects::Effects;
+        use fpt_nostd::format::{FormatError, EDGE_DRAWN};
+        let t = sample(DVec3::ZERO);
+        let plain = serialize(&t, &SerializeOptions::default()).unwrap();
+        let opts = SerializeOptions {
+            effects: Some(Effects::defaults(false).with(Effects::OUTLINE).bits()),
+            ..SerializeOptions::default()
+        };
+        let bytes = serialize(&t, &opts).unwrap();
+        let (a, b) = (
+            Tree::from_bytes(&plain).unwrap(),
+            Tree::from_bytes(&bytes).unwrap(),
+        );
+        assert_eq!((a.version(), a.has_edges()), (VERSION_PLAIN, false));
+        assert_eq!((b.version(), b.has_edges()), (VERSION_OPTIONAL, true));
+        assert_eq!(
+            bytes.len(),
+            plain.len() + (b.index_count() as usize * EDGE_LEN).next_multiple_of(4)
+        );
+        // Three separate quads: every edge is a boundary, drawn.
+        for id in 0..b.polygon_count() {
+            let p = b.polygon(id).unwrap();
+            for i in 0..p.vertex_count() {
+                assert_eq!(p.edge(i), Some((EDGE_DRAWN, [0; 3])));
+            }
+            assert_eq!(p.edge(p.vertex_count()), None);
+            assert_eq!(a.polygon(id).unwrap().edge(0), None);
+        }
+        let with_crc = |mut v: Vec<u8>| {
+            let n = v.len() - 4;
+            let c = crc32(&v[..n]);
+            v[n..].copy_from_slice(&c.to_le_bytes());
+            v
+        };
+        let s = Sections::new(
+            &Counts {
+                vertices: b.vertex_count(),
+                polygons: b.polygon_count(),
+                indices: b.index_count(),
+                bunches: b.bunch_count(),
+                nodes: b.node_count(),
+                switches: b.switch_count(),
+                runs: b.run_count(),
+                edges: b.index_count(),
+            },
+            b.vertex_format(),
+            usize::from(b.index_size()),
+        )
+        .unwrap();
+        let mut bad_kind = bytes.clone();
+        bad_kind[s.edges + EDGE_LEN + 3] = 3;
+        assert_eq!(
+            Tree::from_bytes(&with_crc(bad_kind)).err(),
+            Some(FormatError::BadEdge(1))
+        );
+        // Version 2 knows no edge flag.
+        let mut v2 = bytes.clone();
+        v2[h::VERSION..h::VERSION + 2].copy_from_slice(&VERSION_PLAIN.to_le_bytes());
+        assert_eq!(
+            Tree::from_bytes(&with_crc(v2)).err(),
+            Some(FormatError::BadHeader("flags"))
+        );
+        // Without the flag, the section makes the length wrong.
+        let mut no_flag = bytes.clone();
+        no_flag[h::FLAGS] &= !(FLAG_EDGES as u8);
+        assert_eq!(
+            Tree::from_bytes(&with_crc(no_flag)).err(),
+            Some(FormatError::SectionSizes)
+        );
     }
 
     #[test]

@@ -14,7 +14,7 @@
 //! | `lighting` | 3 | flat Lambert shading from a directional light plus ambient | a dot product per drawn face |
 //! | `depth-cue` | 4 | faces fade toward the fog colour with eye depth | a few multiplications per drawn face |
 //! | `dither` | 5 | 4×4 ordered (Bayer) dithering to a `Gray8` panel's levels or to `BinaryColor` | per pixel: it is a sink ([`crate::raster::Dither`]), chosen by the caller |
-//! | `outline` | 6 | the visible edges of each face drawn after its fill (hidden-line look) | a line per outline edge of each drawn face |
+//! | `outline` | 6 | the visible edges of each face drawn after its fill (hidden-line look); declared at build time, the tree marks every edge (feature edge, inner, or smooth: drawn as a silhouette only; see [`crate::format`]) | a line per outline edge of each drawn face, and its mask worked out per drawn face |
 //!
 //! **Free when absent**, two ways:
 //! * **Decided once per polygon or frame**: every stage tests a bit of the

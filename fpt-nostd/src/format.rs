@@ -8,7 +8,10 @@
 //!
 //! # Layout
 //!
-//! `header · vertices · polygons · indices · runs · bunches · nodes · switches · crc`
+//! `header · vertices · polygons · indices · [edges] · runs · bunches · nodes · switches · crc`
+//!
+//! The bracketed section is optional: present only when the header's flags
+//! say so (version 3, see below); a version 2 file never has it.
 //!
 //! Each section starts right after the previous one, padded with zero bytes
 //! to a multiple of 4 (so a copy to aligned RAM could use them directly); its
@@ -22,10 +25,10 @@
 //! | offset | type | field | meaning |
 //! |---:|---|---|---|
 //! | 0 | `[u8; 4]` | magic | [`MAGIC`], `b"FPTR"` |
-//! | 4 | `u16` | version | [`VERSION`] (2; version 1 required byte 15 of a polygon to be 0) |
+//! | 4 | `u16` | version | [`VERSION`] (3) when an optional section is present, else 2 (both are read; version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (96) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
-//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); other bits must be 0 |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present (version 3 only); other bits must be 0 |
 //! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
@@ -64,7 +67,7 @@
 //! | 4 | `u32` | run: the run holding it, whose plane is its plane |
 //! | 8 | `u32` | source: the face of the input mesh it came from |
 //! | 12 | `u8 × 3` | colour, RGB |
-//! | 15 | `u8` | hidden_edges: bit `i` set when edge `i` (vertex `i` → `i + 1`) lies inside the source face (shared with another piece of it, or with a coplanar neighbour of the same colour), so the `outline` effect leaves it out; edges from 8 on are always drawn |
+//! | 15 | `u8` | hidden_edges: bit `i` set when edge `i` (vertex `i` → `i + 1`) lies inside the source face (shared with another piece of it, or with a coplanar neighbour of the same colour), so the `outline` effect leaves it out; edges from 8 on are always drawn. A file with the edge section uses that section instead (every edge, feature edges and silhouettes) |
 //!
 //! The polygons tile the index list in order: polygon 0 starts at index 0 and
 //! polygon `p` ends where polygon `p + 1` starts (the last one at
@@ -74,6 +77,32 @@
 //! ## Vertex index list (`index_count` entries of `index_size` bytes)
 //!
 //! `u16` or `u32` indices into the vertex section.
+//!
+//! ## Edges (optional: `index_count` entries of [`EDGE_LEN`] = 4 bytes)
+//!
+//! Present when flag [`FLAG_EDGES`] is set (the serializer writes it when
+//! the scene declares the `outline` effect). Entry `j` describes the edge
+//! that starts at index entry `j`: from that vertex to the next one of the
+//! same polygon (the last one's wraps to the polygon's first), so every
+//! edge of every polygon, whatever its vertex count, has one.
+//!
+//! | offset | type | field |
+//! |---:|---|---|
+//! | 0 | `i8 × 3` | neighbour normal: for a [`EDGE_SOFT`] edge, the unit plane normal of the polygon across the edge, times 127 and rounded; 0 otherwise |
+//! | 3 | `u8` | kind: [`EDGE_DRAWN`] 0, [`EDGE_HIDDEN`] 1 or [`EDGE_SOFT`] 2; other values are rejected |
+//!
+//! The kinds, decided by the builder from the polygon across the edge
+//! (sharing it vertex for vertex, in the opposite direction):
+//! * **drawn**: a feature edge (the faces meet at a dihedral angle above
+//!   the crease angle, `fpt build --crease DEG`, default 30°), a colour
+//!   boundary, or a boundary of the mesh (no such neighbour);
+//! * **hidden**: inside one face (as `hidden_edges` above: a piece of the
+//!   same source face, or a coplanar neighbour of the same colour);
+//! * **soft**: a smooth edge (same colour, dihedral angle at most the
+//!   crease angle): drawn only when it is a silhouette, i.e. when its
+//!   neighbour faces the other way from the viewer than the polygon does
+//!   (the neighbour's facing taken at the edge's first vertex, with the
+//!   stored normal).
 //!
 //! ## Runs (`run_count` entries of [`RUN_LEN`] = 20 bytes)
 //!
@@ -138,8 +167,10 @@ use core::fmt;
 
 /// The first four bytes of every tree file.
 pub const MAGIC: [u8; 4] = *b"FPTR";
-/// The format version this crate reads and writes.
-pub const VERSION: u16 = 2;
+/// The newest format version this crate reads and writes
+/// ([`VERSION_OPTIONAL`]; files without optional sections are written as
+/// [`VERSION_PLAIN`], and both are read).
+pub const VERSION: u16 = 3;
 /// Length of the header in bytes.
 pub const HEADER_LEN: usize = 96;
 /// Length of one polygon record.
@@ -152,8 +183,22 @@ pub const NODE_LEN: usize = 12;
 pub const SWITCH_LEN: usize = 16;
 /// Length of the trailing checksum.
 pub const CRC_LEN: usize = 4;
+/// The format version of a file with an optional section.
+pub const VERSION_OPTIONAL: u16 = 3;
+/// The format version of a file without optional sections.
+pub const VERSION_PLAIN: u16 = 2;
 /// Header flag: the model is a closed volume.
 pub const FLAG_CLOSED: u32 = 1;
+/// Header flag: the edge section is present (version 3).
+pub const FLAG_EDGES: u32 = 1 << 1;
+/// Length of one edge record.
+pub const EDGE_LEN: usize = 4;
+/// Edge kind: an outline (feature edge, colour or mesh boundary).
+pub const EDGE_DRAWN: u8 = 0;
+/// Edge kind: inside a face, never drawn.
+pub const EDGE_HIDDEN: u8 = 1;
+/// Edge kind: a smooth edge, drawn only as a silhouette.
+pub const EDGE_SOFT: u8 = 2;
 /// The `switch` field of a connecting node without a switch.
 pub const NO_SWITCH: u32 = u32::MAX;
 /// Largest `q32` shift (keeps `2^-shift` a normal `f32`).
@@ -374,6 +419,8 @@ pub enum FormatError {
     BadHeader(&'static str),
     /// The counts in the header do not add up to the file length.
     SectionSizes,
+    /// An edge record's kind is not one of the known kinds.
+    BadEdge(u32),
     /// A float that must be finite is not; names the section.
     NonFinite(&'static str),
     /// A vertex index is not below the vertex count.
@@ -404,6 +451,7 @@ impl fmt::Display for FormatError {
             FormatError::SectionSizes => {
                 f.write_str("section sizes do not add up to the file length")
             }
+            FormatError::BadEdge(j) => write!(f, "invalid kind of edge record {j}"),
             FormatError::NonFinite(what) => write!(f, "non-finite number in {what}"),
             FormatError::IndexOutOfRange => f.write_str("vertex index out of range"),
             FormatError::BadPolygon(p) => write!(f, "invalid vertex range of polygon {p}"),
@@ -439,6 +487,8 @@ pub struct Counts {
     pub switches: u32,
     /// Runs of polygons sharing a plane.
     pub runs: u32,
+    /// Edge records: 0 without the edge section, else the index count.
+    pub edges: u32,
 }
 
 /// Byte offsets of the sections of a file, computed from its counts.
@@ -450,6 +500,8 @@ pub struct Sections {
     pub polygons: usize,
     /// Start of the index list.
     pub indices: usize,
+    /// Start of the edge section (where the runs start when it is absent).
+    pub edges: usize,
     /// Start of the runs.
     pub runs: usize,
     /// Start of the bunch offsets.
@@ -477,7 +529,8 @@ impl Sections {
         let v = HEADER_LEN as u64;
         let p = next(v, counts.vertices, format.vertex_len());
         let i = next(p, counts.polygons, POLYGON_LEN);
-        let r = next(i, counts.indices, index_size);
+        let e = next(i, counts.indices, index_size);
+        let r = next(e, counts.edges, EDGE_LEN);
         let b = next(r, counts.runs, RUN_LEN);
         let n = next(b, counts.bunches.checked_add(1)?, 4);
         let s = next(n, counts.nodes, NODE_LEN);
@@ -493,6 +546,7 @@ impl Sections {
             vertices: cv(v)?,
             polygons: cv(p)?,
             indices: cv(i)?,
+            edges: cv(e)?,
             runs: cv(r)?,
             bunches: cv(b)?,
             nodes: cv(n)?,
@@ -630,12 +684,18 @@ mod tests {
             nodes: 1,
             switches: 0,
             runs: 1,
+            edges: 0,
         };
         let s = Sections::new(&c, VertexFormat::Q16, 2).unwrap();
         assert_eq!(s.vertices, HEADER_LEN);
         assert_eq!(s.polygons, HEADER_LEN + 20); // 18 bytes padded to 20
         assert_eq!(s.indices, s.polygons + POLYGON_LEN);
         assert_eq!(s.runs, s.indices + 8); // 6 bytes padded to 8
+        assert_eq!(s.edges, s.runs);
+        let with_edges = Sections::new(&Counts { edges: 3, ..c }, VertexFormat::Q16, 2).unwrap();
+        assert_eq!(with_edges.edges, s.edges);
+        assert_eq!(with_edges.runs, s.runs + 3 * EDGE_LEN);
+        assert_eq!(with_edges.file_len, s.file_len + 3 * EDGE_LEN);
         assert_eq!(s.bunches, s.runs + RUN_LEN);
         assert_eq!(s.nodes, s.bunches + 8);
         assert_eq!(s.switches, s.nodes + NODE_LEN);

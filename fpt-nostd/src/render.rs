@@ -50,12 +50,13 @@
 //! ([`OrderError`]).
 
 use crate::effects::{AllEffects, Compiled, Effects};
+use crate::format::{EDGE_HIDDEN, EDGE_SOFT};
 use crate::order::{LocalView, OrderError, View};
 use crate::raster::{
     Camera, Face, Framebuffer, FramebufferError, Mat4, PixelFormat, Precision, RenderStats,
     Renderer, Scratch, SpanSink,
 };
-use crate::reader::{PolygonRef, Tree};
+use crate::reader::{Plane, PolygonRef, Tree};
 
 pub use cached::{memory_words, memory_words_for};
 pub use probe::{NoProbe, Phase, Probe};
@@ -451,6 +452,8 @@ pub(crate) struct WalkFx {
     pub(crate) two_sided: bool,
     /// Lighting is on: the face needs its normal.
     pub(crate) lit: bool,
+    /// Outlines are on: the face needs its outline mask.
+    pub(crate) outline: bool,
 }
 
 /// Settles the renderer's effects for `tree` ([`Renderer::begin_tree`])
@@ -468,6 +471,7 @@ pub(crate) fn walk_effects<P: Precision, E: Compiled>(
         cull: fx.contains(Effects::CULLING),
         two_sided: fx.contains(Effects::TWO_SIDED),
         lit: fx.contains(Effects::LIGHTING),
+        outline: fx.contains(Effects::OUTLINE),
     }
 }
 
@@ -479,7 +483,13 @@ pub(crate) fn walk_effects<P: Precision, E: Compiled>(
 /// Shared by [`draw_frame`] and the loops of `render::cached`, so all draw
 /// alike.
 #[inline(always)]
-pub(crate) fn face_of(p: &PolygonRef<'_>, view: &LocalView, fx: WalkFx, id: u32) -> Face {
+pub(crate) fn face_of(
+    tree: &Tree<'_>,
+    p: &PolygonRef<'_>,
+    view: &LocalView,
+    fx: WalkFx,
+    id: u32,
+) -> Face {
     let normal = if fx.lit {
         let plane = p.plane();
         if fx.two_sided && !view.is_backward(&plane) {
@@ -494,8 +504,70 @@ pub(crate) fn face_of(p: &PolygonRef<'_>, view: &LocalView, fx: WalkFx, id: u32)
         normal,
         color: p.color(),
         id,
-        hidden_edges: p.hidden_edges(),
+        hidden_edges: if fx.outline {
+            outline_mask(tree, p.id(), *view)
+        } else {
+            0
+        },
     }
+}
+
+/// `sin²` of the angle within which a soft edge's neighbour counts as
+/// edge-on (14.5°, see [`outline_mask`]).
+const EDGE_ON_SIN2: f32 = 0.0625;
+
+/// The edges of `p` that the `outline` effect leaves out in this view
+/// (bit `i`: edge `i`; see [`crate::format`]). With the file's edge
+/// section: the hidden edges, and the soft ones that are no silhouette:
+/// the neighbour across the edge faces the viewer the same way as `p`,
+/// and is not within 14.5° of edge-on. (An edge-on neighbour is the face
+/// that draws the silhouette; it may be thinner than a pixel, and `p`,
+/// painted after it, would cover that line, so `p` draws the edge too.)
+/// Without the section, the polygon's 8-bit mask.
+///
+/// Out of line, and given the polygon by id and the view by value: the
+/// walk's loop (where `face_of` is inlined) keeps its `PolygonRef` in
+/// registers only while no call takes its address; passing it by
+/// reference had it written to the stack for every polygon, outlines on or
+/// off (3.6 % of a `bench_city` frame on the Cortex-M4).
+#[inline(never)]
+fn outline_mask(tree: &Tree<'_>, id: u32, view: LocalView) -> u64 {
+    let Some(p) = tree.polygon(id) else {
+        return 0;
+    };
+    let view = &view;
+    if !p.has_edges() {
+        return u64::from(p.hidden_edges());
+    }
+    let facing = view.is_backward(&p.plane());
+    let mut mask = 0u64;
+    for i in 0..p.vertex_count().min(64) {
+        let hide = match p.edge(i) {
+            Some((EDGE_HIDDEN, _)) => true,
+            Some((EDGE_SOFT, n)) => {
+                // The neighbour's plane through the edge's first vertex:
+                // the same facing test as the walk's.
+                let normal = n.map(f32::from);
+                let v = p.vertex(i);
+                let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+                let plane = Plane {
+                    normal,
+                    d: -dot(normal, v),
+                };
+                // The neighbour's facing, and the ray it is seen along.
+                let ray = match view {
+                    LocalView::Parallel(dir) => dir.map(|c| -c),
+                    LocalView::Eye(e) => [e[0] - v[0], e[1] - v[1], e[2] - v[2]],
+                };
+                let s = dot(normal, ray);
+                let edge_on = s * s <= EDGE_ON_SIN2 * dot(normal, normal) * dot(ray, ray);
+                view.is_backward(&plane) == facing && !edge_on
+            }
+            _ => false,
+        };
+        mask |= u64::from(hide) << i;
+    }
+    mask
 }
 
 /// The band buffer of [`TreeRenderer::render_banded`]: storage for `rows`

@@ -6,7 +6,7 @@ extern crate std;
 
 use std::vec::Vec;
 
-use crate::format::{crc32, Counts, Sections, VertexFormat, HEADER_LEN, MAGIC, VERSION};
+use crate::format::{crc32, Counts, Sections, VertexFormat, HEADER_LEN, MAGIC, VERSION_PLAIN};
 
 /// Every field of a file, unchecked.
 #[derive(Clone, Debug)]
@@ -104,12 +104,13 @@ impl Raw {
             nodes: self.nodes.len() as u32,
             switches: self.switches.len() as u32,
             runs: self.runs.len() as u32,
+            edges: 0,
         };
         let isz = usize::from(self.index_size).max(2);
         let s = Sections::new(&counts, self.format, isz).unwrap();
         let mut o = Vec::new();
         o.extend_from_slice(&MAGIC);
-        o.extend_from_slice(&VERSION.to_le_bytes());
+        o.extend_from_slice(&VERSION_PLAIN.to_le_bytes());
         o.extend_from_slice(&(HEADER_LEN as u16).to_le_bytes());
         let u32s = |o: &mut Vec<u8>, xs: &[u32]| {
             xs.iter()

@@ -21,7 +21,7 @@
 //!   [`DisplayList::retain_rows_below`] drops records in place without
 //!   reordering the rest.
 //! * Sizes, in 16-bit words: a header of 3, plus 1 when the polygon spans
-//!   more than 254 rows, plus 1 with outlines, plus 2 with ids; then the
+//!   more than 254 rows, plus 4 with outlines (the 64-bit mask), plus 2 with ids; then the
 //!   points: a polygon whose every vertex is cached is stored by its
 //!   **polygon index** (1 word; the replay reads its vertex indices from
 //!   the tree, which is in flash, not RAM), else a count word and 1 word a
@@ -53,7 +53,7 @@ pub struct Entry {
     /// Its id (0 unless the list stores ids).
     pub id: u32,
     /// Its outline mask (0 unless the list stores outlines).
-    pub hidden: u8,
+    pub hidden: u64,
     /// Whether clipping changed it (its edges are no longer the stored
     /// ones, so outlines draw every edge).
     pub clipped: bool,
@@ -103,6 +103,8 @@ const INLINE: u16 = 2;
 const INLINE_CLIPPED: u16 = 3;
 /// `rows` value saying that the next word holds the end row.
 const LONG_ROWS: u16 = 255;
+/// Words of a record's outline mask (a `u64`, see [`super::outline`]).
+const MASK_WORDS: usize = 4;
 
 /// A list of records in caller storage (see the module docs).
 #[derive(Debug)]
@@ -131,7 +133,7 @@ pub const GROUP: usize = 16;
 
 impl<'m> DisplayList<'m> {
     /// An empty list over `buf`, storing ids and outline masks only when
-    /// asked (they cost 2 and 1 words a record).
+    /// asked (they cost 2 and 4 words a record).
     pub fn new(buf: &'m mut [u16], ids: bool, outlines: bool) -> Self {
         DisplayList {
             buf,
@@ -139,7 +141,7 @@ impl<'m> DisplayList<'m> {
             peak: 0,
             ids,
             outlines,
-            extra: usize::from(outlines) + 2 * usize::from(ids),
+            extra: MASK_WORDS * usize::from(outlines) + 2 * usize::from(ids),
             groups: 0,
             in_group: 0,
         }
@@ -282,8 +284,10 @@ impl<'m> DisplayList<'m> {
             k += 1;
         }
         if self.outlines {
-            out[k] = u16::from(e.hidden);
-            k += 1;
+            for (w, o) in out[k..k + MASK_WORDS].iter_mut().enumerate() {
+                *o = (e.hidden >> (16 * w)) as u16;
+            }
+            k += MASK_WORDS;
         }
         if self.ids {
             out[k] = e.id as u16;
@@ -320,8 +324,12 @@ impl<'m> DisplayList<'m> {
         // mask, then the id.
         let mut k = h.body - self.extra;
         let hidden = if self.outlines {
-            k += 1;
-            *self.buf.get(k - 1)? as u8
+            let words = self.buf.get(k..k + MASK_WORDS)?;
+            k += MASK_WORDS;
+            words
+                .iter()
+                .enumerate()
+                .fold(0u64, |m, (w, &x)| m | u64::from(x) << (16 * w))
         } else {
             0
         };
@@ -495,7 +503,7 @@ mod tests {
             end,
             rgb: Rgb888::new(1, 2, 3),
             id: 0x0102_0304,
-            hidden: 0b101,
+            hidden: 0x8000_0000_0001_0005,
             clipped: false,
         }
     }

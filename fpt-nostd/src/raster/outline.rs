@@ -96,11 +96,11 @@ pub fn draw_line<K: SpanSink>(
 }
 
 /// Draws the closed outline of `pts`, leaving out edge `i` (from `pts[i]`
-/// to `pts[i + 1]`) when bit `i` of `hidden` is set (edges from 8 on are
+/// to `pts[i + 1]`) when bit `i` of `hidden` is set (edges from 64 on are
 /// always drawn). Returns the number of spans emitted.
 pub fn draw_outline<K: SpanSink>(
     pts: &[ScreenPt],
-    hidden: u8,
+    hidden: u64,
     sub: u32,
     clip: &SpanBounds,
     color: K::Color,
@@ -109,7 +109,7 @@ pub fn draw_outline<K: SpanSink>(
     let mut spans = 0;
     let n = pts.len();
     for (i, a) in pts.iter().enumerate() {
-        if i < 8 && hidden & (1 << i) != 0 {
+        if i < 64 && hidden & (1 << i) != 0 {
             continue;
         }
         let Some(b) = pts.get(if i + 1 == n { 0 } else { i + 1 }) else {

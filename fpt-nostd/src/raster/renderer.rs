@@ -118,10 +118,11 @@ pub struct Face {
     pub color: [u8; 3],
     /// Polygon id (id buffers store `id + 1`).
     pub id: u32,
-    /// Bit `i` set: edge `i` (vertex `i` to `i + 1`) is inside the source
-    /// face (a cut), not one of its outlines; edges from 8 on are always
-    /// outlines. Only the `outline` effect reads it.
-    pub hidden_edges: u8,
+    /// Bit `i` set: edge `i` (vertex `i` to `i + 1`) is not drawn by the
+    /// `outline` effect (inside the source face, or a smooth edge that is
+    /// not a silhouette in this view; see [`crate::format`]); edges from 64
+    /// on are always outlines. Only the `outline` effect reads it.
+    pub hidden_edges: u64,
 }
 
 /// Why a polygon was not drawn.
@@ -639,7 +640,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         scratch: &mut Scratch<P, N>,
         ready: &Ready,
         id: u32,
-        hidden_edges: u8,
+        hidden_edges: u64,
         sink: &mut K,
     ) -> Outcome {
         let Some(pts) = scratch.screen.get(..ready.n) else {

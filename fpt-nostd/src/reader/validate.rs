@@ -3,6 +3,7 @@
 //! [`crate::reader`]). Each is linear in its section and allocates nothing.
 
 use super::{finite3_f32, Tree};
+use crate::format::EDGE_SOFT;
 use crate::format::{polygon as pg, rd_f32x3, rd_u32, FormatError, VertexFormat, NO_SWITCH};
 
 impl Tree<'_> {
@@ -46,6 +47,17 @@ impl Tree<'_> {
             None if self.counts.indices != 0 => Err(FormatError::BadHeader("index_count")),
             _ => Ok(()),
         }
+    }
+
+    /// Every edge record has a known kind.
+    pub(super) fn check_edges(&self) -> Result<(), FormatError> {
+        for j in 0..self.counts.edges {
+            match self.g.edge_record(j as usize) {
+                Some(r) if r[3] <= EDGE_SOFT => {}
+                _ => return Err(FormatError::BadEdge(j)),
+            }
+        }
+        Ok(())
     }
 
     /// The runs tile the polygons (non-empty, in order, the last ending at

@@ -99,12 +99,18 @@ pub fn memory_words(tree: &Tree<'_>) -> usize {
 /// module docs).
 pub fn memory_words_for(tree: &Tree<'_>, effects: Effects) -> usize {
     let v = (tree.vertex_count() as usize).min(MAX_CACHED);
-    // A record by polygon: at most 7 header words (a long row span, the
-    // outline mask, the id), the polygon index and its share of the group
-    // table (4 words a group of 16); polygons from the 65,537th on are
+    // A record by polygon: at most 7 header words (a long row span, one
+    // word of the outline mask, the id), the polygon index and its share
+    // of the group table (4 words a group of 16); with outlines, 3 more
+    // words of the mask (it takes 4); polygons from the 65,537th on are
     // stored by vertex index, a word a vertex more.
     let polygons = tree.polygon_count() as usize;
-    let mut halves = 9 * polygons;
+    let per = if effects.contains(Effects::OUTLINE) {
+        12
+    } else {
+        9
+    };
+    let mut halves = per * polygons;
     if polygons > MAX_CACHED {
         halves += tree.index_count() as usize;
     }
@@ -115,7 +121,7 @@ pub fn memory_words_for(tree: &Tree<'_>, effects: Effects) -> usize {
     // Depth cueing keeps no cache: every record holds its points inline
     // (4 words a point, a count word).
     let need = if effects.contains(Effects::DEPTH_CUE) {
-        (9 * polygons + 4 * tree.index_count() as usize).div_ceil(2)
+        (per * polygons + 4 * tree.index_count() as usize).div_ceil(2)
     } else {
         cached
     };
@@ -213,7 +219,7 @@ impl Walk<'_, '_, '_> {
                     FaceIds::Source => p.source(),
                     FaceIds::Polygon => p.id(),
                 };
-                let face = face_of(&p, &view, fx, id);
+                let face = face_of(self.tree, &p, &view, fx, id);
                 let mut first = true;
                 let clipped = r.stats_mut().clipped;
                 loop {

@@ -304,10 +304,17 @@ pub fn run(a: &BuildArgs) -> CliResult {
         format!(", peak heap {:.1} MiB", p as f64 / f64::from(1 << 20))
     });
     let effects = scene_effects(a, &tree)?;
+    if !(0.0..=180.0).contains(&a.crease) {
+        return Err(cli_err!(
+            "--crease: {} is not an angle from 0 to 180 degrees",
+            a.crease
+        ));
+    }
     let opts = crate::serialize::SerializeOptions {
         vertex_format,
         effects: Some(effects.bits()),
         up,
+        crease_deg: a.crease,
     };
     let bytes = crate::serialize::serialize(&tree, &opts)?;
     // Stats first: if it cannot be written, no tree file appears either.

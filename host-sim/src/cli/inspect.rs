@@ -146,7 +146,7 @@ pub fn info(a: &InfoArgs) -> CliResult {
     println!("file:              {}", a.tree.display());
     println!(
         "format:            version {}, {} bytes, crc32 {:08x}",
-        fpt_nostd::format::VERSION,
+        t.version(),
         bytes.len(),
         t.crc()
     );

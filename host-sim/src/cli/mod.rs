@@ -135,6 +135,11 @@ pub struct BuildArgs {
     /// file's (OBJ materials' Kd, PLY face or vertex colours) or grey.
     #[arg(long)]
     pub color: Option<String>,
+    /// The crease angle in degrees, 0 to 180: with the outline effect, an
+    /// edge between faces meeting at a sharper angle is drawn, a smoother
+    /// one only where it is a silhouette.
+    #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
+    pub crease: f32,
 }
 
 /// Arguments of `fpt polygons`.
