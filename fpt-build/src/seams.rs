@@ -84,18 +84,21 @@ pub fn repair_seams(polys: &mut [Polygon]) -> usize {
         }
     }
     for p in polys.iter_mut() {
-        let mut w: Vec<DVec3> = p
+        let welded: Vec<DVec3> = p
             .verts
             .iter()
             .map(|v| map.get(&key(*v)).copied().unwrap_or(*v))
             .collect();
+        let mut w = welded.clone();
         w.dedup_by(|a, b| key(*a) == key(*b));
         while w.len() > 1 && key(w[0]) == key(w[w.len() - 1]) {
             w.pop();
         }
-        if w.len() >= 3 {
-            p.verts = w;
-        }
+        // A sliver that the weld collapses (thinner than the tolerance)
+        // keeps its place in the tree with its welded vertices, repeats
+        // and all: it covers nothing, and its edges are its neighbours'
+        // (kept unwelded, its stray copies were open edges).
+        p.verts = if w.len() >= 3 { w } else { welded };
     }
     // 2. T-junctions, against the welded vertices.
     for p in polys.iter_mut() {
@@ -109,13 +112,20 @@ pub fn repair_seams(polys: &mut [Polygon]) -> usize {
             if len2 == 0.0 {
                 continue;
             }
-            let len = len2.sqrt();
             let mut on: Vec<(f64, DVec3)> = Vec::new();
             for c in near_cells(a, b) {
                 for &i in grid.get(&c).into_iter().flatten() {
                     let v = reps[i];
+                    if key(v) == key(a) || key(v) == key(b) {
+                        continue;
+                    }
+                    // Strictly between the ends, however near one of them:
+                    // a vertex off to the side of an end by a little more
+                    // than the weld distance stays a vertex of its own, and
+                    // the neighbour that has it must find it in this edge
+                    // too (or the seam keeps a sliver no one covers).
                     let t = (v - a).dot(ab) / len2;
-                    if t * len > eps && (1.0 - t) * len > eps && (a + ab * t - v).length() <= eps {
+                    if t > 0.0 && t < 1.0 && (a + ab * t - v).length() <= eps {
                         on.push((t, v));
                     }
                 }
@@ -155,5 +165,33 @@ mod tests {
         assert!(polys[2].verts.contains(&DVec3::new(1.0, 1.0, 0.0)));
         // Nothing else moves: a second pass changes nothing.
         assert_eq!(repair_seams(&mut polys), 0);
+    }
+
+    #[test]
+    fn a_vertex_beside_an_end_is_inserted_too() {
+        // The right face has a vertex c 0.8 tolerance below and 0.8
+        // tolerance beside the corner (1, 1): too far from the corner to
+        // be welded (1.13 tolerances), within the tolerance of the left
+        // face's edge x = 1 and nearer its end than the tolerance. The
+        // left face must get it, or the seam keeps a sliver.
+        let eps = 1e-7 * 5f64.sqrt();
+        let c = [1.0 + 0.8 * eps, 1.0 - 0.8 * eps];
+        let right = {
+            let v = [[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], c]
+                .iter()
+                .map(|p| DVec3::new(p[0], p[1], 0.0))
+                .collect();
+            Polygon::new(v, 1, [1, 1, 1]).unwrap()
+        };
+        let mut polys = vec![
+            quad([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], 0),
+            right,
+        ];
+        repair_seams(&mut polys);
+        assert!(
+            polys[0].verts.contains(&DVec3::new(c[0], c[1], 0.0)),
+            "{:?}",
+            polys[0].verts
+        );
     }
 }

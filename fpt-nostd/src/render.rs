@@ -203,9 +203,74 @@ pub enum MatrixView {
 
 impl MatrixView {
     /// The view of the row-major matrix `r`. `reference` is a point of the
-    /// model (its centre): it only decides the sign of a parallel direction
-    /// when `w` is negative there.
+    /// model (its centre): the matrix is read relative to it, and it
+    /// decides the sign of a parallel direction when `w` is negative there.
+    ///
+    /// Any model scale and offset: the matrix is first rewritten for
+    /// coordinates relative to `reference` in units of a power of two `u`
+    /// that balances its x, y, z columns against its translation column
+    /// (`u` about the model's size for a camera that frames it), the view
+    /// is found there and mapped back exactly (`eye = reference + u·eye'`).
+    /// Taken as it is, a matrix that frames a model of size 1e10 has x, y,
+    /// z columns 1e-10 of its translation column, its centre of
+    /// projection shrinks by 1e-20 against its rows, and a good camera was
+    /// called degenerate. With `reference` at the origin the power-of-two
+    /// scaling changes no bit of the result.
+    ///
+    /// ```
+    /// use fpt_nostd::render::MatrixView;
+    /// // Looking down −z from (0, 0, 3e20) at a model of size 1e20 at the
+    /// // origin: x, y, z columns 1e-20 of the translation.
+    /// let s = 1e-20;
+    /// let r = [
+    ///     [s, 0.0, 0.0, 0.0],
+    ///     [0.0, s, 0.0, 0.0],
+    ///     [0.0, 0.0, -s, 1.0],
+    ///     [0.0, 0.0, -s, 3.0],
+    /// ];
+    /// let MatrixView::Perspective { eye } = MatrixView::of(&r, [0.0; 3]) else {
+    ///     panic!("not a perspective view");
+    /// };
+    /// assert!((eye[2] / 3e20 - 1.0).abs() < 1e-12);
+    /// ```
     pub fn of(r: &[[f64; 4]; 4], reference: [f64; 3]) -> MatrixView {
+        match Self::relative(r, reference) {
+            MatrixView::Perspective { eye } => MatrixView::Perspective {
+                eye: [0, 1, 2].map(|i| reference[i] + eye[i]),
+            },
+            v => v,
+        }
+    }
+
+    /// [`MatrixView::of`] with the eye relative to `reference` (no
+    /// precision lost to a large `reference`).
+    fn relative(r: &[[f64; 4]; 4], reference: [f64; 3]) -> MatrixView {
+        // Relative to `reference`, x, y, z columns times `u`.
+        let t = r.map(|row| eval_row(row, reference));
+        let big_xyz = r
+            .iter()
+            .flat_map(|row| xyz(*row))
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        let big_t = t.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let u = match (log2_floor(big_t), log2_floor(big_xyz)) {
+            (Some(et), Some(ex)) => pow2(et - ex),
+            _ => 1.0,
+        };
+        let a = [0, 1, 2, 3].map(|i| {
+            let row = r[i];
+            [row[0] * u, row[1] * u, row[2] * u, t[i]]
+        });
+        match Self::balanced(&a) {
+            MatrixView::Perspective { eye } => MatrixView::Perspective {
+                eye: eye.map(|v| u * v),
+            },
+            v => v,
+        }
+    }
+
+    /// [`MatrixView::of`] for a matrix already relative to the reference
+    /// point and balanced.
+    fn balanced(r: &[[f64; 4]; 4]) -> MatrixView {
         let c = centre_of_projection(r);
         let big = c[0].abs().max(c[1].abs()).max(c[2].abs());
         // |C| is at most the product of the three rows' lengths; far below
@@ -230,7 +295,8 @@ impl MatrixView {
         let mut dir = [c[0] / big, c[1] / big, c[2] / big];
         // Along `dir` only clip z changes; ndc.z = z / w must grow.
         let dz = dot3(xyz(r[2]), dir);
-        let w = eval_row(r[3], reference);
+        // `w` at the reference point.
+        let w = r[3][3];
         if dz * w < 0.0 {
             dir = dir.map(|v| -v);
         }
@@ -321,13 +387,9 @@ impl Frame {
 
     fn build(tree: &Tree<'_>, r: &[[f64; 4]; 4], near_w: f64, relative: bool) -> Frame {
         let o = if relative { [0.0; 3] } else { tree.origin() };
-        let view = match MatrixView::of(r, o) {
+        let view = match MatrixView::relative(r, o) {
             MatrixView::Perspective { eye } => View::PerspectiveRelative {
-                eye: [
-                    (eye[0] - o[0]) as f32,
-                    (eye[1] - o[1]) as f32,
-                    (eye[2] - o[2]) as f32,
-                ],
+                eye: eye.map(|v| v as f32),
             },
             MatrixView::Parallel { dir } => View::Parallel {
                 dir: dir.map(|v| v as f32),

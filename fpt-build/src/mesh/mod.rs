@@ -17,8 +17,10 @@
 //!   faces all wind inward (negative volume; not a cavity inside another
 //!   part) is turned outward, and counted in the [`ImportReport`], unless
 //!   [`ImportOptions::keep_orientation`] (see `parts`).
-//! - Vertices of every output polygon lie on its plane (they are snapped onto
-//!   it), so the builder's tighter tolerance sees them as exactly coplanar.
+//! - Vertices of every output polygon lie within half the builder's
+//!   tolerance of its plane, so the builder sees them as coplanar, and they
+//!   are the welded input vertices, never moved: faces that share a vertex
+//!   in the file share it bit for bit, so neighbouring faces conform.
 
 mod obj;
 mod off;

@@ -1,5 +1,5 @@
-//! Planarity of one face: keep it whole (snapped onto its Newell plane) or
-//! split it into planar convex pieces.
+//! Planarity of one face: keep it whole or split it into planar convex
+//! pieces, never moving a vertex.
 //!
 //! Contract of [`planarize`]: the input is a cleaned vertex loop (no
 //! consecutive repeats). A face that is too thin is [`Planarized::Degenerate`];
@@ -8,9 +8,11 @@
 //! face is triangulated by ear clipping of its projection onto its Newell
 //! plane, and adjacent triangles are then merged greedily while the union
 //! stays planar and convex ([`Planarized::Split`]). Every piece keeps the
-//! face's source id and colour, the face's winding, and has its vertices
-//! snapped onto its own plane. The pieces tile the triangulated face, so
-//! their areas add up to the face's.
+//! face's source id and colour, the face's winding, and the face's own
+//! vertices where they are (within the planarity tolerance of the piece's
+//! Newell plane): a vertex shared with a neighbouring face stays bit for
+//! bit the neighbour's, so the seams between faces conform. The pieces tile
+//! the triangulated face, so their areas add up to the face's.
 
 use crate::geom::{self, Plane, Polygon, Rgb};
 use glam::{DVec2, DVec3};
@@ -52,7 +54,7 @@ pub(crate) fn planarize(pts: &[DVec3], source: u32, color: Rgb, tols: Tols) -> P
         return Planarized::Degenerate;
     }
     if max_distance(&plane, pts) <= tols.planar {
-        return match snapped(pts, plane, source, color, tols.build) {
+        return match kept(pts, plane, source, color, tols.build) {
             Some(p) => Planarized::Whole(p),
             None => Planarized::Degenerate,
         };
@@ -72,7 +74,7 @@ pub(crate) fn planarize(pts: &[DVec3], source: u32, color: Rgb, tols: Tols) -> P
                 return None;
             }
             let pl = Plane::newell(&vs)?;
-            snapped(&vs, pl, source, color, tols.build)
+            kept(&vs, pl, source, color, tols.build)
         })
         .collect();
     if polys.is_empty() {
@@ -101,13 +103,13 @@ fn max_distance(plane: &Plane, pts: &[DVec3]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The polygon with its vertices projected onto `plane`; vertices that the
-/// projection brings within `tol` of their predecessor are dropped, and
-/// `None` is returned if fewer than three are left.
-fn snapped(pts: &[DVec3], plane: Plane, source: u32, color: Rgb, tol: f64) -> Option<Polygon> {
+/// The polygon of `pts` in `plane` (which passes within the planarity
+/// tolerance of every point); points within `tol` of their predecessor are
+/// dropped, and `None` is returned if fewer than three are left. Nothing is
+/// moved onto the plane (see the module docs).
+fn kept(pts: &[DVec3], plane: Plane, source: u32, color: Rgb, tol: f64) -> Option<Polygon> {
     let mut verts: Vec<DVec3> = Vec::with_capacity(pts.len());
-    for &p in pts {
-        let q = plane.project(p);
+    for &q in pts {
         if verts.last().is_none_or(|l| l.distance(q) > tol) {
             verts.push(q);
         }
@@ -287,7 +289,7 @@ mod tests {
     use super::*;
 
     const TOLS: Tols = Tols {
-        planar: 1e-6,
+        planar: 5e-8,
         build: 1e-7,
     };
 
@@ -322,18 +324,36 @@ mod tests {
     }
 
     #[test]
-    fn float_noise_is_snapped_not_split() {
+    fn faces_keep_their_vertices() {
+        // Noise within the planarity tolerance: whole, nothing moved.
         let q = [
             v(0., 0., 0.),
-            v(1., 0., 3e-7),
+            v(1., 0., 3e-8),
             v(1., 1., 0.),
-            v(0., 1., -2e-7),
+            v(0., 1., -2e-8),
         ];
         let Planarized::Whole(p) = planarize(&q, 0, [0; 3], TOLS) else {
             panic!("split");
         };
+        assert_eq!(p.verts, q.to_vec());
         for &x in &p.verts {
-            assert!(p.plane.distance(x).abs() < 1e-15);
+            assert!(p.plane.distance(x).abs() <= TOLS.planar);
+        }
+        // Above it: cut between its own vertices, none moved.
+        let q = [
+            v(0., 0., 0.),
+            v(1., 0., 3e-6),
+            v(1., 1., 0.),
+            v(0., 1., -2e-6),
+        ];
+        let Planarized::Split(pieces) = planarize(&q, 0, [0; 3], TOLS) else {
+            panic!("whole");
+        };
+        for p in &pieces {
+            for x in &p.verts {
+                assert!(q.contains(x), "{x} moved");
+                assert!(p.plane.distance(*x).abs() <= TOLS.planar);
+            }
         }
     }
 

@@ -9,7 +9,8 @@
 //!   after welding, or when it is thinner than the builder's tolerance
 //!   (`geom::REL_EPS × D`): `4·area ≤ tol·perimeter`;
 //! - a face is planar when no vertex is farther than [`PLANAR_REL`]` × D` from
-//!   its Newell plane (see [`super::planar`] for what happens otherwise).
+//!   its Newell plane (see [`super::planar`] for what happens otherwise);
+//!   no vertex is ever moved onto a plane.
 //!
 //! Closedness is decided on the welded, cleaned index loops of the kept
 //! input faces (before any planar split), so the split's internal diagonals
@@ -24,15 +25,19 @@ use std::collections::{HashMap, VecDeque};
 /// Welding distance, relative to the bounding-box diagonal.
 pub const WELD_REL: f64 = 1e-6;
 
-/// Planarity tolerance, relative to the bounding-box diagonal: ten times the
-/// builder's [`crate::geom::REL_EPS`]. Measured on the shared test models:
-/// in `shuttle.obj` the quads' deviations from their Newell planes jump from
-/// 1.1e-7 to 5e-6 of the diagonal (print noise below, real warps above);
-/// `rabbit.obj` and `wallhole.obj` stay under 1e-9. Files printed with six
-/// decimals have noise up to ~5e-7 in absolute terms, well below this for
-/// models larger than a unit. Faces within it are snapped onto their plane,
-/// moving vertices by at most this much (sub-pixel cracks at most).
-pub const PLANAR_REL: f64 = 1e-6;
+/// Planarity tolerance, relative to the bounding-box diagonal: half the
+/// builder's [`crate::geom::REL_EPS`], so that the builder classifies every
+/// vertex of a face as on the face's own plane, with room to spare for
+/// rounding, *without moving it*. Snapping each face onto its own plane
+/// (as the import once did, within ten times this) moves a vertex that
+/// several faces share to a different point for each of them, so
+/// neighbouring faces no longer meet edge for edge and the rasterizer can
+/// open a crack between them (`violin_case.obj`: about 1300 such edges).
+/// A face farther from planar (print noise of six-decimal files included:
+/// up to 1.1e-7 of the diagonal in `shuttle.obj`) is cut into planar
+/// pieces between its own vertices instead; `rabbit.obj` and
+/// `wallhole.obj` stay under 1e-9 and are kept whole.
+pub const PLANAR_REL: f64 = 0.5 * crate::geom::REL_EPS;
 
 /// The common post-parse pipeline: builds a [`Model`] from positions and
 /// faces given as vertex-index loops (counter-clockwise seen from the front).

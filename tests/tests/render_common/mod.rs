@@ -106,7 +106,7 @@ fn clip_by(poly: &[DVec4], f: impl Fn(DVec4) -> f64) -> Vec<DVec4> {
 
 /// The outline of `verts` (model coordinates) in pixel coordinates of a
 /// `w × h` image, clipped to the near and far planes like the reference.
-fn project(cam: &Camera, verts: &[DVec3], w: usize, h: usize) -> Vec<(f64, f64)> {
+pub fn project(cam: &Camera, verts: &[DVec3], w: usize, h: usize) -> Vec<(f64, f64)> {
     let clip: Vec<DVec4> = verts.iter().map(|&v| cam.clip(v)).collect();
     let clip = clip_by(&clip_by(&clip, |c| c.z + c.w), |c| c.w - c.z);
     clip.iter()
@@ -121,7 +121,7 @@ fn project(cam: &Camera, verts: &[DVec3], w: usize, h: usize) -> Vec<(f64, f64)>
 }
 
 /// Even–odd point-in-polygon test.
-fn inside(pts: &[(f64, f64)], x: f64, y: f64) -> bool {
+pub fn inside(pts: &[(f64, f64)], x: f64, y: f64) -> bool {
     let mut c = false;
     for k in 0..pts.len() {
         let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);

@@ -3,12 +3,11 @@
 //!
 //! Why this is more than `Frame::relative(tree, &orbit.camera())`: composed
 //! in model units, an orbit around a model of radius 1e20 overflows `f32`
-//! inside the projection (2·far·near is 2·distance²), one of radius 1e-20
-//! underflows, and [`MatrixView::of`] judges a matrix whose x, y, z columns
-//! are tiny against its translation column degenerate, so the walk sorts
-//! for a wrong view. Both are fixed by working in units of a power of two
-//! near the bounding radius, where the model has radius about 1, and
-//! scaling back exactly.
+//! inside the projection (2·far·near is 2·distance²) and one of radius
+//! 1e-20 underflows. The orbit is composed in units of a power of two near
+//! the bounding radius, where the model has radius about 1, and scaled
+//! back exactly. An `--mvp` matrix goes to the library as it is:
+//! [`Frame::from_f64`] reads any model scale and offset itself.
 
 use super::{parse_mvp, CliError};
 use crate::cli_err;
@@ -46,13 +45,7 @@ impl CameraSpec {
     pub fn frame<M: MathFns>(&self, tree: &Tree<'_>, w: u32, h: u32) -> Frame {
         match *self {
             CameraSpec::Mvp(rows) => {
-                let mut frame = Frame::from_f64(tree, &rows, f64::from(near_w_for(&rows, tree)));
-                if MatrixView::of(&rows, tree.origin()) == MatrixView::Degenerate {
-                    if let Some(view) = normalised_view(&rows, tree) {
-                        frame.view = view;
-                    }
-                }
-                frame
+                Frame::from_f64(tree, &rows, f64::from(near_w_for(&rows, tree)))
             }
             CameraSpec::Orbit {
                 yaw,
@@ -107,7 +100,7 @@ impl CameraSpec {
                 cam.near_w *= st;
                 let mut frame = Frame::relative(tree, &cam);
                 // The walk's view from the matrix in units of `u`, where its
-                // columns are balanced (see `normalised_view`); for a model
+                // columns are balanced; for a model
                 // of ordinary size this is bit for bit the view derived
                 // from the matrix in model units.
                 if let Some(view) = scaled_view(unit_view, pow2(e)) {
@@ -231,28 +224,6 @@ pub fn camera_of(
         Some(m) => Ok(CameraSpec::Mvp(parse_mvp(m)?)),
         None => orbit_camera(o, tree, w, h),
     }
-}
-
-/// The walk's view of the model → clip matrix `rows`, derived from the
-/// matrix in the units of the tree (origin-relative, radius in [1, 2)),
-/// or `None` when that matrix is degenerate too.
-///
-/// Why: [`MatrixView::of`] calls a matrix degenerate when its centre of
-/// projection is tiny against the product of its rows' lengths. For a
-/// model of radius 1e10 the x, y, z columns of a matrix that frames it are
-/// 1e-10 of its translation column, the centre of projection shrinks by
-/// 1e-20 while the rows do not, and a perfectly good camera is taken for a
-/// degenerate one (the walk then sorts for the wrong view and faces vanish).
-/// In the tree's units the columns are balanced again; the eye found there
-/// is scaled back by the exact power of two.
-fn normalised_view(rows: &[[f64; 4]; 4], tree: &Tree<'_>) -> Option<View> {
-    let u = pow2(log2_floor(f64::from(tree.bounding_radius())));
-    let o = tree.origin();
-    let a = rows.map(|r| {
-        let t = r[0] * o[0] + r[1] * o[1] + r[2] * o[2] + r[3];
-        [r[0] * u, r[1] * u, r[2] * u, t]
-    });
-    scaled_view(MatrixView::of(&a, [0.0; 3]), u)
 }
 
 /// The walk's view for a view found in origin-relative coordinates in

@@ -1,0 +1,150 @@
+//! Any scale through the library: a caller who builds the renderer's frame
+//! with the public camera path (`Frame::from_f64` for a row-major `f64`
+//! matrix, `Frame::new` for the `f32` camera when its matrix fits `f32`)
+//! for a unit cube scaled by 1e-30 … 1e38 and moved by up to 1e10 of its
+//! size gets the unit cube's picture: the same source id at every pixel
+//! off the outlines. (`host-sim/tests/cli_scale.rs` checks the same
+//! through `fpt render`.)
+
+mod render_common;
+
+use fpt_nostd::raster::{Camera as RasterCamera, DefaultPrecision, Mat4};
+use fpt_nostd::reader::Tree;
+use fpt_nostd::render::{near_w_for, Frame};
+use glam::DVec3;
+use host_sim::build::{build, NoProgress};
+use host_sim::reference::{Camera, Projection};
+use host_sim::serialize::{serialize, SerializeOptions};
+use host_sim::tree::Method;
+use render_common::render_ids;
+
+const W: usize = 96;
+const H: usize = 72;
+
+/// The tree of the cube `offset + scale · [0, 1]^3`, faces outward.
+fn cube(scale: f64, offset: DVec3) -> Vec<u8> {
+    let v: Vec<[f64; 3]> = (0..8)
+        .map(|i| {
+            let c = DVec3::new(f64::from(i & 1), f64::from((i >> 1) & 1), f64::from(i >> 2));
+            (offset + scale * c).to_array()
+        })
+        .collect();
+    let faces = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [1, 3, 7, 5],
+        [0, 4, 6, 2],
+    ]
+    .map(|f| f.to_vec())
+    .to_vec();
+    let m = host_sim::mesh::from_faces(&v, &faces, None).expect("cube");
+    let t = build(m.polygons, m.closed, Method::Static, 1, &mut NoProgress);
+    serialize(&t, &SerializeOptions::default()).expect("serialize")
+}
+
+/// The unit cube's camera moved to the model `offset + scale · unit`:
+/// `M · S(1/scale) · T(−offset)`, row-major.
+fn rows(scale: f64, offset: DVec3, projection: Projection) -> [[f64; 4]; 4] {
+    let cam = Camera::look_at(
+        DVec3::new(2.2, 1.9, 2.6),
+        DVec3::splat(0.5),
+        DVec3::Y,
+        projection,
+        W as f64 / H as f64,
+    )
+    .expect("camera");
+    let m = cam.mvp();
+    let mut r = [[0.0; 4]; 4];
+    for (i, row) in m.chunks_exact(4).enumerate() {
+        let xyz = DVec3::new(row[0], row[1], row[2]);
+        r[i] = [
+            row[0] / scale,
+            row[1] / scale,
+            row[2] / scale,
+            row[3] - xyz.dot(offset) / scale,
+        ];
+    }
+    r
+}
+
+/// Pixels where `got` differs from `want`, off `want`'s outlines (a
+/// 4-neighbour with another id), where the rounding of scaled vertices may
+/// tip a sample.
+fn differences(want: &[u32], got: &[u32]) -> usize {
+    let at = |x: i64, y: i64| -> Option<u32> {
+        ((0..W as i64).contains(&x) && (0..H as i64).contains(&y))
+            .then(|| want[y as usize * W + x as usize])
+    };
+    (0..W * H)
+        .filter(|&i| {
+            let (x, y) = ((i % W) as i64, (i / W) as i64);
+            let on_outline = [(1, 0), (-1, 0), (0, 1), (0, -1)]
+                .iter()
+                .any(|(dx, dy)| at(x + dx, y + dy).is_some_and(|v| v != want[i]));
+            want[i] != got[i] && !on_outline
+        })
+        .count()
+}
+
+#[test]
+fn every_scale_and_offset_draws_like_the_unit_cube_through_the_library() {
+    let projections = [
+        Projection::Perspective {
+            fov_y_deg: 40.0,
+            near: 0.05,
+            far: 50.0,
+        },
+        Projection::Parallel {
+            half_height: 1.2,
+            near: 0.0,
+            far: 50.0,
+        },
+    ];
+    let unit = cube(1.0, DVec3::ZERO);
+    let unit_tree = Tree::from_bytes(&unit).expect("tree");
+    let offset_dir = DVec3::new(1.0, -0.7, 0.3);
+    let mut checked = 0;
+    for projection in projections {
+        let r = rows(1.0, DVec3::ZERO, projection);
+        let frame = Frame::from_f64(&unit_tree, &r, f64::from(near_w_for(&r, &unit_tree)));
+        let want = render_ids::<DefaultPrecision>(&unit_tree, &frame, W, H);
+        let faces: std::collections::HashSet<u32> = want.iter().copied().collect();
+        assert_eq!(faces.len(), 4, "background and three faces");
+        for scale in [1e-30, 1e-20, 1e-10, 1.0, 1e10, 1e20, 1e30, 1e38] {
+            for ratio in [0.0, 1.0, 1e5, 1e10] {
+                let offset = ratio * scale * offset_dir;
+                if !offset.is_finite() || offset.abs().max_element() > 1e30 {
+                    continue;
+                }
+                let bytes = cube(scale, offset);
+                let tree = Tree::from_bytes(&bytes).expect("tree");
+                let r = rows(scale, offset, projection);
+                let near = f64::from(near_w_for(&r, &tree));
+                let got =
+                    render_ids::<DefaultPrecision>(&tree, &Frame::from_f64(&tree, &r, near), W, H);
+                let wrong = differences(&want, &got);
+                assert_eq!(
+                    wrong, 0,
+                    "from_f64 {scale:e} {ratio:e}: {wrong} pixels differ"
+                );
+                checked += 1;
+                // The f32 camera, where its matrix is normal f32 numbers.
+                let m32 = r.map(|row| row.map(|v| v as f32));
+                let fits = m32
+                    .iter()
+                    .flatten()
+                    .all(|v| v.is_finite() && (*v == 0.0 || v.is_normal()));
+                if fits && offset == DVec3::ZERO {
+                    let cam = RasterCamera::from_matrix(Mat4(m32), near as f32);
+                    let got = render_ids::<DefaultPrecision>(&tree, &Frame::new(&tree, &cam), W, H);
+                    let wrong = differences(&want, &got);
+                    assert_eq!(wrong, 0, "Frame::new {scale:e}: {wrong} pixels differ");
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked >= 40, "{checked} renders compared");
+}
