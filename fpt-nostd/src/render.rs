@@ -526,12 +526,33 @@ pub struct TreeRenderer<P: Precision, const V: usize, E: Compiled = AllEffects> 
 impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     /// A renderer for `width × height` frames; `None` when a side is 0 or
     /// too large (see [`Renderer::new`]).
-    pub fn new(width: u32, height: u32) -> Option<Self> {
-        let camera = Camera::from_matrix(Mat4::IDENTITY, 1.0);
+    ///
+    /// A `const fn`, so that the renderer (a few KiB of scratch buffers)
+    /// can live in a `static` and is never built on the stack nor copied
+    /// through it: with `static_cell`'s `ConstStaticCell` it is taken once
+    /// as a `&'static mut`, without `unsafe` (a size that does not fit
+    /// fails the build):
+    ///
+    /// ```
+    /// use fpt_nostd::raster::FloatLibm;
+    /// use fpt_nostd::render::TreeRenderer;
+    /// use static_cell::ConstStaticCell;
+    ///
+    /// type Renderer = TreeRenderer<FloatLibm<4>, 48>;
+    /// static RENDERER: ConstStaticCell<Renderer> =
+    ///     ConstStaticCell::new(Renderer::new(240, 240).expect("a 240×240 frame"));
+    ///
+    /// let r: &'static mut Renderer = RENDERER.take(); // once, at start-up
+    /// assert_eq!(r.renderer.viewport().width(), 240);
+    /// ```
+    pub const fn new(width: u32, height: u32) -> Option<Self> {
+        let Some(renderer) = Renderer::sized(width, height) else {
+            return None;
+        };
         Some(TreeRenderer {
-            renderer: Renderer::new(width, height, &camera)?,
+            renderer,
             scratch: Scratch::new(),
-            ids: FaceIds::default(),
+            ids: FaceIds::Source,
         })
     }
 
