@@ -106,14 +106,15 @@ mod target {
     ///   three scenes (bench_city, 9,845 words) needs for one walk;
     /// * `band` on the Cortex-M0: none (its 16 KiB hold the band buffer,
     ///   the renderer and the stack; it walks the tree once per band);
-    /// * `full`: the 7 KiB the 112.5 KiB frame leaves, a vertex cache for
-    ///   the first 1,800 vertices.
+    /// * `full`: the 3.5 KiB the 112.5 KiB frame and the renderer (whose
+    ///   vertex capacity is 103, what the house's tree needs) leave, a
+    ///   vertex cache for the first 900 vertices.
     #[cfg(all(feature = "band", not(fpt_armv6m)))]
     pub const MEMORY_WORDS: usize = 10 * 1024;
     #[cfg(all(feature = "band", fpt_armv6m))]
     pub const MEMORY_WORDS: usize = 0;
     #[cfg(feature = "full")]
-    pub const MEMORY_WORDS: usize = 1800;
+    pub const MEMORY_WORDS: usize = 900;
 
     static MEMORY: ConstStaticCell<[u32; MEMORY_WORDS]> = ConstStaticCell::new([0; MEMORY_WORDS]);
 

@@ -29,10 +29,10 @@
 //!     let tree = Tree::from_bytes(TREE).expect("a valid tree");
 //!     // f32 with an FPU (`IntPrecision<4>` on a Cortex-M0), 4 sub-pixel
 //!     // bits, and the vertex capacity `fpt info` prints for this tree
-//!     // ("TreeRenderer<P, 48>": its largest polygon has 20 vertices, and
+//!     // ("TreeRenderer<P, 61>": its largest polygon has 20 vertices, and
 //!     // clipping adds some; too small a capacity skips polygons, which
 //!     // `stats.skipped` counts). On an MCU put it in a `static`.
-//!     let mut r = TreeRenderer::<FloatLibm<4>, 48>::new(240, 240).expect("size");
+//!     let mut r = TreeRenderer::<FloatLibm<4>, 64>::new(240, 240).expect("size");
 //!     let mut band = [0u16; 240 * 16]; // 16 rows
 //!     let mut memory = [0u32; 4096]; // vertex cache and display list
 //!     for i in 0..3 {

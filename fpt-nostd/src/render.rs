@@ -46,8 +46,11 @@
 //!
 //! Nothing here allocates or panics, whatever the camera: degenerate,
 //! non-finite or extreme matrices render something or nothing, never fail,
-//! except that a tree deeper than the walk's stack `N` is refused
-//! ([`OrderError`]).
+//! except that a renderer whose walk stack `N` or vertex capacity `V` is
+//! smaller than the tree's header says it needs is refused before anything
+//! is drawn ([`CapacityError`], [`check_capacities`]). With the capacities
+//! checked, no polygon is skipped for want of room: a polygon is skipped
+//! ([`RenderStats::skipped`]) only when a camera makes a vertex non-finite.
 
 use crate::effects::{AllEffects, Compiled, Effects};
 use crate::order::{LocalView, OrderError, View};
@@ -71,13 +74,98 @@ pub enum FaceIds {
     Polygon,
 }
 
+/// A capacity of the renderer, a const generic parameter, that is smaller
+/// than the tree needs ([`crate::reader::Tree::capacities`]): the drawing
+/// functions check them before they draw, so that no polygon is ever
+/// skipped for want of room and no walk is cut short. `fpt info TREE`
+/// prints the values to write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CapacityError {
+    /// The walk's stack `N` is smaller than the tree's depth.
+    WalkDepth {
+        /// What `N` must be at least.
+        need: u32,
+        /// The `N` given.
+        have: usize,
+    },
+    /// The vertex capacity `V` (of [`TreeRenderer`] or [`Scratch`]) is
+    /// smaller than the tree's polygons need after clipping.
+    Vertices {
+        /// What `V` must be at least.
+        need: u32,
+        /// The `V` given.
+        have: usize,
+    },
+}
+
+impl core::fmt::Display for CapacityError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            CapacityError::WalkDepth { need, have } => write!(
+                f,
+                "walk stack N = {have} is smaller than the tree's depth: N must be at least {need}"
+            ),
+            CapacityError::Vertices { need, have } => write!(
+                f,
+                "vertex capacity V = {have} is too small for the tree's polygons: \
+                 V must be at least {need} (TreeRenderer<P, {need}>)"
+            ),
+        }
+    }
+}
+
+/// Checks that a walk stack of `N` levels and a vertex capacity of `V`
+/// hold what `tree` needs ([`crate::reader::Tree::capacities`]). Every
+/// drawing function of this module calls it first.
+///
+/// ```
+/// use fpt_nostd::reader::Tree;
+/// use fpt_nostd::render::{check_capacities, CapacityError};
+///
+/// let tree = Tree::from_bytes(include_bytes!("../../firmware/trees/vise.fpt")).unwrap();
+/// let need = tree.capacities();
+/// assert!(matches!(
+///     check_capacities::<64, 8>(&tree),
+///     Err(CapacityError::Vertices { have: 8, .. })
+/// ));
+/// assert_eq!(check_capacities::<64, 64>(&tree), Ok(()));
+/// assert!(need.walk_depth <= 64 && need.vertices <= 64);
+/// ```
+pub fn check_capacities<const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+) -> Result<(), CapacityError> {
+    let c = tree.capacities();
+    if c.walk_depth as usize > N {
+        return Err(CapacityError::WalkDepth {
+            need: c.walk_depth,
+            have: N,
+        });
+    }
+    if c.vertices as usize > V {
+        return Err(CapacityError::Vertices {
+            need: c.vertices,
+            have: V,
+        });
+    }
+    Ok(())
+}
+
 /// Why a frame could not be drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RenderError {
-    /// The walk refused the tree (deeper than its stack).
+    /// The walk refused the tree (deeper than its stack; after
+    /// [`check_capacities`] it cannot).
     Order(OrderError),
     /// The band buffer is too small or the band has a bad size.
     Band(FramebufferError),
+    /// A capacity of the renderer is smaller than the tree needs.
+    Capacity(CapacityError),
+}
+
+impl From<CapacityError> for RenderError {
+    fn from(e: CapacityError) -> Self {
+        RenderError::Capacity(e)
+    }
 }
 
 impl From<OrderError> for RenderError {
@@ -91,6 +179,7 @@ impl core::fmt::Display for RenderError {
         match self {
             RenderError::Order(e) => write!(f, "{e}"),
             RenderError::Band(e) => write!(f, "band buffer: {e}"),
+            RenderError::Capacity(e) => write!(f, "{e}"),
         }
     }
 }
@@ -400,7 +489,8 @@ impl Frame {
 /// to front (a stack of `N` frames) and draws every polygon; returns the
 /// counters. The renderer's light, shading mode and fill rule are used as
 /// set, its effects as [`Renderer::begin_tree`] decides (the tree's own
-/// unless overridden). Fails only when the tree is deeper than `N`.
+/// unless overridden). Fails only when `N` or `V` is smaller than the tree
+/// needs ([`check_capacities`]); then nothing is drawn.
 pub fn render_tree<P: Precision, E: Compiled, K: SpanSink, const N: usize, const V: usize>(
     tree: &Tree<'_>,
     camera: &Camera,
@@ -408,7 +498,7 @@ pub fn render_tree<P: Precision, E: Compiled, K: SpanSink, const N: usize, const
     scratch: &mut Scratch<P, V>,
     ids: FaceIds,
     sink: &mut K,
-) -> Result<RenderStats, OrderError> {
+) -> Result<RenderStats, RenderError> {
     let frame = Frame::new(tree, camera);
     draw_frame::<P, E, K, N, V>(tree, &frame, renderer, scratch, ids, sink)
 }
@@ -428,8 +518,9 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
     scratch: &mut Scratch<P, V>,
     ids: FaceIds,
     sink: &mut K,
-) -> Result<RenderStats, OrderError> {
-    cached::draw_direct::<P, E, K, NoProbe, N, V>(
+) -> Result<RenderStats, RenderError> {
+    check_capacities::<N, V>(tree)?;
+    Ok(cached::draw_direct::<P, E, K, NoProbe, N, V>(
         tree,
         frame,
         renderer,
@@ -438,7 +529,7 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
         &mut [],
         sink,
         &NoProbe,
-    )
+    )?)
 }
 
 /// What the walk of a frame needs from the effects (see
@@ -562,7 +653,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
         tree: &Tree<'_>,
         frame: &Frame,
         sink: &mut K,
-    ) -> Result<RenderStats, OrderError> {
+    ) -> Result<RenderStats, RenderError> {
         draw_frame::<P, E, K, N, V>(
             tree,
             frame,
@@ -600,8 +691,9 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
         frame: &Frame,
         memory: &mut [u32],
         sink: &mut K,
-    ) -> Result<RenderStats, OrderError> {
-        cached::draw_direct::<P, E, K, NoProbe, N, V>(
+    ) -> Result<RenderStats, RenderError> {
+        check_capacities::<N, V>(tree)?;
+        Ok(cached::draw_direct::<P, E, K, NoProbe, N, V>(
             tree,
             frame,
             &mut self.renderer,
@@ -610,7 +702,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
             memory,
             sink,
             &NoProbe,
-        )
+        )?)
     }
 
     /// [`TreeRenderer::render_banded`] with working memory: one walk and
@@ -627,6 +719,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
         memory: &mut [u32],
         emit: impl FnMut(i32, &Framebuffer<'_, F>),
     ) -> Result<RenderStats, RenderError> {
+        check_capacities::<N, V>(tree)?;
         cached::draw_bands::<P, E, F, NoProbe, N, V>(
             tree,
             frame,
