@@ -46,7 +46,7 @@ use embedded_graphics::pixelcolor::Rgb565;
 use crate::order::OrderError;
 use crate::raster::{
     FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, RenderStats, Rgb565Format,
-    Rgb565Framebuffer, SpanSink,
+    Rgb565Framebuffer, SpanSink, Up,
 };
 use crate::reader::Tree;
 use crate::render::cached::{draw_bands, draw_direct};
@@ -91,17 +91,12 @@ pub const SCENES: [&str; 3] = ["vise", "house", "bench_city"];
 /// The colour of pixels no polygon covers.
 pub const BACKGROUND: Rgb565 = Rgb565::new(4, 10, 12);
 /// Ambient and diffuse weights of the key light.
-const AMBIENT: f32 = 0.25;
-const DIFFUSE: f32 = 0.75;
+const AMBIENT: f32 = Light::AMBIENT;
+const DIFFUSE: f32 = Light::DIFFUSE;
 
 /// The model rotation that stands a z-up model up in the y-up orbit
 /// convention: `(x, y, z) → (x, z, −y)`.
-pub const Z_UP: Mat4 = Mat4([
-    [1.0, 0.0, 0.0, 0.0],
-    [0.0, 0.0, 1.0, 0.0],
-    [0.0, -1.0, 0.0, 0.0],
-    [0.0, 0.0, 0.0, 1.0],
-]);
+pub const Z_UP: Mat4 = Up::Z.model();
 
 /// One view: an orbit around the tree's bounding-sphere centre.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -55,7 +55,7 @@
 use crate::effects::{AllEffects, Compiled, Effects};
 use crate::order::{LocalView, OrderError, View};
 use crate::raster::{
-    Camera, Face, Framebuffer, FramebufferError, Mat4, PixelFormat, Precision, RenderStats,
+    Camera, Face, Framebuffer, FramebufferError, Light, Mat4, PixelFormat, Precision, RenderStats,
     Renderer, Scratch, SpanSink,
 };
 use crate::reader::{PolygonRef, Tree};
@@ -458,6 +458,14 @@ impl Frame {
         let len = libm::sqrtf(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]);
         let r = tree.bounding_radius() * self.vertex_scale * len;
         (row[3] - r, row[3] + r)
+    }
+
+    /// The project's light for this frame: from [`Frame::key_light`],
+    /// with the weights [`Light::AMBIENT`] and [`Light::DIFFUSE`]. Set it
+    /// every frame (`renderer.set_light(frame.light())`): the key light
+    /// follows the camera.
+    pub fn light(&self) -> Light {
+        Light::new(self.key_light(), Light::AMBIENT, Light::DIFFUSE)
     }
 
     /// A light direction for [`crate::raster::Light::new`]: toward the

@@ -71,7 +71,7 @@ mod tests;
 mod tests_render;
 
 pub use band::{band_starts, Band};
-pub use camera::{Camera, Mat4, Orbit};
+pub use camera::{Camera, Mat4, Orbit, Up};
 pub use dither::{Dither, DitherFormat};
 pub use framebuffer::{
     BinaryFormat, BinaryFramebuffer, Framebuffer, FramebufferError, Gray8Format, Gray8Framebuffer,
