@@ -340,7 +340,10 @@ pub fn render_banded<Pr: Probe>(
         memory,
         band,
         probe,
-        |_, fb| crc.update(fb.data()),
+        |_, fb| {
+            crc.update(fb.data());
+            true
+        },
     )?;
     Ok(Rendered {
         crc: crc.finish(),

@@ -150,6 +150,25 @@ pub fn check_capacities<const N: usize, const V: usize>(
     Ok(())
 }
 
+/// Why a banded frame with a fallible display
+/// ([`TreeRenderer::try_render_banded_in`]) stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BandError<D> {
+    /// The renderer refused the frame (before any band was sent).
+    Render(RenderError),
+    /// The display driver's error for a band: no later band was drawn.
+    Display(D),
+}
+
+impl<D: core::fmt::Debug> core::fmt::Display for BandError<D> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            BandError::Render(e) => write!(f, "{e}"),
+            BandError::Display(e) => write!(f, "display: {e:?}"),
+        }
+    }
+}
+
 /// Why a frame could not be drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RenderError {
@@ -727,8 +746,60 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
         memory: &mut [u32],
         emit: impl FnMut(i32, &Framebuffer<'_, F>),
     ) -> Result<RenderStats, RenderError> {
-        check_capacities::<N, V>(tree)?;
-        cached::draw_bands::<P, E, F, NoProbe, N, V>(
+        let mut emit = emit;
+        self.try_render_banded_in::<F, N, core::convert::Infallible>(
+            tree,
+            frame,
+            band,
+            memory,
+            |y, fb| {
+                emit(y, fb);
+                Ok(())
+            },
+        )
+        .map_err(|e| match e {
+            BandError::Render(e) => e,
+            BandError::Display(never) => match never {},
+        })
+    }
+
+    /// [`TreeRenderer::render_banded_in`] for a display that can fail:
+    /// `emit` returns the display driver's `Result`, and the first error
+    /// ends the frame (no further band is drawn) and comes back to the
+    /// caller as [`BandError::Display`].
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb565;
+    /// use fpt_nostd::raster::{FloatLibm, Libm, Orbit, Rgb565BeFormat};
+    /// use fpt_nostd::reader::Tree;
+    /// use fpt_nostd::render::{BandBuffer, BandError, Frame, TreeRenderer};
+    ///
+    /// let tree = Tree::from_bytes(include_bytes!("../../firmware/trees/vise.fpt")).unwrap();
+    /// let mut r = TreeRenderer::<FloatLibm<4>, 64>::new(64, 64).unwrap();
+    /// let orbit = Orbit::framing::<Libm>(tree.bounding_radius(), 0.5, 0.4, 1.0, 1.0);
+    /// let frame = Frame::relative(&tree, &orbit.camera::<Libm>(1.0));
+    /// let mut buf = [0u16; 64 * 8];
+    /// let band = BandBuffer::<Rgb565BeFormat> { buf: &mut buf, rows: 8, background: Rgb565::new(0, 0, 0) };
+    /// let mut sent = 0;
+    /// // A display whose SPI bus fails at the third band.
+    /// let out = r.try_render_banded_in::<_, 64, &str>(&tree, &frame, band, &mut [], |_y, fb| {
+    ///     sent += fb.panel_bytes().len();
+    ///     if sent > 2 * 64 * 8 * 2 { Err("spi") } else { Ok(()) }
+    /// });
+    /// assert_eq!(out, Err(BandError::Display("spi")));
+    /// assert_eq!(sent, 3 * 64 * 8 * 2); // nothing after the failed band
+    /// ```
+    pub fn try_render_banded_in<F: PixelFormat, const N: usize, D>(
+        &mut self,
+        tree: &Tree<'_>,
+        frame: &Frame,
+        band: BandBuffer<'_, F>,
+        memory: &mut [u32],
+        mut emit: impl FnMut(i32, &Framebuffer<'_, F>) -> Result<(), D>,
+    ) -> Result<RenderStats, BandError<D>> {
+        check_capacities::<N, V>(tree).map_err(|e| BandError::Render(e.into()))?;
+        let mut failed = None;
+        let stats = cached::draw_bands::<P, E, F, NoProbe, N, V>(
             tree,
             frame,
             &mut self.renderer,
@@ -737,8 +808,19 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
             memory,
             band,
             &NoProbe,
-            emit,
+            |y, fb| match emit(y, fb) {
+                Ok(()) => true,
+                Err(e) => {
+                    failed = Some(e);
+                    false
+                }
+            },
         )
+        .map_err(BandError::Render)?;
+        match failed {
+            Some(e) => Err(BandError::Display(e)),
+            None => Ok(stats),
+        }
     }
 }
 
