@@ -114,8 +114,8 @@ impl BenchConfig {
              pub const PRECISION: &str = {pname:?};\n\
              /// Words of working memory (vertex cache, display list).\n\
              pub const MEMORY_WORDS: usize = {memory};\n\
-             /// Vertex capacity of the scratch: the tree's largest polygon\n\
-             /// twice, plus what clipping adds, at least 16.\n\
+             /// Vertex capacity of the scratch: what the tree's header\n\
+             /// says it needs.\n\
              pub const VERTS: usize = {verts};\n\
              /// The vertex arithmetic.\n\
              pub type BenchPrecision = {ptype};\n",
@@ -126,12 +126,7 @@ impl BenchConfig {
             depth = tree.max_depth().max(1),
             pname = self.precision.name(),
             memory = self.memory,
-            verts = (0..tree.polygon_count())
-                .filter_map(|i| tree.polygon(i))
-                .map(|p| 2 * p.vertex_count() + 8)
-                .max()
-                .unwrap_or(0)
-                .max(16),
+            verts = tree.capacities().vertices,
             ptype = self.precision.type_path(),
         )
     }

@@ -44,7 +44,6 @@ mod clock;
 #[cfg(feature = "full")]
 mod effects;
 mod fail;
-mod in_place;
 mod probe;
 mod stack;
 
@@ -55,13 +54,13 @@ compile_error!("enable one of the features `full` and `band`");
 #[cfg(all(fpt_armv6m, feature = "full"))]
 compile_error!("the Cortex-M0's 16 KiB of RAM needs feature `band`");
 
-use core::mem::MaybeUninit;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 
 use fpt_nostd::frames::{FrameError, FrameLine, FrameRenderer, Probe, Rendered, ViewSpec};
 use fpt_nostd::frames::{HEIGHT, SCENES, VIEWS, WIDTH};
 use fpt_nostd::reader::Tree;
+use static_cell::ConstStaticCell;
 
 use clock::Clock;
 use fail::fail;
@@ -97,7 +96,9 @@ mod target {
     #[cfg(feature = "full")]
     use fpt_nostd::frames::FRAME_WORDS as WORDS;
 
-    static mut BUF: [u16; WORDS] = [0; WORDS];
+    use static_cell::ConstStaticCell;
+
+    static BUF: ConstStaticCell<[u16; WORDS]> = ConstStaticCell::new([0; WORDS]);
 
     /// The frame's working memory (vertex cache, and in `band` the display
     /// list; `fpt bench-memory` measures what a tree needs):
@@ -105,40 +106,37 @@ mod target {
     ///   three scenes (bench_city, 9,845 words) needs for one walk;
     /// * `band` on the Cortex-M0: none (its 16 KiB hold the band buffer,
     ///   the renderer and the stack; it walks the tree once per band);
-    /// * `full`: the 7 KiB the 112.5 KiB frame leaves, a vertex cache for
-    ///   the first 1,800 vertices.
+    /// * `full`: the 3.5 KiB the 112.5 KiB frame and the renderer (whose
+    ///   vertex capacity is 103, what the house's tree needs) leave, a
+    ///   vertex cache for the first 900 vertices.
     #[cfg(all(feature = "band", not(fpt_armv6m)))]
     pub const MEMORY_WORDS: usize = 10 * 1024;
     #[cfg(all(feature = "band", fpt_armv6m))]
     pub const MEMORY_WORDS: usize = 0;
     #[cfg(feature = "full")]
-    pub const MEMORY_WORDS: usize = 1800;
+    pub const MEMORY_WORDS: usize = 900;
 
-    static mut MEMORY: [u32; MEMORY_WORDS] = [0; MEMORY_WORDS];
+    static MEMORY: ConstStaticCell<[u32; MEMORY_WORDS]> = ConstStaticCell::new([0; MEMORY_WORDS]);
 
     /// The frame or band buffer and the working memory; call once.
     pub fn buffers() -> (&'static mut [u16], &'static mut [u32]) {
-        // SAFETY: called once, from `main`, before anything else touches
-        // BUF or MEMORY; no other reference to them ever exists.
-        unsafe {
-            (
-                &mut *core::ptr::addr_of_mut!(BUF),
-                &mut *core::ptr::addr_of_mut!(MEMORY),
-            )
-        }
+        (BUF.take(), MEMORY.take())
     }
 }
 
 /// The renderer, in a static: it holds the per-polygon scratch buffers
-/// (a few KiB), which should be neither on the stack nor copied there, so
-/// it is built field by field in place.
+/// (a few KiB), which should be neither on the stack nor copied there.
+/// `TreeRenderer::new` is a `const fn`, so the static is initialised at
+/// build time (`.data`) and `ConstStaticCell` hands it out once as a
+/// `&'static mut`; call once.
 #[inline(never)]
 fn renderer() -> &'static mut FrameRenderer {
-    static mut RENDERER: MaybeUninit<FrameRenderer> = MaybeUninit::uninit();
-    // SAFETY: called once, from `main`, so no other reference to RENDERER
-    // exists.
-    let slot = unsafe { &mut *core::ptr::addr_of_mut!(RENDERER) };
-    in_place::renderer(slot, WIDTH, HEIGHT)
+    static RENDERER: ConstStaticCell<FrameRenderer> =
+        ConstStaticCell::new(match FrameRenderer::new(WIDTH, HEIGHT) {
+            Some(r) => r,
+            None => panic!("the frame size"),
+        });
+    RENDERER.take()
 }
 
 /// The expected checksum of a frame, from [`EXPECTED`].

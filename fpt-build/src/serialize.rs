@@ -33,7 +33,7 @@ use std::fmt;
 pub use fpt_nostd::format::VertexFormat;
 use fpt_nostd::format::{
     crc32, header as h, polygon as pg, Counts, Sections, UpAxis, FLAG_CLOSED, HEADER_LEN, MAGIC,
-    MAX_SHIFT, NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION_OPTIONAL, VERSION_PLAIN,
+    MAX_SHIFT, NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION,
 };
 use fpt_nostd::format::{EDGE_LEN, FLAG_EDGES};
 use glam::DVec3;
@@ -87,6 +87,9 @@ pub enum SerializeError {
     OutOfRange(&'static str),
     /// The file would be larger than the format's `u32` sizes allow.
     TooLarge,
+    /// The written file does not validate (a bug of the serializer: every
+    /// tree that serializes should pass the reader).
+    Invalid(fpt_nostd::format::FormatError),
 }
 
 impl fmt::Display for SerializeError {
@@ -101,6 +104,7 @@ impl fmt::Display for SerializeError {
             SerializeError::NonFinite => f.write_str("non-finite coordinate or plane"),
             SerializeError::OutOfRange(why) => write!(f, "model out of range: {why}"),
             SerializeError::TooLarge => f.write_str("tree too large for the file format"),
+            SerializeError::Invalid(e) => write!(f, "the written tree does not validate: {e}"),
         }
     }
 }
@@ -361,9 +365,31 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     let mut indices: Vec<u32> = Vec::new();
     let mut first_index = Vec::with_capacity(order.len());
     let mut radius = 0f64;
+    // The renderer's capacities (`fpt_nostd::format`, header bytes 96..).
+    let mut polygon_vertices = 0u32;
+    let mut scratch_vertices = 0u32;
     for &id in &order {
         first_index.push(u32::try_from(indices.len()).map_err(too_large)?);
-        for &v in &tree.polygons[id as usize].verts {
+        let p = &tree.polygons[id as usize];
+        let n = u32::try_from(p.verts.len()).map_err(too_large)?;
+        let stored: Vec<DVec3> = p
+            .verts
+            .iter()
+            .map(|&v| enc.encode(v).map(|b| enc.decode(&b)))
+            .collect::<Result<_, _>>()?;
+        // Reflex in the exact or in the stored geometry (which the renderer
+        // transforms): either may be the one a clip plane meets.
+        let reflex = (0..p.verts.len())
+            .filter(|&i| {
+                is_reflex(&p.verts, i, p.plane.normal) || is_reflex(&stored, i, p.plane.normal)
+            })
+            .count();
+        polygon_vertices = polygon_vertices.max(n);
+        scratch_vertices = scratch_vertices.max(fpt_nostd::format::scratch_vertices_for(
+            n,
+            u32::try_from(reflex).map_err(too_large)?,
+        ));
+        for &v in &p.verts {
             let bytes = enc.encode(v)?;
             let next = u32::try_from(vertex_ids.len()).map_err(too_large)?;
             let vid = *vertex_ids.entry(bytes).or_insert_with_key(|b| {
@@ -474,12 +500,7 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
 
     let mut out = Vec::with_capacity(s.file_len);
     out.extend_from_slice(&MAGIC);
-    let version = if outline {
-        VERSION_OPTIONAL
-    } else {
-        VERSION_PLAIN
-    };
-    out.extend_from_slice(&version.to_le_bytes());
+    out.extend_from_slice(&VERSION.to_le_bytes());
     out.extend_from_slice(&(HEADER_LEN as u16).to_le_bytes());
     put_u32(&mut out, s.file_len as u32);
     let edge_flag = if outline { FLAG_EDGES } else { 0 };
@@ -514,6 +535,15 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     }
     out.extend_from_slice(&round_up_f32(radius).to_le_bytes());
     debug_assert_eq!(out.len(), h::RADIUS + 4);
+    if scratch_vertices > u32::from(u16::MAX) {
+        return Err(SerializeError::TooLarge);
+    }
+    // The working memory is filled in below, once the file can be read.
+    let scratch_vertices = scratch_vertices.max(polygon_vertices + 5);
+    for x in [polygon_vertices, scratch_vertices, 0, 0] {
+        put_u32(&mut out, x);
+    }
+    debug_assert_eq!(out.len(), HEADER_LEN);
 
     out.extend_from_slice(&vertex_bytes);
     out.resize(s.polygons, 0);
@@ -559,7 +589,27 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     let crc = crc32(&out);
     put_u32(&mut out, crc);
     debug_assert_eq!(out.len(), s.file_len);
+    // What bands need, as the renderer computes it from the file.
+    let words = match fpt_nostd::reader::Tree::from_bytes(&out) {
+        Ok(t) => fpt_nostd::render::memory_words(&t),
+        Err(e) => return Err(SerializeError::Invalid(e)),
+    };
+    let words = u32::try_from(words).map_err(too_large)?;
+    out[h::MEMORY_WORDS..h::MEMORY_WORDS + 4].copy_from_slice(&words.to_le_bytes());
+    let crc = crc32(&out[..s.crc]);
+    out[s.crc..].copy_from_slice(&crc.to_le_bytes());
     Ok(out)
+}
+
+/// Whether vertex `i` of the loop `verts` (counter-clockwise around
+/// `normal`) is reflex: the loop turns clockwise there by more than
+/// rounding (`f64`, relative 1e-9) explains. A straight vertex (collinear
+/// neighbours, as the seams' inserted vertices are) is not.
+fn is_reflex(verts: &[DVec3], i: usize, normal: DVec3) -> bool {
+    let n = verts.len();
+    let (a, b, c) = (verts[(i + n - 1) % n], verts[i], verts[(i + 1) % n]);
+    let (u, v) = (b - a, c - b);
+    u.cross(v).dot(normal) < -1e-9 * u.length() * v.length()
 }
 
 #[cfg(test)]
@@ -727,8 +777,7 @@ mod tests {
             Tree::from_bytes(&plain).unwrap(),
             Tree::from_bytes(&bytes).unwrap(),
         );
-        assert_eq!((a.version(), a.has_edges()), (VERSION_PLAIN, false));
-        assert_eq!((b.version(), b.has_edges()), (VERSION_OPTIONAL, true));
+        assert!(!a.has_edges() && b.has_edges());
         assert_eq!(
             bytes.len(),
             plain.len() + (b.index_count() as usize * EDGE_LEN).next_multiple_of(4)
@@ -768,13 +817,6 @@ mod tests {
         assert_eq!(
             Tree::from_bytes(&with_crc(bad_kind)).err(),
             Some(FormatError::BadEdge(1))
-        );
-        // Version 2 knows no edge flag.
-        let mut v2 = bytes.clone();
-        v2[h::VERSION..h::VERSION + 2].copy_from_slice(&VERSION_PLAIN.to_le_bytes());
-        assert_eq!(
-            Tree::from_bytes(&with_crc(v2)).err(),
-            Some(FormatError::BadHeader("flags"))
         );
         // Without the flag, the section makes the length wrong.
         let mut no_flag = bytes.clone();

@@ -20,15 +20,15 @@
 //! for every view (runs, bunches, nodes, switches) are contiguous at the end,
 //! after the geometry that only the renderer needs.
 //!
-//! ## Header (96 bytes)
+//! ## Header (112 bytes)
 //!
 //! | offset | type | field | meaning |
 //! |---:|---|---|---|
 //! | 0 | `[u8; 4]` | magic | [`MAGIC`], `b"FPTR"` |
-//! | 4 | `u16` | version | [`VERSION`] (3) when an optional section is present, else 2 (both are read; version 1 required byte 15 of a polygon to be 0) |
-//! | 6 | `u16` | header_len | [`HEADER_LEN`] (96) |
+//! | 4 | `u16` | version | [`VERSION`] (3; version 2 had no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
+//! | 6 | `u16` | header_len | [`HEADER_LEN`] (112) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
-//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present (version 3 only); other bits must be 0 |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; other bits must be 0 |
 //! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
@@ -45,6 +45,14 @@
 //! | 56 | `f64 × 3` | origin | centre of the bounding box, model coordinates; all geometry below is relative to it |
 //! | 80 | `f32 × 3` | half_extent | half the bounding box size per axis (the `q16` scale) |
 //! | 92 | `f32` | radius | bounding sphere: centre `origin`, this radius, covers every vertex |
+//! | 96 | `u32` | polygon_vertices | vertices of the largest polygon (0 without polygons) |
+//! | 100 | `u32` | scratch_vertices | the vertex capacity `V` a renderer needs so that no polygon is ever skipped: the largest [`scratch_vertices_for`] over the polygons; at least `polygon_vertices + 5`, at most 65 535 |
+//! | 104 | `u32` | memory_words | the working memory (32-bit words) with which a frame needs one walk in any view, `fpt_nostd::render::memory_words` when the file was written; advice, not checked by the reader |
+//! | 108 | `u32` | reserved | 0 |
+//!
+//! The walk's stack `N` must hold `max_depth` levels; `N`, `V` and the
+//! memory are what `fpt info` prints and what
+//! [`crate::reader::Tree::capacities`] returns.
 //!
 //! ## Vertices (`vertex_count` entries)
 //!
@@ -167,12 +175,10 @@ use core::fmt;
 
 /// The first four bytes of every tree file.
 pub const MAGIC: [u8; 4] = *b"FPTR";
-/// The newest format version this crate reads and writes
-/// ([`VERSION_OPTIONAL`]; files without optional sections are written as
-/// [`VERSION_PLAIN`], and both are read).
+/// The format version this crate reads and writes.
 pub const VERSION: u16 = 3;
 /// Length of the header in bytes.
-pub const HEADER_LEN: usize = 96;
+pub const HEADER_LEN: usize = 112;
 /// Length of one polygon record.
 pub const POLYGON_LEN: usize = 16;
 /// Length of one run record.
@@ -183,13 +189,9 @@ pub const NODE_LEN: usize = 12;
 pub const SWITCH_LEN: usize = 16;
 /// Length of the trailing checksum.
 pub const CRC_LEN: usize = 4;
-/// The format version of a file with an optional section.
-pub const VERSION_OPTIONAL: u16 = 3;
-/// The format version of a file without optional sections.
-pub const VERSION_PLAIN: u16 = 2;
 /// Header flag: the model is a closed volume.
 pub const FLAG_CLOSED: u32 = 1;
-/// Header flag: the edge section is present (version 3).
+/// Header flag: the edge section is present.
 pub const FLAG_EDGES: u32 = 1 << 1;
 /// Length of one edge record.
 pub const EDGE_LEN: usize = 4;
@@ -250,6 +252,39 @@ pub mod header {
     pub const HALF_EXTENT: usize = 80;
     /// `f32` bounding sphere radius.
     pub const RADIUS: usize = 92;
+    /// `u32` vertices of the largest polygon.
+    pub const POLYGON_VERTICES: usize = 96;
+    /// `u32` the vertex capacity a renderer needs.
+    pub const SCRATCH_VERTICES: usize = 100;
+    /// `u32` working memory words for one walk a frame.
+    pub const MEMORY_WORDS: usize = 104;
+    /// `u32` reserved, 0.
+    pub const RESERVED32: usize = 108;
+}
+
+/// Planes a polygon is clipped against (the near plane and four
+/// guard-band planes, see [`crate::raster::clip`]).
+const CLIP_PLANES: u32 = 5;
+
+/// The vertex capacity that a polygon of `vertices` vertices, `reflex` of
+/// them reflex (interior angle above 180°; 0 for a convex polygon), needs
+/// at every stage of the renderer: `vertices + 5 · (reflex + 1)`,
+/// saturating.
+///
+/// Why: a line meets the inside of a simple polygon with `r` reflex
+/// vertices in at most `r + 1` segments, so clipping it against one plane
+/// crosses its boundary at most `2(r + 1)` times and adds at most `r + 1`
+/// vertices (a crossing pair adds two and removes at least one outside
+/// vertex), and the vertices a clip adds are convex. Five planes: at most
+/// `5(r + 1)` more. A convex polygon: `vertices + 5`.
+///
+/// ```
+/// use fpt_nostd::format::scratch_vertices_for;
+/// assert_eq!(scratch_vertices_for(4, 0), 9); // a quad
+/// assert_eq!(scratch_vertices_for(6, 1), 16); // an L-shaped face
+/// ```
+pub const fn scratch_vertices_for(vertices: u32, reflex: u32) -> u32 {
+    vertices.saturating_add(CLIP_PLANES.saturating_mul(reflex.saturating_add(1)))
 }
 
 /// Byte offsets inside a polygon record.

@@ -46,29 +46,38 @@ use embedded_graphics::pixelcolor::Rgb565;
 use crate::order::OrderError;
 use crate::raster::{
     FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, RenderStats, Rgb565Format,
-    Rgb565Framebuffer, SpanSink,
+    Rgb565Framebuffer, SpanSink, Up,
 };
 use crate::reader::Tree;
 use crate::render::cached::{draw_bands, draw_direct};
-use crate::render::{BandBuffer, Frame, RenderError, TreeRenderer};
+use crate::render::{
+    check_capacities, BandBuffer, CapacityError, Frame, RenderError, TreeRenderer,
+};
 pub use crate::render::{NoProbe, Phase, Probe};
 
 /// Frame width in pixels.
 pub const WIDTH: u32 = 240;
 /// Frame height in pixels.
 pub const HEIGHT: u32 = 240;
-/// Rows per band of [`render_banded`].
-pub const BAND_ROWS: u32 = 16;
+/// A build for a core without atomic read-modify-write, i.e. the
+/// Cortex-M0 (`thumbv6m-none-eabi`), whose 16 KiB of RAM draw only the
+/// vise: it gets smaller bands and the vise's vertex capacity.
+const SMALL_RAM: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+/// Rows per band of [`render_banded`]: 16, 12 on the Cortex-M0 (the
+/// picture is the same whatever the band).
+pub const BAND_ROWS: u32 = if SMALL_RAM { 12 } else { 16 };
 /// `u16` words of a full frame.
 pub const FRAME_WORDS: usize = (WIDTH * HEIGHT) as usize;
 /// `u16` words of a band buffer.
 pub const BAND_WORDS: usize = (WIDTH * BAND_ROWS) as usize;
-/// Vertex capacity of the per-polygon scratch: the scenes' polygons have at
-/// most 28 vertices, and clipping a convex polygon adds at most 5 (a
-/// polygon that would exceed this is skipped, never a panic).
-pub const MAX_VERTS: usize = 40;
+/// Vertex capacity of the per-polygon scratch: what the scenes' trees
+/// need (`fpt info`, [`crate::reader::Capacities::vertices`]): house 103,
+/// vise 61, bench_city 48; on the Cortex-M0, which draws only the vise,
+/// 61. A tree that needs more is refused
+/// ([`crate::render::CapacityError`]).
+pub const MAX_VERTS: usize = if SMALL_RAM { 61 } else { 103 };
 /// Stack frames of the tree walk: the scenes' trees are at most 37 deep
-/// (a deeper tree is refused with [`OrderError::StackTooSmall`]).
+/// (a deeper tree is refused with [`crate::render::CapacityError`]).
 pub const WALK_DEPTH: usize = 40;
 /// The arithmetic of the frames: the `f32` vertex path with libm, 4
 /// sub-pixel bits. On a Cortex-M4F the FPU makes it about 5× cheaper in
@@ -82,17 +91,12 @@ pub const SCENES: [&str; 3] = ["vise", "house", "bench_city"];
 /// The colour of pixels no polygon covers.
 pub const BACKGROUND: Rgb565 = Rgb565::new(4, 10, 12);
 /// Ambient and diffuse weights of the key light.
-const AMBIENT: f32 = 0.25;
-const DIFFUSE: f32 = 0.75;
+const AMBIENT: f32 = Light::AMBIENT;
+const DIFFUSE: f32 = Light::DIFFUSE;
 
 /// The model rotation that stands a z-up model up in the y-up orbit
 /// convention: `(x, y, z) → (x, z, −y)`.
-pub const Z_UP: Mat4 = Mat4([
-    [1.0, 0.0, 0.0, 0.0],
-    [0.0, 0.0, 1.0, 0.0],
-    [0.0, -1.0, 0.0, 0.0],
-    [0.0, 0.0, 0.0, 1.0],
-]);
+pub const Z_UP: Mat4 = Up::Z.model();
 
 /// One view: an orbit around the tree's bounding-sphere centre.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -172,6 +176,24 @@ pub enum FrameError {
     Buffer(FramebufferError),
     /// Not a configuration of [`accuracy::CONFIGS`].
     UnknownConfig,
+    /// [`WALK_DEPTH`] or [`MAX_VERTS`] is smaller than the tree needs.
+    Capacity(CapacityError),
+}
+
+impl From<CapacityError> for FrameError {
+    fn from(e: CapacityError) -> Self {
+        FrameError::Capacity(e)
+    }
+}
+
+impl From<RenderError> for FrameError {
+    fn from(e: RenderError) -> Self {
+        match e {
+            RenderError::Order(e) => FrameError::Order(e),
+            RenderError::Band(e) => FrameError::Buffer(e),
+            RenderError::Capacity(e) => FrameError::Capacity(e),
+        }
+    }
 }
 
 impl From<OrderError> for FrameError {
@@ -192,6 +214,7 @@ impl fmt::Display for FrameError {
             FrameError::Order(e) => write!(f, "{e}"),
             FrameError::Buffer(e) => write!(f, "frame buffer: {e:?}"),
             FrameError::UnknownConfig => f.write_str("unknown accuracy configuration"),
+            FrameError::Capacity(e) => write!(f, "{e}"),
         }
     }
 }
@@ -299,6 +322,7 @@ pub fn render_banded<Pr: Probe>(
     memory: &mut [u32],
     probe: &Pr,
 ) -> Result<Rendered, FrameError> {
+    check_capacities::<WALK_DEPTH, MAX_VERTS>(tree)?;
     probe.start(Phase::Xform);
     let frame = setup(r, tree, view);
     let mut crc = PixelCrc::new();
@@ -316,12 +340,11 @@ pub fn render_banded<Pr: Probe>(
         memory,
         band,
         probe,
-        |_, fb| crc.update(fb.data()),
-    )
-    .map_err(|e| match e {
-        RenderError::Order(e) => FrameError::Order(e),
-        RenderError::Band(e) => FrameError::Buffer(e),
-    })?;
+        |_, fb| {
+            crc.update(fb.data());
+            true
+        },
+    )?;
     Ok(Rendered {
         crc: crc.finish(),
         stats,
@@ -359,8 +382,9 @@ fn draw_tree<K: SpanSink, Pr: Probe>(
     memory: &mut [u32],
     sink: &mut K,
     probe: &Pr,
-) -> Result<RenderStats, OrderError> {
-    draw_direct::<_, _, _, _, WALK_DEPTH, MAX_VERTS>(
+) -> Result<RenderStats, FrameError> {
+    check_capacities::<WALK_DEPTH, MAX_VERTS>(tree)?;
+    Ok(draw_direct::<_, _, _, _, WALK_DEPTH, MAX_VERTS>(
         tree,
         frame,
         &mut r.renderer,
@@ -369,7 +393,7 @@ fn draw_tree<K: SpanSink, Pr: Probe>(
         memory,
         sink,
         probe,
-    )
+    )?)
 }
 
 /// The line both sides print for a frame: `frame scene=NAME view=K

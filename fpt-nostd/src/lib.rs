@@ -5,56 +5,63 @@
 //! # Quickstart: a spinning part on a 240×240 display, drawn in bands
 //!
 //! On the host, once: `fpt build part.stl -o part.fpt` (the
-//! `host-sim` crate's command-line tool; `fpt info part.fpt` prints the
-//! renderer's capacities for the tree: the walk depth `N`, the polygon
-//! vertex capacity `V` and the working memory). In the firmware, the tree
-//! is bytes in flash; every frame is one call that hands finished bands of
-//! RGB565 pixels to the display (a 7.5 KiB band buffer instead of a
-//! 112.5 KiB framebuffer, and no depth buffer at all):
+//! `host-sim` crate's command-line tool). The tree's header records what a
+//! renderer needs; `fpt info part.fpt` prints it ("TreeRenderer<P, 61>",
+//! walk stack `N = 37`, the working memory), and the renderer checks it
+//! before drawing: too small a capacity is a [`render::CapacityError`]
+//! naming it and what it must be, never a polygon skipped. In the
+//! firmware, the tree is bytes in flash, the renderer a `static` (its
+//! constructor is a `const fn`), and every frame is one call that hands
+//! finished bands of pixels, already in the panel's byte order, to the
+//! display driver (a 7.5 KiB band buffer instead of a 112.5 KiB
+//! framebuffer, and no depth buffer at all):
 //!
 //! ```
 //! use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
-//! use fpt_nostd::raster::{FloatLibm, Libm, Light, Orbit, Rgb565Format};
+//! use fpt_nostd::raster::{FloatLibm, Libm, Orbit, Rgb565BeFormat, Up};
 //! use fpt_nostd::reader::Tree;
-//! use fpt_nostd::render::{BandBuffer, Frame, RenderError, TreeRenderer};
+//! use fpt_nostd::render::{BandBuffer, BandError, Frame, TreeRenderer};
+//! use static_cell::ConstStaticCell;
 //!
 //! // The tree from `fpt build` (here one of the project's scenes).
 //! static TREE: &[u8] = include_bytes!("../../firmware/trees/vise.fpt");
 //!
-//! /// What a display driver offers: rows `y..` of RGB565 pixels (a stub).
-//! fn send_rows(_y: i32, _pixels: &[u16]) {}
+//! // f32 with an FPU (`IntPrecision<4>` on a Cortex-M0), 4 sub-pixel
+//! // bits, and the vertex capacity `fpt info` prints for the tree.
+//! type Renderer = TreeRenderer<FloatLibm<4>, 61>;
+//! // Built at compile time, taken once: never on the stack.
+//! static RENDERER: ConstStaticCell<Renderer> =
+//!     ConstStaticCell::new(Renderer::new(240, 240).expect("a 240×240 display"));
+//! static BAND: ConstStaticCell<[u16; 240 * 16]> = ConstStaticCell::new([0; 240 * 16]);
 //!
-//! fn main() -> Result<(), RenderError> {
+//! /// What a display driver offers: write big-endian RGB565 bytes to
+//! /// rows `y..` (a stub that cannot fail).
+//! fn send_rows(_y: i32, _bytes: &[u8]) -> Result<(), core::convert::Infallible> {
+//!     Ok(())
+//! }
+//!
+//! fn main() -> Result<(), BandError<core::convert::Infallible>> {
 //!     // Validated once; after this the walk and the fill never panic.
 //!     let tree = Tree::from_bytes(TREE).expect("a valid tree");
-//!     // f32 with an FPU (`IntPrecision<4>` on a Cortex-M0), 4 sub-pixel
-//!     // bits, and the vertex capacity `fpt info` prints for this tree
-//!     // ("TreeRenderer<P, 48>": its largest polygon has 20 vertices, and
-//!     // clipping adds some; too small a capacity skips polygons, which
-//!     // `stats.skipped` counts). On an MCU put it in a `static`.
-//!     let mut r = TreeRenderer::<FloatLibm<4>, 48>::new(240, 240).expect("size");
-//!     let mut band = [0u16; 240 * 16]; // 16 rows
-//!     let mut memory = [0u32; 4096]; // vertex cache and display list
+//!     let r = RENDERER.take();
+//!     let band = BAND.take();
+//!     let mut memory = [0u32; 6144]; // `fpt info`: 5,816 words for one walk
 //!     for i in 0..3 {
-//!         // Orbit the bounding sphere: yaw, pitch 25°, 2.1 radii, 60° fov.
+//!         // Frame the bounding sphere: yaw, pitch 25°, 60° fov; z-up part.
 //!         let yaw = i as f32 * 0.1;
-//!         let orbit = Orbit::new([0.0; 3], yaw, 0.436, 2.1 * tree.bounding_radius(), 1.047);
-//!         let frame = Frame::relative(&tree, &orbit.camera::<Libm>(1.0));
-//!         // A light from the eye: 25 % ambient, 75 % diffuse.
-//!         r.renderer.set_light(Light::new(frame.key_light(), 0.25, 0.75));
-//!         let bands = BandBuffer::<Rgb565Format> {
-//!             buf: &mut band,
+//!         let orbit = Orbit::framing::<Libm>(tree.bounding_radius(), yaw, 0.436, 1.047, 1.0);
+//!         let frame = Frame::relative(&tree, &orbit.camera_up::<Libm>(1.0, Up::Z));
+//!         // The key light follows the camera: 25 % ambient, 75 % diffuse.
+//!         r.renderer.set_light(frame.light());
+//!         let bands = BandBuffer::<Rgb565BeFormat> {
+//!             buf: &mut band[..],
 //!             rows: 16,
 //!             background: Rgb565::BLACK,
 //!         };
-//!         // The walk's stack holds 64 levels (the tree's depth at most).
-//!         let stats = r.render_banded_in::<Rgb565Format, 64>(
-//!             &tree,
-//!             &frame,
-//!             bands,
-//!             &mut memory,
-//!             |y, fb| send_rows(y, fb.data()),
-//!         )?;
+//!         // A display error stops the frame and comes back here.
+//!         let stats = r.try_render_banded_in::<_, 64, _>(&tree, &frame, bands, &mut memory, |y, fb| {
+//!             send_rows(y, fb.panel_bytes())
+//!         })?;
 //!         // Enough memory for this tree: one walk a frame, nothing skipped.
 //!         assert_eq!((stats.walks, stats.skipped), (1, 0));
 //!     }

@@ -6,6 +6,8 @@
 //! the whole file once, without allocating:
 //!
 //! - the magic, the version, the header fields and the exact file length;
+//!   the largest polygon's vertex count equals the header's
+//!   `polygon_vertices`, and `scratch_vertices` is at least that plus 5;
 //! - the CRC-32 over everything before the trailing checksum;
 //! - the section sizes implied by the counts against the file length;
 //! - every float that geometry is computed from is finite (origin, half
@@ -76,11 +78,13 @@
 //! first run, 99 inputs are valid trees (walked) and the other 107 are
 //! rejected with every one of the 15 kinds of [`FormatError`] between them.
 
+use core::fmt;
+
 use crate::format::{
     crc32, header as h, le_f32, le_u32, node as nd, polygon as pg, rd, rd_f32, rd_f32x3, rd_f64,
     rd_i16, rd_i32, rd_u16, rd_u32, rd_u8, rec, run as rn, Counts, FormatError, Sections, UpAxis,
     VertexFormat, CRC_LEN, FLAG_CLOSED, HEADER_LEN, MAGIC, MAX_SHIFT, NODE_LEN, POLYGON_LEN,
-    Q16_MAX, RUN_LEN, SWITCH_LEN, VERSION_OPTIONAL, VERSION_PLAIN,
+    Q16_MAX, RUN_LEN, SWITCH_LEN, VERSION,
 };
 use crate::format::{EDGE_LEN, FLAG_EDGES};
 
@@ -414,6 +418,46 @@ pub struct Tree<'a> {
     max_depth: u32,
     radius: f32,
     up: UpAxis,
+    capacities: Capacities,
+}
+
+/// What a renderer needs to draw a tree, from its header (see
+/// [`crate::format`]): checked by every drawing function of
+/// [`crate::render`] before it draws ([`crate::render::CapacityError`]).
+///
+/// ```
+/// # let bytes: &[u8] = include_bytes!("../../firmware/trees/vise.fpt");
+/// let tree = fpt_nostd::reader::Tree::from_bytes(bytes).unwrap();
+/// let c = tree.capacities();
+/// // What to write: `TreeRenderer<P, V>` and `render_banded_in::<F, N>`.
+/// assert!(c.vertices >= c.polygon_vertices + 5);
+/// assert_eq!(c.walk_depth, tree.max_depth());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Capacities {
+    /// The walk's stack `N`: the tree's depth ([`Tree::max_depth`]).
+    pub walk_depth: u32,
+    /// The scratch's vertex capacity `V`
+    /// ([`crate::format::scratch_vertices_for`] of the polygon that needs
+    /// most): with it no polygon is ever skipped for want of room.
+    pub vertices: u32,
+    /// Vertices of the largest polygon.
+    pub polygon_vertices: u32,
+    /// Working memory words for one walk a frame in any view (advice: less
+    /// gives the same picture with more walks; see
+    /// [`crate::render::memory_words`]).
+    pub memory_words: u32,
+}
+
+impl fmt::Display for Capacities {
+    /// `N = 49, V = 25, memory 9845 words`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "N = {}, V = {}, memory {} words",
+            self.walk_depth, self.vertices, self.memory_words
+        )
+    }
 }
 
 /// One polygon of a [`Tree`].
@@ -562,7 +606,7 @@ impl<'a> Tree<'a> {
             return Err(FormatError::BadMagic);
         }
         let version = rd_u16(bytes, h::VERSION);
-        if version != VERSION_PLAIN && version != VERSION_OPTIONAL {
+        if version != VERSION {
             return Err(FormatError::UnsupportedVersion(version));
         }
         if usize::from(rd_u16(bytes, h::HEADER_LEN)) != HEADER_LEN {
@@ -579,13 +623,7 @@ impl<'a> Tree<'a> {
         }
 
         let flags = rd_u32(bytes, h::FLAGS);
-        // The optional sections' flags exist from version 3 on.
-        let known = if version >= VERSION_OPTIONAL {
-            FLAG_CLOSED | FLAG_EDGES
-        } else {
-            FLAG_CLOSED
-        };
-        if flags & !known != 0 {
+        if flags & !(FLAG_CLOSED | FLAG_EDGES) != 0 {
             return Err(FormatError::BadHeader("flags"));
         }
         let format = VertexFormat::from_code(rd_u8(bytes, h::VERTEX_FORMAT))
@@ -688,9 +726,24 @@ impl<'a> Tree<'a> {
             max_depth: rd_u32(bytes, h::MAX_DEPTH),
             radius,
             up,
+            capacities: Capacities {
+                walk_depth: rd_u32(bytes, h::MAX_DEPTH),
+                vertices: rd_u32(bytes, h::SCRATCH_VERTICES),
+                polygon_vertices: rd_u32(bytes, h::POLYGON_VERTICES),
+                memory_words: rd_u32(bytes, h::MEMORY_WORDS),
+            },
         };
+        if rd_u32(bytes, h::RESERVED32) != 0 {
+            return Err(FormatError::BadHeader("reserved"));
+        }
         tree.check_vertices()?;
-        tree.check_polygons()?;
+        if tree.check_polygons()? != tree.capacities.polygon_vertices {
+            return Err(FormatError::BadHeader("polygon_vertices"));
+        }
+        let v = tree.capacities.vertices;
+        if v < tree.capacities.polygon_vertices.saturating_add(5) || v > u32::from(u16::MAX) {
+            return Err(FormatError::BadHeader("scratch_vertices"));
+        }
         tree.check_edges()?;
         tree.check_runs()?;
         tree.check_bunches()?;
@@ -700,7 +753,8 @@ impl<'a> Tree<'a> {
         Ok(tree)
     }
 
-    /// The format version (2, or 3 with an optional section).
+    /// The format version of the file (the reader takes only
+    /// [`crate::format::VERSION`]).
     pub fn version(&self) -> u16 {
         rd_u16(self.g.bytes, h::VERSION)
     }
@@ -761,6 +815,11 @@ impl<'a> Tree<'a> {
     /// Connecting nodes on the longest root-to-leaf path.
     pub fn max_depth(&self) -> u32 {
         self.max_depth
+    }
+
+    /// What a renderer needs for this tree (see [`Capacities`]).
+    pub fn capacities(&self) -> Capacities {
+        self.capacities
     }
 
     /// Number of polygons; ids are `0..polygon_count()`.

@@ -46,14 +46,17 @@
 //!
 //! Nothing here allocates or panics, whatever the camera: degenerate,
 //! non-finite or extreme matrices render something or nothing, never fail,
-//! except that a tree deeper than the walk's stack `N` is refused
-//! ([`OrderError`]).
+//! except that a renderer whose walk stack `N` or vertex capacity `V` is
+//! smaller than the tree's header says it needs is refused before anything
+//! is drawn ([`CapacityError`], [`check_capacities`]). With the capacities
+//! checked, no polygon is skipped for want of room: a polygon is skipped
+//! ([`RenderStats::skipped`]) only when a camera makes a vertex non-finite.
 
 use crate::effects::{AllEffects, Compiled, Effects};
 use crate::format::{EDGE_HIDDEN, EDGE_SOFT};
 use crate::order::{LocalView, OrderError, View};
 use crate::raster::{
-    Camera, Face, Framebuffer, FramebufferError, Mat4, PixelFormat, Precision, RenderStats,
+    Camera, Face, Framebuffer, FramebufferError, Light, Mat4, PixelFormat, Precision, RenderStats,
     Renderer, Scratch, SpanSink,
 };
 use crate::reader::{Plane, PolygonRef, Tree};
@@ -72,13 +75,117 @@ pub enum FaceIds {
     Polygon,
 }
 
+/// A capacity of the renderer, a const generic parameter, that is smaller
+/// than the tree needs ([`crate::reader::Tree::capacities`]): the drawing
+/// functions check them before they draw, so that no polygon is ever
+/// skipped for want of room and no walk is cut short. `fpt info TREE`
+/// prints the values to write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CapacityError {
+    /// The walk's stack `N` is smaller than the tree's depth.
+    WalkDepth {
+        /// What `N` must be at least.
+        need: u32,
+        /// The `N` given.
+        have: usize,
+    },
+    /// The vertex capacity `V` (of [`TreeRenderer`] or [`Scratch`]) is
+    /// smaller than the tree's polygons need after clipping.
+    Vertices {
+        /// What `V` must be at least.
+        need: u32,
+        /// The `V` given.
+        have: usize,
+    },
+}
+
+impl core::fmt::Display for CapacityError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            CapacityError::WalkDepth { need, have } => write!(
+                f,
+                "walk stack N = {have} is smaller than the tree's depth: N must be at least {need}"
+            ),
+            CapacityError::Vertices { need, have } => write!(
+                f,
+                "vertex capacity V = {have} is too small for the tree's polygons: \
+                 V must be at least {need} (TreeRenderer<P, {need}>)"
+            ),
+        }
+    }
+}
+
+/// Checks that a walk stack of `N` levels and a vertex capacity of `V`
+/// hold what `tree` needs ([`crate::reader::Tree::capacities`]). Every
+/// drawing function of this module calls it first.
+///
+/// ```
+/// use fpt_nostd::reader::Tree;
+/// use fpt_nostd::render::{check_capacities, CapacityError};
+///
+/// let tree = Tree::from_bytes(include_bytes!("../../firmware/trees/vise.fpt")).unwrap();
+/// let need = tree.capacities();
+/// assert!(matches!(
+///     check_capacities::<64, 8>(&tree),
+///     Err(CapacityError::Vertices { have: 8, .. })
+/// ));
+/// assert_eq!(check_capacities::<64, 64>(&tree), Ok(()));
+/// assert!(need.walk_depth <= 64 && need.vertices <= 64);
+/// ```
+pub fn check_capacities<const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+) -> Result<(), CapacityError> {
+    let c = tree.capacities();
+    if c.walk_depth as usize > N {
+        return Err(CapacityError::WalkDepth {
+            need: c.walk_depth,
+            have: N,
+        });
+    }
+    if c.vertices as usize > V {
+        return Err(CapacityError::Vertices {
+            need: c.vertices,
+            have: V,
+        });
+    }
+    Ok(())
+}
+
+/// Why a banded frame with a fallible display
+/// ([`TreeRenderer::try_render_banded_in`]) stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BandError<D> {
+    /// The renderer refused the frame (before any band was sent).
+    Render(RenderError),
+    /// The display driver's error for a band: no later band was drawn.
+    Display(D),
+}
+
+impl<D: core::fmt::Debug> core::fmt::Display for BandError<D> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            BandError::Render(e) => write!(f, "{e}"),
+            BandError::Display(e) => write!(f, "display: {e:?}"),
+        }
+    }
+}
+
 /// Why a frame could not be drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RenderError {
-    /// The walk refused the tree (deeper than its stack).
+    /// The walk refused the tree (deeper than its stack; after
+    /// [`check_capacities`] it cannot).
     Order(OrderError),
     /// The band buffer is too small or the band has a bad size.
     Band(FramebufferError),
+    /// A capacity of the renderer is smaller than the tree needs.
+    Capacity(CapacityError),
+}
+
+impl From<CapacityError> for RenderError {
+    fn from(e: CapacityError) -> Self {
+        RenderError::Capacity(e)
+    }
 }
 
 impl From<OrderError> for RenderError {
@@ -92,6 +199,7 @@ impl core::fmt::Display for RenderError {
         match self {
             RenderError::Order(e) => write!(f, "{e}"),
             RenderError::Band(e) => write!(f, "band buffer: {e}"),
+            RenderError::Capacity(e) => write!(f, "{e}"),
         }
     }
 }
@@ -434,6 +542,14 @@ impl Frame {
         (row[3] - r, row[3] + r)
     }
 
+    /// The project's light for this frame: from [`Frame::key_light`],
+    /// with the weights [`Light::AMBIENT`] and [`Light::DIFFUSE`]. Set it
+    /// every frame (`renderer.set_light(frame.light())`): the key light
+    /// follows the camera.
+    pub fn light(&self) -> Light {
+        Light::new(self.key_light(), Light::AMBIENT, Light::DIFFUSE)
+    }
+
     /// A light direction for [`crate::raster::Light::new`]: toward the
     /// viewer, raised a little toward the top of the screen and moved to
     /// its left, so that faces turned to the viewer differ in brightness
@@ -463,7 +579,8 @@ impl Frame {
 /// to front (a stack of `N` frames) and draws every polygon; returns the
 /// counters. The renderer's light, shading mode and fill rule are used as
 /// set, its effects as [`Renderer::begin_tree`] decides (the tree's own
-/// unless overridden). Fails only when the tree is deeper than `N`.
+/// unless overridden). Fails only when `N` or `V` is smaller than the tree
+/// needs ([`check_capacities`]); then nothing is drawn.
 pub fn render_tree<P: Precision, E: Compiled, K: SpanSink, const N: usize, const V: usize>(
     tree: &Tree<'_>,
     camera: &Camera,
@@ -471,7 +588,7 @@ pub fn render_tree<P: Precision, E: Compiled, K: SpanSink, const N: usize, const
     scratch: &mut Scratch<P, V>,
     ids: FaceIds,
     sink: &mut K,
-) -> Result<RenderStats, OrderError> {
+) -> Result<RenderStats, RenderError> {
     let frame = Frame::new(tree, camera);
     draw_frame::<P, E, K, N, V>(tree, &frame, renderer, scratch, ids, sink)
 }
@@ -491,8 +608,9 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
     scratch: &mut Scratch<P, V>,
     ids: FaceIds,
     sink: &mut K,
-) -> Result<RenderStats, OrderError> {
-    cached::draw_direct::<P, E, K, NoProbe, N, V>(
+) -> Result<RenderStats, RenderError> {
+    check_capacities::<N, V>(tree)?;
+    Ok(cached::draw_direct::<P, E, K, NoProbe, N, V>(
         tree,
         frame,
         renderer,
@@ -501,7 +619,7 @@ pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const 
         &mut [],
         sink,
         &NoProbe,
-    )
+    )?)
 }
 
 /// What the walk of a frame needs from the effects (see
@@ -660,12 +778,33 @@ pub struct TreeRenderer<P: Precision, const V: usize, E: Compiled = AllEffects> 
 impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     /// A renderer for `width × height` frames; `None` when a side is 0 or
     /// too large (see [`Renderer::new`]).
-    pub fn new(width: u32, height: u32) -> Option<Self> {
-        let camera = Camera::from_matrix(Mat4::IDENTITY, 1.0);
+    ///
+    /// A `const fn`, so that the renderer (a few KiB of scratch buffers)
+    /// can live in a `static` and is never built on the stack nor copied
+    /// through it: with `static_cell`'s `ConstStaticCell` it is taken once
+    /// as a `&'static mut`, without `unsafe` (a size that does not fit
+    /// fails the build):
+    ///
+    /// ```
+    /// use fpt_nostd::raster::FloatLibm;
+    /// use fpt_nostd::render::TreeRenderer;
+    /// use static_cell::ConstStaticCell;
+    ///
+    /// type Renderer = TreeRenderer<FloatLibm<4>, 48>;
+    /// static RENDERER: ConstStaticCell<Renderer> =
+    ///     ConstStaticCell::new(Renderer::new(240, 240).expect("a 240×240 frame"));
+    ///
+    /// let r: &'static mut Renderer = RENDERER.take(); // once, at start-up
+    /// assert_eq!(r.renderer.viewport().width(), 240);
+    /// ```
+    pub const fn new(width: u32, height: u32) -> Option<Self> {
+        let Some(renderer) = Renderer::sized(width, height) else {
+            return None;
+        };
         Some(TreeRenderer {
-            renderer: Renderer::new(width, height, &camera)?,
+            renderer,
             scratch: Scratch::new(),
-            ids: FaceIds::default(),
+            ids: FaceIds::Source,
         })
     }
 
@@ -675,7 +814,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
         tree: &Tree<'_>,
         frame: &Frame,
         sink: &mut K,
-    ) -> Result<RenderStats, OrderError> {
+    ) -> Result<RenderStats, RenderError> {
         draw_frame::<P, E, K, N, V>(
             tree,
             frame,
@@ -713,8 +852,9 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
         frame: &Frame,
         memory: &mut [u32],
         sink: &mut K,
-    ) -> Result<RenderStats, OrderError> {
-        cached::draw_direct::<P, E, K, NoProbe, N, V>(
+    ) -> Result<RenderStats, RenderError> {
+        check_capacities::<N, V>(tree)?;
+        Ok(cached::draw_direct::<P, E, K, NoProbe, N, V>(
             tree,
             frame,
             &mut self.renderer,
@@ -723,7 +863,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
             memory,
             sink,
             &NoProbe,
-        )
+        )?)
     }
 
     /// [`TreeRenderer::render_banded`] with working memory: one walk and
@@ -740,7 +880,60 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
         memory: &mut [u32],
         emit: impl FnMut(i32, &Framebuffer<'_, F>),
     ) -> Result<RenderStats, RenderError> {
-        cached::draw_bands::<P, E, F, NoProbe, N, V>(
+        let mut emit = emit;
+        self.try_render_banded_in::<F, N, core::convert::Infallible>(
+            tree,
+            frame,
+            band,
+            memory,
+            |y, fb| {
+                emit(y, fb);
+                Ok(())
+            },
+        )
+        .map_err(|e| match e {
+            BandError::Render(e) => e,
+            BandError::Display(never) => match never {},
+        })
+    }
+
+    /// [`TreeRenderer::render_banded_in`] for a display that can fail:
+    /// `emit` returns the display driver's `Result`, and the first error
+    /// ends the frame (no further band is drawn) and comes back to the
+    /// caller as [`BandError::Display`].
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb565;
+    /// use fpt_nostd::raster::{FloatLibm, Libm, Orbit, Rgb565BeFormat};
+    /// use fpt_nostd::reader::Tree;
+    /// use fpt_nostd::render::{BandBuffer, BandError, Frame, TreeRenderer};
+    ///
+    /// let tree = Tree::from_bytes(include_bytes!("../../firmware/trees/vise.fpt")).unwrap();
+    /// let mut r = TreeRenderer::<FloatLibm<4>, 64>::new(64, 64).unwrap();
+    /// let orbit = Orbit::framing::<Libm>(tree.bounding_radius(), 0.5, 0.4, 1.0, 1.0);
+    /// let frame = Frame::relative(&tree, &orbit.camera::<Libm>(1.0));
+    /// let mut buf = [0u16; 64 * 8];
+    /// let band = BandBuffer::<Rgb565BeFormat> { buf: &mut buf, rows: 8, background: Rgb565::new(0, 0, 0) };
+    /// let mut sent = 0;
+    /// // A display whose SPI bus fails at the third band.
+    /// let out = r.try_render_banded_in::<_, 64, &str>(&tree, &frame, band, &mut [], |_y, fb| {
+    ///     sent += fb.panel_bytes().len();
+    ///     if sent > 2 * 64 * 8 * 2 { Err("spi") } else { Ok(()) }
+    /// });
+    /// assert_eq!(out, Err(BandError::Display("spi")));
+    /// assert_eq!(sent, 3 * 64 * 8 * 2); // nothing after the failed band
+    /// ```
+    pub fn try_render_banded_in<F: PixelFormat, const N: usize, D>(
+        &mut self,
+        tree: &Tree<'_>,
+        frame: &Frame,
+        band: BandBuffer<'_, F>,
+        memory: &mut [u32],
+        mut emit: impl FnMut(i32, &Framebuffer<'_, F>) -> Result<(), D>,
+    ) -> Result<RenderStats, BandError<D>> {
+        check_capacities::<N, V>(tree).map_err(|e| BandError::Render(e.into()))?;
+        let mut failed = None;
+        let stats = cached::draw_bands::<P, E, F, NoProbe, N, V>(
             tree,
             frame,
             &mut self.renderer,
@@ -749,8 +942,19 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
             memory,
             band,
             &NoProbe,
-            emit,
+            |y, fb| match emit(y, fb) {
+                Ok(()) => true,
+                Err(e) => {
+                    failed = Some(e);
+                    false
+                }
+            },
         )
+        .map_err(BandError::Render)?;
+        match failed {
+            Some(e) => Err(BandError::Display(e)),
+            None => Ok(stats),
+        }
     }
 }
 

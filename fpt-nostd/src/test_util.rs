@@ -6,7 +6,7 @@ extern crate std;
 
 use std::vec::Vec;
 
-use crate::format::{crc32, Counts, Sections, VertexFormat, HEADER_LEN, MAGIC, VERSION_PLAIN};
+use crate::format::{crc32, Counts, Sections, VertexFormat, HEADER_LEN, MAGIC, VERSION};
 
 /// Every field of a file, unchecked.
 #[derive(Clone, Debug)]
@@ -110,7 +110,7 @@ impl Raw {
         let s = Sections::new(&counts, self.format, isz).unwrap();
         let mut o = Vec::new();
         o.extend_from_slice(&MAGIC);
-        o.extend_from_slice(&VERSION_PLAIN.to_le_bytes());
+        o.extend_from_slice(&VERSION.to_le_bytes());
         o.extend_from_slice(&(HEADER_LEN as u16).to_le_bytes());
         let u32s = |o: &mut Vec<u8>, xs: &[u32]| {
             xs.iter()
@@ -141,6 +141,17 @@ impl Raw {
             .iter()
             .for_each(|x| o.extend_from_slice(&x.to_le_bytes()));
         o.extend_from_slice(&self.radius.to_le_bytes());
+        // Capacities: the largest polygon (the polygons tile the indices),
+        // and the convex bound for the scratch.
+        let firsts: Vec<u32> = self.polys.iter().map(|p| p.0).collect();
+        let largest = (0..firsts.len())
+            .map(|k| {
+                let end = firsts.get(k + 1).copied().unwrap_or(counts.indices);
+                end.saturating_sub(firsts[k])
+            })
+            .max()
+            .unwrap_or(0);
+        u32s(&mut o, &[largest, largest + 5, 0, 0]);
         o.extend_from_slice(&self.vertex_bytes);
         o.resize(s.polygons, 0);
         for (first, run, source, c) in &self.polys {

@@ -185,16 +185,16 @@ fn info_describes_the_file() {
     assert!(field("vertex format").starts_with("q32"));
     let size = std::fs::metadata(&path).unwrap().len();
     assert!(field("format").contains(&format!("{size} bytes")));
-    // The renderer's capacities for this tree: quads (4 vertices) give a
-    // scratch of 2·4 + 8 = 16, the walk its depth.
+    // The renderer's capacities for this tree, from its header: convex
+    // quads (4 vertices) need a scratch of 4 + 5 = 9, the walk its depth.
     let depth = field("max depth");
     let needs = field("renderer needs");
     assert!(
-        needs.starts_with("TreeRenderer<P, 16> walking with N = "),
+        needs.starts_with("TreeRenderer<P, 9> (vertex capacity V = 9), walk stack N = "),
         "{needs}"
     );
-    assert!(needs.contains(&format!("N = {depth};")), "{needs}");
-    assert!(needs.contains("largest polygon 4 vertices"), "{needs}");
+    assert!(needs.contains(&format!("N = {depth} (")), "{needs}");
+    assert_eq!(field("largest polygon"), "4 vertices");
     std::fs::remove_file(path).ok();
 }
 

@@ -32,8 +32,6 @@
 mod clock;
 #[path = "../fail.rs"]
 mod fail;
-#[path = "../in_place.rs"]
-mod in_place;
 #[path = "../stack.rs"]
 mod stack;
 
@@ -51,6 +49,7 @@ use fpt_nostd::frames::orbit::{draw_band_frame, OrbitLine};
 use fpt_nostd::frames::PixelCrc;
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::TreeRenderer;
+use static_cell::ConstStaticCell;
 
 use clock::{now, Clock};
 use config::{
@@ -87,15 +86,17 @@ fn memory() -> &'static mut [u32] {
     unsafe { &mut *core::ptr::addr_of_mut!(MEMORY) }
 }
 
-/// The renderer, built in place in a static (its scratch buffers are a
-/// few KiB, which must not pass through a 16 KiB RAM's stack); call once.
+/// The renderer, in a static initialised at build time (`TreeRenderer::new`
+/// is a `const fn`): its scratch buffers are a few KiB, which must not pass
+/// through a 16 KiB RAM's stack; call once.
 #[inline(never)]
 fn renderer() -> &'static mut BenchRenderer {
-    static mut RENDERER: MaybeUninit<BenchRenderer> = MaybeUninit::uninit();
-    // SAFETY: called once, from `main`, so no other reference to RENDERER
-    // exists.
-    let slot = unsafe { &mut *core::ptr::addr_of_mut!(RENDERER) };
-    in_place::renderer(slot, WIDTH, HEIGHT)
+    static RENDERER: ConstStaticCell<BenchRenderer> =
+        ConstStaticCell::new(match BenchRenderer::new(WIDTH, HEIGHT) {
+            Some(r) => r,
+            None => panic!("FPT_BENCH_WIDTH × FPT_BENCH_HEIGHT is not a frame size"),
+        });
+    RENDERER.take()
 }
 
 /// Draws frame `i` and checksums it: the checksum and the ticks of the

@@ -49,13 +49,15 @@ pub const PITCH_DEGREES: f32 = 25.0;
 pub const DEFAULT_FRAMES: u32 = 100;
 /// The colour of pixels no polygon covers: RGB565 (2, 4, 6).
 pub const BACKGROUND: Rgb565 = Rgb565::new(2, 4, 6);
-/// Ambient weight of the key light.
-pub const AMBIENT: f32 = 0.25;
-/// Diffuse weight of the key light.
-pub const DIFFUSE: f32 = 0.75;
-/// Vertex capacity of the per-polygon scratch (a polygon with more
-/// vertices after clipping is skipped, on both sides alike).
-pub const MAX_VERTS: usize = 40;
+/// Ambient weight of the key light ([`Light::AMBIENT`]).
+pub const AMBIENT: f32 = Light::AMBIENT;
+/// Diffuse weight of the key light ([`Light::DIFFUSE`]).
+pub const DIFFUSE: f32 = Light::DIFFUSE;
+/// Vertex capacity of the host's scratch for the orbit: more than the
+/// trees of the project's scenes and shared models need (house 103); a
+/// tree that needs more is refused ([`crate::render::CapacityError`]). The
+/// firmware takes the tree's own ([`crate::reader::Capacities`]).
+pub const MAX_VERTS: usize = 256;
 
 /// The orbit of frame `i` of `n` (`n = 0` is taken as 1), in coordinates
 /// relative to the tree's bounding-sphere centre.

@@ -68,6 +68,105 @@ impl Mat4 {
     pub fn is_finite(&self) -> bool {
         self.0.iter().flatten().all(|v| v.is_finite())
     }
+
+    /// The view matrix of an eye at `eye` looking at `target`, with `up`
+    /// toward the top of the screen: eye space is right-handed, `+x`
+    /// right, `+y` up, looking down `−z` (the orbit's convention). `up`
+    /// need not be unit nor perpendicular to the view; an `up` parallel to
+    /// it, or `eye == target`, gives a matrix that collapses the picture
+    /// (renders nothing useful, never fails).
+    ///
+    /// ```
+    /// use fpt_nostd::raster::{Libm, Mat4};
+    /// let v = Mat4::look_at::<Libm>([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0]);
+    /// assert_eq!(v.transform_point([0.0; 3]), [0.0, 0.0, -5.0, 1.0]);
+    /// ```
+    pub fn look_at<M: MathFns>(eye: [f32; 3], target: [f32; 3], up: [f32; 3]) -> Mat4 {
+        let sub = |a: [f32; 3], b: [f32; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let cross = |a: [f32; 3], b: [f32; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let unit = |v: [f32; 3]| {
+            let l = M::sqrt(dot(v, v));
+            if l > 0.0 && l.is_finite() {
+                v.map(|c| c / l)
+            } else {
+                [0.0; 3]
+            }
+        };
+        let back = unit(sub(eye, target)); // +z: from the target to the eye
+        let right = unit(cross(up, back));
+        let top = cross(back, right);
+        let row = |a: [f32; 3]| [a[0], a[1], a[2], -dot(a, eye)];
+        Mat4([row(right), row(top), row(back), [0.0, 0.0, 0.0, 1.0]])
+    }
+
+    /// A perspective projection of vertical field of view `fov` (radians),
+    /// aspect ratio `aspect = width / height`, near and far planes at eye
+    /// distances `near` and `far` (`0 < near < far`): eye space (looking
+    /// down `−z`) to clip space with `w` = the eye distance and `ndc.z`
+    /// from −1 at `near` to +1 at `far` (OpenGL's convention). Give the
+    /// renderer `near` as the near threshold
+    /// ([`Camera::perspective_look_at`] does).
+    ///
+    /// ```
+    /// use fpt_nostd::raster::{Libm, Mat4};
+    /// let p = Mat4::perspective::<Libm>(core::f32::consts::FRAC_PI_2, 1.0, 1.0, 100.0);
+    /// let c = p.transform_point([0.0, 2.0, -2.0]); // 45° up: the top edge
+    /// assert!((c[1] / c[3] - 1.0).abs() < 1e-6 && c[3] == 2.0);
+    /// ```
+    pub fn perspective<M: MathFns>(fov: f32, aspect: f32, near: f32, far: f32) -> Mat4 {
+        let focal = M::recip(M::tan(0.5 * fov));
+        let aspect = if aspect.is_finite() && aspect > 0.0 {
+            aspect
+        } else {
+            1.0
+        };
+        let a = (far + near) / (near - far);
+        let b = 2.0 * far * near / (near - far);
+        Mat4([
+            [focal / aspect, 0.0, 0.0, 0.0],
+            [0.0, focal, 0.0, 0.0],
+            [0.0, 0.0, a, b],
+            [0.0, 0.0, -1.0, 0.0],
+        ])
+    }
+}
+
+/// Which model axis points up on the screen: the builders keep a mesh's
+/// own coordinates, and CAD parts (STL) are usually z-up while the
+/// orbit's convention is y-up.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Up {
+    /// `+y` up (the orbit's own convention).
+    #[default]
+    Y,
+    /// `+z` up (most CAD and STL files).
+    Z,
+}
+
+impl Up {
+    /// The model rotation that brings this axis to `+y`, to apply before
+    /// an orbit's camera ([`Camera::with_model`], [`Orbit::camera_up`]):
+    /// the identity for [`Up::Y`], `(x, y, z) → (x, z, −y)` for [`Up::Z`].
+    /// A rotation about the origin, so a tree-relative camera
+    /// ([`crate::render::Frame::relative`]) keeps the model centred.
+    pub const fn model(self) -> Mat4 {
+        match self {
+            Up::Y => Mat4::IDENTITY,
+            Up::Z => Mat4([
+                [1.0, 0.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0, 0.0],
+                [0.0, -1.0, 0.0, 0.0],
+                [0.0, 0.0, 0.0, 1.0],
+            ]),
+        }
+    }
 }
 
 /// Orbit camera parameters (see module docs for the conventions).
@@ -102,6 +201,46 @@ impl Orbit {
             near: distance * 1e-3,
             far: distance * 1e3,
         }
+    }
+
+    /// An orbit around a bounding sphere of `radius` centred on the origin
+    /// (a tree's, in the coordinates of [`crate::render::Frame::relative`])
+    /// that frames it: the eye at `yaw`, `pitch`, far enough that the
+    /// whole sphere is inside the narrower of the two fields of view of a
+    /// viewport of `aspect = width / height`, with a 5 % margin. `fov ≤ 0`
+    /// gives a parallel projection of the same framing.
+    ///
+    /// ```
+    /// use fpt_nostd::raster::{Libm, Orbit, Up};
+    /// let o = Orbit::framing::<Libm>(10.0, 0.3, 0.4, 1.047, 320.0 / 240.0);
+    /// assert!((o.distance - 21.0).abs() < 0.01); // 60° fov: 2.1 radii
+    /// let cam = o.camera_up::<Libm>(320.0 / 240.0, Up::Z);
+    /// assert!(cam.matrix.is_finite());
+    /// ```
+    pub fn framing<M: MathFns>(radius: f32, yaw: f32, pitch: f32, fov: f32, aspect: f32) -> Orbit {
+        const MARGIN: f32 = 1.05;
+        let aspect = if aspect.is_finite() && aspect > 0.0 {
+            aspect
+        } else {
+            1.0
+        };
+        let parallel = !(fov.is_finite() && fov > 0.0);
+        let distance = if parallel {
+            // Visible half-height distance / 2, half-width that · aspect.
+            2.0 * MARGIN * radius / aspect.min(1.0)
+        } else {
+            // The narrower half-angle: tan(h) = tan(fov / 2) · min(1, aspect).
+            let t = M::tan(0.5 * fov) * aspect.min(1.0);
+            let sin = t * M::recip(M::sqrt(1.0 + t * t));
+            MARGIN * radius * M::recip(sin)
+        };
+        Orbit::new([0.0; 3], yaw, pitch, distance, fov)
+    }
+
+    /// [`Orbit::camera`] for a model whose up axis is `up`
+    /// ([`Up::model`] applied first).
+    pub fn camera_up<M: MathFns>(&self, aspect: f32, up: Up) -> Camera {
+        self.camera::<M>(aspect).with_model(&up.model())
     }
 
     /// True when this orbit describes a parallel projection.
@@ -218,6 +357,36 @@ impl Camera {
         Camera { matrix, near_w }
     }
 
+    /// A perspective camera at `eye` looking at `target` with `up` toward
+    /// the top of the screen ([`Mat4::look_at`]), vertical field of view
+    /// `fov` radians, viewport aspect `aspect`, near and far planes
+    /// ([`Mat4::perspective`]); the near plane is the near threshold.
+    ///
+    /// ```
+    /// use fpt_nostd::raster::{Camera, Libm};
+    /// let cam = Camera::perspective_look_at::<Libm>(
+    ///     [3.0, 2.0, 4.0], [0.0; 3], [0.0, 1.0, 0.0], 1.0, 4.0 / 3.0, 0.1, 100.0,
+    /// );
+    /// let c = cam.matrix.transform_point([0.0; 3]); // the target: centre of the screen
+    /// assert!(c[0].abs() < 1e-5 && c[1].abs() < 1e-5 && cam.near_w == 0.1);
+    /// ```
+    #[allow(clippy::too_many_arguments)]
+    pub fn perspective_look_at<M: MathFns>(
+        eye: [f32; 3],
+        target: [f32; 3],
+        up: [f32; 3],
+        fov: f32,
+        aspect: f32,
+        near: f32,
+        far: f32,
+    ) -> Camera {
+        let view = Mat4::look_at::<M>(eye, target, up);
+        Camera {
+            matrix: Mat4::perspective::<M>(fov, aspect, near, far).mul(&view),
+            near_w: near,
+        }
+    }
+
     /// This camera with a model transform applied first
     /// (`clip = camera · model · p`).
     pub fn with_model(&self, model: &Mat4) -> Camera {
@@ -293,6 +462,65 @@ mod tests {
         assert!(m.is_finite());
         let p = ndc(&m, [1.0, 0.0, 0.0]);
         assert!(p[0] > 0.1 && (p[3] - 5.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn look_at_and_perspective_agree_with_the_orbit() {
+        let o = Orbit::new([1.0, 2.0, 3.0], 0.7, 0.3, 10.0, 1.0);
+        let e = o.eye_direction::<Libm>();
+        let eye = [1.0 + 10.0 * e[0], 2.0 + 10.0 * e[1], 3.0 + 10.0 * e[2]];
+        let cam = Camera::perspective_look_at::<Libm>(
+            eye,
+            o.target,
+            [0.0, 1.0, 0.0],
+            o.fov,
+            1.5,
+            o.near,
+            o.far,
+        );
+        let orbit = o.camera::<Libm>(1.5);
+        for p in [[0.0, 0.0, 0.0], [3.0, -1.0, 2.0], [1.0, 5.0, -4.0]] {
+            let (a, b) = (ndc(&cam.matrix, p), ndc(&orbit.matrix, p));
+            for k in 0..4 {
+                assert!(
+                    (a[k] - b[k]).abs() < 1e-3 * (1.0 + b[k].abs()),
+                    "{a:?} {b:?}"
+                );
+            }
+        }
+        assert_eq!(cam.near_w, orbit.near_w);
+    }
+
+    #[test]
+    fn framing_keeps_the_sphere_on_screen() {
+        for (fov, aspect) in [(1.047, 1.0), (1.047, 0.5), (0.5, 2.0), (0.0, 0.75)] {
+            let o = Orbit::framing::<Libm>(3.0, 0.4, 0.2, fov, aspect);
+            let m = o.camera::<Libm>(aspect).matrix;
+            let e = o.eye_direction::<Libm>();
+            // Points of the sphere's silhouette, around the view axis.
+            let right = [libm::cosf(0.4), 0.0, -libm::sinf(0.4)];
+            let up = [
+                e[1] * right[2] - e[2] * right[1],
+                e[2] * right[0] - e[0] * right[2],
+                e[0] * right[1] - e[1] * right[0],
+            ];
+            for k in 0..16 {
+                let t = k as f32 * core::f32::consts::PI / 8.0;
+                let (c, s) = (libm::cosf(t), libm::sinf(t));
+                let p = [0, 1, 2].map(|i| 3.0 * (c * right[i] + s * up[i]));
+                let q = ndc(&m, p);
+                assert!(q[0].abs() < 1.0 && q[1].abs() < 1.0, "{fov} {aspect} {q:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn z_up_stands_a_model_up() {
+        let o = Orbit::new([0.0; 3], 0.0, 0.0, 5.0, 1.2);
+        let m = o.camera_up::<Libm>(1.0, Up::Z).matrix;
+        let top = ndc(&m, [0.0, 0.0, 1.0]);
+        assert!(top[1] > 0.1 && top[0].abs() < 1e-6);
+        assert_eq!(Up::Y.model(), Mat4::IDENTITY);
     }
 
     #[test]

@@ -59,6 +59,13 @@ pub trait PixelFormat {
 /// `Rgb565`, one `u16` per pixel.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Rgb565Format;
+/// `Rgb565` in a display panel's byte order: one `u16` per pixel whose
+/// two bytes in memory are big-endian (high byte first), whatever the
+/// CPU's order, which is what MIPI-DCS panels (ST7789, ILI9341, ...) take
+/// on their SPI bus: [`Framebuffer::panel_bytes`] goes to the display as
+/// it is, with no per-pixel swap.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Rgb565BeFormat;
 /// `Rgb888`, three bytes per pixel.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Rgb888Format;
@@ -93,6 +100,39 @@ impl PixelFormat for Rgb565Format {
     }
     fn get(row: &[u16], x: usize) -> Rgb565 {
         Rgb565::from(RawU16::new(row.get(x).copied().unwrap_or(0)))
+    }
+}
+
+impl PixelFormat for Rgb565BeFormat {
+    type Color = Rgb565;
+    type Word = u16;
+    fn words_per_row(width: u32) -> usize {
+        width as usize
+    }
+    fn fill_row(row: &mut [u16], x0: usize, x1: usize, c: Rgb565) {
+        if let Some(s) = row.get_mut(x0..x1) {
+            s.fill(c.into_storage().to_be());
+        }
+    }
+    fn get(row: &[u16], x: usize) -> Rgb565 {
+        Rgb565::from(RawU16::new(u16::from_be(row.get(x).copied().unwrap_or(0))))
+    }
+}
+
+impl<'a> Framebuffer<'a, Rgb565BeFormat> {
+    /// The pixels as bytes in the panel's order: row-major, two bytes a
+    /// pixel, high byte first (what a MIPI-DCS `RAMWR` takes).
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb565;
+    /// use fpt_nostd::raster::{Framebuffer, Rgb565BeFormat};
+    /// let mut buf = [0u16; 2];
+    /// let mut fb = Framebuffer::<Rgb565BeFormat>::new(&mut buf, 2, 1).unwrap();
+    /// fb.fill_all(Rgb565::new(31, 0, 1)); // 0xf801
+    /// assert_eq!(fb.panel_bytes(), &[0xf8, 0x01, 0xf8, 0x01]);
+    /// ```
+    pub fn panel_bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(self.data())
     }
 }
 

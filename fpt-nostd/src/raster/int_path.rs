@@ -158,6 +158,13 @@ impl<const VB: u32> VertexPath for IntPath<VB> {
     type Scalar = i32;
     type Matrix = IntMatrix;
     const RAW_Q16_FRAC: Option<u32> = Some(VB);
+    const UNSET: IntMatrix = IntMatrix {
+        m: [[0; 3]; 3],
+        shift: [0; 3],
+        t: [0; 3],
+        e: 0,
+    };
+    const NEAR_MIN: i32 = 1;
 
     /// Once a frame, in `f32` (see [`IntMatrix`]). A matrix with a
     /// non-finite entry becomes the zero matrix: every vertex gets `w = 0`,

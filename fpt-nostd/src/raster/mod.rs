@@ -71,11 +71,11 @@ mod tests;
 mod tests_render;
 
 pub use band::{band_starts, Band};
-pub use camera::{Camera, Mat4, Orbit};
+pub use camera::{Camera, Mat4, Orbit, Up};
 pub use dither::{Dither, DitherFormat};
 pub use framebuffer::{
     BinaryFormat, BinaryFramebuffer, Framebuffer, FramebufferError, Gray8Format, Gray8Framebuffer,
-    PixelFormat, Rgb565Format, Rgb565Framebuffer, Rgb888Format, Rgb888Framebuffer,
+    PixelFormat, Rgb565BeFormat, Rgb565Format, Rgb565Framebuffer, Rgb888Format, Rgb888Framebuffer,
 };
 pub use precision::{
     Config, DefaultPrecision, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath,

@@ -173,6 +173,19 @@ pub struct RenderStats {
     pub memory_used: u32,
 }
 
+impl RenderStats {
+    /// Every counter 0 (the [`Default`], as a constant).
+    pub const ZERO: RenderStats = RenderStats {
+        drawn: 0,
+        invisible: 0,
+        skipped: 0,
+        clipped: 0,
+        spans: 0,
+        walks: 0,
+        memory_used: 0,
+    };
+}
+
 impl core::ops::AddAssign for RenderStats {
     /// Adds every counter (e.g. the bands of one frame).
     fn add_assign(&mut self, o: RenderStats) {
@@ -229,6 +242,33 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             forced: None,
             active: Effects::defaults(true),
             cue: DepthCue::default(),
+            outline: Rgb888::new(0, 0, 0),
+            pipeline: PhantomData,
+        })
+    }
+
+    /// A renderer for a `width × height` frame with no camera yet (it
+    /// draws nothing until [`Renderer::set_camera`]; the tree walks of
+    /// [`crate::render`] set one every frame) and the default light,
+    /// shading and fill rule; `None` as for [`Renderer::new`].
+    ///
+    /// A `const fn`: it can initialise a `static`, so that a renderer
+    /// never lives on the stack (see [`crate::render::TreeRenderer::new`]).
+    pub const fn sized(width: u32, height: u32) -> Option<Self> {
+        let Some(viewport) = Viewport::new(width, height, P::SUB_BITS) else {
+            return None;
+        };
+        Some(Renderer {
+            matrix: P::Path::UNSET,
+            near: P::Path::NEAR_MIN,
+            viewport,
+            light: Light::DEFAULT,
+            mode: ShadeMode::Lambert,
+            rule: FillRule::NonZero,
+            stats: RenderStats::ZERO,
+            forced: None,
+            active: Effects::defaults(true),
+            cue: DepthCue::DEFAULT,
             outline: Rgb888::new(0, 0, 0),
             pipeline: PhantomData,
         })

@@ -46,9 +46,9 @@ pub struct Light {
 }
 
 impl Default for Light {
-    /// Light from +z (toward a default orbit eye), 25 % ambient, 75 % diffuse.
+    /// [`Light::DEFAULT`].
     fn default() -> Light {
-        Light::new([0.0, 0.0, 1.0], 0.25, 0.75)
+        Light::DEFAULT
     }
 }
 
@@ -190,6 +190,30 @@ fn unit_from_f32(v: [f32; 3]) -> Option<[Fx14; 3]> {
 }
 
 impl Light {
+    /// The ambient weight the project's pictures use: a quarter of a
+    /// face's colour whatever its facing, so that faces turned away from
+    /// the light stay visible.
+    pub const AMBIENT: f32 = 0.25;
+    /// The diffuse weight the project's pictures use: with
+    /// [`Light::AMBIENT`] it adds up to 1, so a face turned straight to
+    /// the light shows its full colour.
+    pub const DIFFUSE: f32 = 0.75;
+
+    /// A light from `+z` with the weights [`Light::AMBIENT`] and
+    /// [`Light::DIFFUSE`]: what [`Light::new`]`([0.0, 0.0, 1.0],
+    /// Light::AMBIENT, Light::DIFFUSE)` gives, as a constant (a
+    /// renderer's light before any is set).
+    ///
+    /// ```
+    /// use fpt_nostd::raster::Light;
+    /// assert_eq!(Light::DEFAULT, Light::new([0.0, 0.0, 1.0], Light::AMBIENT, Light::DIFFUSE));
+    /// ```
+    pub const DEFAULT: Light = Light {
+        dir: Some([Fx14::ZERO, Fx14::ZERO, Fx14::ONE]),
+        ambient: Fx14::from_raw(1 << 12),
+        diffuse: Fx14::from_raw(3 << 12),
+    };
+
     /// A light shining from direction `toward_light` (need not be unit;
     /// zero or non-finite means ambient only), with `ambient` and `diffuse`
     /// weights in `[0, 1]` (clamped).
@@ -291,19 +315,22 @@ pub struct DepthCue {
 }
 
 impl Default for DepthCue {
-    /// No range yet (nothing fades until one is set), toward black, 3/4 at
-    /// the far end.
+    /// [`DepthCue::DEFAULT`].
     fn default() -> DepthCue {
-        DepthCue {
-            near: 0.0,
-            far: 0.0,
-            fog: Rgb888::new(0, 0, 0),
-            strength: 192,
-        }
+        DepthCue::DEFAULT
     }
 }
 
 impl DepthCue {
+    /// No range yet (nothing fades until one is set), toward black, 3/4 at
+    /// the far end.
+    pub const DEFAULT: DepthCue = DepthCue {
+        near: 0.0,
+        far: 0.0,
+        fog: Rgb888::new(0, 0, 0),
+        strength: 192,
+    };
+
     /// The fog weight (0..=256) at depth `w`.
     pub fn weight(&self, w: f32) -> u32 {
         let span = self.far - self.near;

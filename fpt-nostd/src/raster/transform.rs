@@ -75,11 +75,13 @@ pub(crate) struct AxisShifts {
 }
 
 impl AxisShifts {
-    fn of(n: u32, sub: u32) -> AxisShifts {
+    const fn of(n: u32, sub: u32) -> AxisShifts {
         let pre = (32 - n.leading_zeros()).saturating_sub(5);
+        let post = 24u32.saturating_sub(sub + pre);
         AxisShifts {
             pre,
-            post: 24u32.saturating_sub(sub + pre).max(1),
+            // `max(1)`, spelt out (`Ord::max` is not `const`).
+            post: if post < 1 { 1 } else { post },
         }
     }
 }
@@ -87,9 +89,11 @@ impl AxisShifts {
 impl Viewport {
     /// A viewport of `width × height` pixels with `sub` sub-pixel bits.
     /// `None` when a side is 0 or above [`MAX_DIM`], or `sub > 8`.
-    pub fn new(width: u32, height: u32, sub: u32) -> Option<Viewport> {
-        let ok = (1..=MAX_DIM).contains(&width) && (1..=MAX_DIM).contains(&height) && sub <= 8;
-        ok.then_some(Viewport {
+    pub const fn new(width: u32, height: u32, sub: u32) -> Option<Viewport> {
+        if !(width >= 1 && width <= MAX_DIM && height >= 1 && height <= MAX_DIM && sub <= 8) {
+            return None;
+        }
+        Some(Viewport {
             width,
             height,
             sub,
@@ -138,6 +142,14 @@ pub trait VertexPath {
     /// for cores without an FPU. The tree walks of [`crate::render`] then
     /// draw q16 trees that way.
     const RAW_Q16_FRAC: Option<u32> = None;
+    /// The matrix of a renderer whose camera is not set yet
+    /// ([`super::Renderer::sized`]): the zero matrix, which puts every
+    /// vertex at `w = 0`, behind [`VertexPath::NEAR_MIN`], so nothing is
+    /// drawn.
+    const UNSET: Self::Matrix;
+    /// The smallest near threshold [`VertexPath::near`] returns (one unit
+    /// in the last place).
+    const NEAR_MIN: Self::Scalar;
     /// Converts a matrix (once per frame).
     fn prepare(m: &Mat4) -> Self::Matrix;
     /// `M · [v, 1]`; `None` if `v` or the result is not finite.
@@ -199,6 +211,8 @@ impl<const F: u32> FixedPath<F> {
 impl<const F: u32> VertexPath for FixedPath<F> {
     type Scalar = FxWide<F>;
     type Matrix = [[Fx<F>; 4]; 4];
+    const UNSET: Self::Matrix = [[Fx::ZERO; 4]; 4];
+    const NEAR_MIN: Self::Scalar = FxWide::from_raw(1);
 
     fn prepare(m: &Mat4) -> Self::Matrix {
         m.0.map(|row| row.map(Fx::from_f32_saturating))
@@ -264,6 +278,8 @@ impl<const F: u32> VertexPath for FixedPath<F> {
 impl<M: MathFns> VertexPath for FloatPath<M> {
     type Scalar = f32;
     type Matrix = Mat4;
+    const UNSET: Mat4 = Mat4([[0.0; 4]; 4]);
+    const NEAR_MIN: f32 = 1e-30;
 
     fn prepare(m: &Mat4) -> Mat4 {
         *m

@@ -24,10 +24,12 @@ impl Tree<'_> {
         Ok(())
     }
 
-    /// The polygons tile the index list with at least 3 indices each.
-    pub(super) fn check_polygons(&self) -> Result<(), FormatError> {
+    /// The polygons tile the index list with at least 3 indices each;
+    /// returns the largest vertex count (0 without polygons).
+    pub(super) fn check_polygons(&self) -> Result<u32, FormatError> {
         let b = self.g.bytes;
         let mut prev = 0u32;
+        let mut largest = 0u32;
         for p in 0..self.counts.polygons {
             let rec = self.g.polygon_off(p);
             let first = rd_u32(b, rec.wrapping_add(pg::FIRST_INDEX));
@@ -35,17 +37,21 @@ impl Tree<'_> {
                 if first != 0 {
                     return Err(FormatError::BadPolygon(0));
                 }
-            } else if first.checked_sub(prev).is_none_or(|n| n < 3) {
-                return Err(FormatError::BadPolygon(p - 1));
+            } else {
+                match first.checked_sub(prev) {
+                    Some(n) if n >= 3 => largest = largest.max(n),
+                    _ => return Err(FormatError::BadPolygon(p - 1)),
+                }
             }
             prev = first;
         }
         match self.counts.polygons.checked_sub(1) {
-            Some(last) if self.counts.indices.checked_sub(prev).is_none_or(|n| n < 3) => {
-                Err(FormatError::BadPolygon(last))
-            }
+            Some(last) => match self.counts.indices.checked_sub(prev) {
+                Some(n) if n >= 3 => Ok(largest.max(n)),
+                _ => Err(FormatError::BadPolygon(last)),
+            },
             None if self.counts.indices != 0 => Err(FormatError::BadHeader("index_count")),
-            _ => Ok(()),
+            None => Ok(0),
         }
     }
 

@@ -497,7 +497,8 @@ fn open_band<F: PixelFormat>(
 
 /// A frame band by band through `band`'s buffer, with one walk per group
 /// of bands whose polygons fit the display list in `memory` (see the module
-/// docs); each finished band goes to `emit` with its first row, outside
+/// docs); each finished band goes to `emit` with its first row (`emit`
+/// returning `false` ends the frame there, with the counters so far), outside
 /// the probe's measurement.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_bands<P, E, F, Pr, const N: usize, const V: usize>(
@@ -509,7 +510,7 @@ pub(crate) fn draw_bands<P, E, F, Pr, const N: usize, const V: usize>(
     memory: &mut [u32],
     band: BandBuffer<'_, F>,
     probe: &Pr,
-    emit: impl FnMut(i32, &Framebuffer<'_, F>),
+    emit: impl FnMut(i32, &Framebuffer<'_, F>) -> bool,
 ) -> Result<RenderStats, RenderError>
 where
     P: Precision,
@@ -536,7 +537,7 @@ fn bands<P, E, F, Pr, const N: usize, const V: usize>(
     memory: &mut [u32],
     band: BandBuffer<'_, F>,
     probe: &Pr,
-    mut emit: impl FnMut(i32, &Framebuffer<'_, F>),
+    mut emit: impl FnMut(i32, &Framebuffer<'_, F>) -> bool,
 ) -> Result<RenderStats, RenderError>
 where
     P: Precision,
@@ -675,7 +676,9 @@ where
             spans += replay(r, scratch, tree, &list, &cache, (y, y + rows), &mut sink);
         }
         probe.stop();
-        emit(y, &fb);
+        if !emit(y, &fb) {
+            return Ok(stats.unwrap_or_default());
+        }
         probe.start(Phase::Fill);
         let mut y0 = y + rows;
         while y0 < cut.get() {
@@ -684,7 +687,9 @@ where
             let mut sink = Band::new(&mut fb, y0);
             spans += replay(r, scratch, tree, &list, &cache, (y0, y0 + rows), &mut sink);
             probe.stop();
-            emit(y0, &fb);
+            if !emit(y0, &fb) {
+                return Ok(stats.unwrap_or_default());
+            }
             probe.start(Phase::Fill);
             y0 += rows;
         }

@@ -2,6 +2,7 @@
 
 extern crate std;
 
+use std::string::ToString;
 use std::vec;
 use std::vec::Vec;
 
@@ -320,11 +321,47 @@ fn a_tree_deeper_than_the_stack_is_refused() {
     let res = r.render::<_, 1>(&t, &Frame::new(&t, &cam), &mut sink);
     assert_eq!(
         res,
+        Err(RenderError::Capacity(CapacityError::WalkDepth {
+            need: 2,
+            have: 1
+        }))
+    );
+    // The walk itself refuses it too (for callers of `Order`).
+    assert_eq!(
+        crate::order::Order::<1>::check_depth(&t),
         Err(OrderError::StackTooSmall {
             depth: 2,
             capacity: 1
         })
     );
+}
+
+#[test]
+fn too_small_a_vertex_capacity_is_refused_before_drawing() {
+    let bytes = floors([0.0; 3]);
+    let t = tree(&bytes);
+    let cam = orbit([0.0; 3], 0.0, 0.6).camera::<Libm>(1.0);
+    let need = t.capacities().vertices;
+    // Quads: the header asks for 4 + 5.
+    assert_eq!((t.capacities().polygon_vertices, need), (4, 9));
+    let Some(mut r) = TreeRenderer::<DefaultPrecision, 8>::new(8, 8) else {
+        panic!("renderer")
+    };
+    let mut buf = vec![0u32; 64];
+    let mut sink = match IdBuffer::new(&mut buf, 8, 8) {
+        Ok(s) => s,
+        Err(e) => panic!("{e:?}"),
+    };
+    let res = r.render::<_, 16>(&t, &Frame::new(&t, &cam), &mut sink);
+    let err = RenderError::Capacity(CapacityError::Vertices { need: 9, have: 8 });
+    assert_eq!(res, Err(err));
+    assert_eq!(
+        err.to_string(),
+        "vertex capacity V = 8 is too small for the tree's polygons: V must be at least 9 \
+         (TreeRenderer<P, 9>)"
+    );
+    // Nothing was drawn.
+    assert!(buf.iter().all(|&w| w == 0));
 }
 
 #[test]

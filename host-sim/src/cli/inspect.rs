@@ -179,22 +179,17 @@ pub fn info(a: &InfoArgs) -> CliResult {
     println!("switch nodes:      {}", t.switch_count());
     println!("max depth:         {}", t.max_depth());
     println!("bytes per polygon: {per_polygon}");
-    // What a renderer of this tree needs: the walk's stack `N` (its depth),
-    // the scratch's vertex capacity `V` (the largest polygon, twice, plus
-    // what clipping adds to it; less skips the polygons that do not fit,
-    // counted in `RenderStats::skipped`), and the working memory for one
-    // walk a frame in any view (`fpt bench-memory` measures a view's).
-    let largest = (0..t.polygon_count())
-        .filter_map(|i| t.polygon(i))
-        .map(|p| p.vertex_count())
-        .max()
-        .unwrap_or(0);
+    // What a renderer of this tree needs, from the header (checked by the
+    // renderer before it draws: a smaller `N` or `V` is a
+    // `CapacityError` naming the one to raise).
+    let c = t.capacities();
+    println!("largest polygon:   {} vertices", c.polygon_vertices);
     println!(
-        "renderer needs:    TreeRenderer<P, {}> walking with N = {}; largest polygon {largest} vertices; \
-         working memory at most {} words (render::memory_words)",
-        (2 * largest + 8).max(16),
-        t.max_depth().max(1),
-        fpt_nostd::render::memory_words(&t)
+        "renderer needs:    TreeRenderer<P, {v}> (vertex capacity V = {v}), walk stack N = {n} \
+         (render::<_, {n}>, render_banded_in::<_, {n}>), working memory {m} words for one walk a frame",
+        v = c.vertices,
+        n = c.walk_depth,
+        m = c.memory_words
     );
     Ok(())
 }
