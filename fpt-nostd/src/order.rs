@@ -242,15 +242,6 @@ impl Frame {
     };
 }
 
-/// The grazing margin of the culling walk of a closed tree (see
-/// [`Order::with_culling`]): faces turned away from the viewer with a sine
-/// to the line of sight below this are drawn first. A face turns over in
-/// the sub-pixel snap only when its projected width is below about a
-/// tenth of a pixel, so `1/16` covers every face at least 1.6 pixels wide
-/// across (the slivers that opened pinholes on the shared models were
-/// turned away by sines of 1e-3 and less).
-pub const GRAZE: f32 = 1.0 / 16.0;
-
 /// Words of a memo that holds every plane of `tree` for
 /// [`Order::with_memo`]: two bits a plane run and a switch record.
 pub fn memo_words(tree: &Tree<'_>) -> usize {
@@ -268,8 +259,6 @@ pub struct Order<'a, const N: usize> {
     closed: bool,
     /// Runs still to hand out as the away-facing prelude (0 when none).
     prelude_runs: u32,
-    /// Which of them: all faces turned away, or the grazing ones.
-    prelude_pick: Pick,
     /// Its value at the start of the walk.
     prelude: u32,
     /// The current class's hand-out (see [`Order::next_range`]).
@@ -300,19 +289,7 @@ impl<'a, const N: usize> Order<'a, N> {
     ///   face before its back face, so every back face lies behind some
     ///   front face and drawing them all first leaves the same picture (it
     ///   only costs time; what it shows when the near plane cuts a volume
-    ///   open is in no particular order);
-    /// * culling a **closed** tree first emits, in the same way, the faces
-    ///   turned away by less than [`GRAZE`] (seen almost edge-on: for an
-    ///   eye, those whose plane passes within `GRAZE × (|eye| + radius)` of
-    ///   it). Why: the rasterizer snaps vertices to its sub-pixel grid, and
-    ///   such a face, a sliver on screen, can come out of the snap turned
-    ///   the other way; at a silhouette (where a face toward the viewer
-    ///   meets one turned away) the union of the faces toward the viewer
-    ///   then leaves a sample uncovered that the snapped sliver covers, and
-    ///   culled, it showed the background (single pixels on `fandisk.obj`
-    ///   and `plate_holes.STL`). Drawn first, a grazing face shows only
-    ///   where no face toward the viewer covers the sample after snapping;
-    ///   its screen area is small (its sine to the view is below `GRAZE`).
+    ///   open is in no particular order).
     pub fn with_culling(tree: &Tree<'a>, view: View, cull: bool) -> Result<Self, OrderError> {
         Self::with_memo(tree, view, cull, &[])
     }
@@ -376,38 +353,20 @@ impl<'a, const N: usize> Order<'a, N> {
         memo: &'a [Cell<u32>],
     ) -> Self {
         let view = view.local(tree);
-        // A closed tree's walk starts with the faces turned away: all of
-        // them without culling, the grazing ones with it (see
-        // `with_culling`); an open tree's has no prelude.
-        let (prelude, prelude_pick) = match (tree.is_closed(), cull) {
-            (true, false) => (tree.run_count(), Pick::Forward),
-            (true, true) => (tree.run_count(), Pick::Grazing),
-            (false, _) => (0, Pick::Forward),
-        };
-        // The grazing margin in the facing test's units: `n · a + d · w`
-        // is `−cos` times `|dir|` for a parallel view and the eye's
-        // distance from the plane for an eye, at most `|eye| + radius`
-        // from any face of the tree.
-        let len = |v: [f32; 3]| libm::sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        let reach = match view {
-            LocalView::Parallel(dir) => len(dir),
-            LocalView::Eye(eye) => len(eye) + tree.bounding_radius(),
-        };
-        let graze = if reach.is_finite() {
-            GRAZE * reach
+        let prelude = if tree.is_closed() && !cull {
+            tree.run_count()
         } else {
-            0.0
+            0
         };
         // Built in the caller's slot (no named local to move from: an
         // `Order` is large), the root entered by the first `advance`.
         Order {
             w: tree.walk_data(),
-            face: Facing::of(&view, memo).with_graze(graze),
+            face: Facing::of(&view, memo),
             switch_base: tree.run_count(),
             view,
             closed: tree.is_closed() || cull,
             prelude_runs: prelude,
-            prelude_pick,
             prelude,
             at: Cursor::EMPTY,
             len: 0,
@@ -535,7 +494,7 @@ impl<'a, const N: usize> Order<'a, N> {
         }
         if self.prelude_runs != 0 {
             let runs = (0, core::mem::take(&mut self.prelude_runs));
-            let seg = Seg::new(&self.w, runs, self.prelude_pick);
+            let seg = Seg::new(&self.w, runs, Pick::Forward);
             if self.at.start(self.w.runs, &self.face, [seg, Seg::EMPTY]) {
                 return true;
             }

@@ -39,9 +39,6 @@ pub(crate) const MEMO: bool = !HAS_FPU || cfg!(test);
 pub(super) struct Facing<'m> {
     a: [f32; 3],
     w: f32,
-    /// A plane turned away by less than this is *grazing*
-    /// ([`Facing::grazing`]); 0: none is.
-    graze: f32,
     memo: &'m [Cell<u32>],
 }
 
@@ -52,32 +49,7 @@ impl<'m> Facing<'m> {
             LocalView::Parallel(d) => ([-d[0], -d[1], -d[2]], 0.0),
             LocalView::Eye(e) => (e, 1.0),
         };
-        Facing {
-            a,
-            w,
-            graze: 0.0,
-            memo,
-        }
-    }
-
-    /// The same test, calling a plane grazing when it is turned away but
-    /// `n · a + d · w > −graze` (see [`super::GRAZE`]).
-    pub(super) fn with_graze(self, graze: f32) -> Facing<'m> {
-        Facing { graze, ..self }
-    }
-
-    /// Whether the plane stored at the start of record `r` is turned away
-    /// from the viewer (not backward) by less than the grazing margin: the
-    /// faces seen almost edge-on from behind, which the closed-volume walk
-    /// hands out first (see [`super::Order::with_culling`]).
-    #[inline(always)]
-    pub(super) fn grazing<const L: usize>(&self, r: &[u8; L]) -> bool {
-        let a = self.a;
-        let v = le_f32(r, 0) * a[0]
-            + le_f32(r, 4) * a[1]
-            + le_f32(r, 8) * a[2]
-            + le_f32(r, 12) * self.w;
-        v <= 0.0 && v > -self.graze
+        Facing { a, w, memo }
     }
 
     /// [`Facing::backward`] of plane number `i` (runs first, then switch
@@ -115,8 +87,6 @@ impl<'m> Facing<'m> {
 pub(super) enum Pick {
     Backward,
     Forward,
-    /// Forward faces seen almost edge-on ([`Facing::grazing`]).
-    Grazing,
     All,
 }
 
@@ -166,10 +136,9 @@ impl Seg {
         if self.is_empty() {
             return None;
         }
-        let (want, graze) = match self.pick {
-            Pick::Backward => (true, false),
-            Pick::Forward => (false, false),
-            Pick::Grazing => (false, true),
+        let want = match self.pick {
+            Pick::Backward => true,
+            Pick::Forward => false,
             Pick::All => {
                 // Everything at once: the runs are contiguous.
                 let last = self.run_end.wrapping_sub(1) as usize;
@@ -192,11 +161,7 @@ impl Seg {
                 break;
             };
             let end = le_u32(r, rn::END);
-            let passes = if graze {
-                face.grazing(r)
-            } else {
-                face.backward_at(run, r) == want
-            };
+            let passes = face.backward_at(run, r) == want;
             run = run.wrapping_add(1);
             if passes {
                 self.run = run;
