@@ -98,26 +98,37 @@ fn shows() -> Vec<Show> {
     ]
 }
 
-/// Builds, checks, renders and reports one scene.
-fn demo_scene(show: &Show, out: &Path) -> CliResult {
-    let s = &show.scene;
+/// The static tree of a z-up model, serialized with its up axis recorded
+/// (so `fpt render TREE` shows it upright) and written to `out/NAME.fpt`.
+fn build_z_up(
+    name: &str,
+    polygons: Vec<crate::geom::Polygon>,
+    closed: bool,
+    out: &Path,
+) -> Result<(crate::tree::FpTree, Vec<u8>, PathBuf), super::CliError> {
     let tree = build(
-        s.polygons.clone(),
-        s.closed,
+        polygons,
+        closed,
         Method::Static,
         DEFAULT_SEED,
         &mut NoProgress,
     );
-    // The scenes are z-up: recorded, so `fpt render TREE` shows them upright.
     let opts = SerializeOptions {
         up: UpAxis::Z,
         ..SerializeOptions::default()
     };
     let bytes = serialize(&tree, &opts)?;
+    let path = out.join(format!("{name}.fpt"));
+    write_atomic(&path, &bytes).map_err(|e| cli_err!("{}: {e}", path.display()))?;
+    Ok((tree, bytes, path))
+}
+
+/// Builds, checks, renders and reports one scene.
+fn demo_scene(show: &Show, out: &Path) -> CliResult {
+    let s = &show.scene;
+    let (tree, bytes, tree_path) = build_z_up(&s.name, s.polygons.clone(), s.closed, out)?;
     let t = Tree::from_bytes(&bytes)
         .map_err(|e| cli_err!("{}: the serialized tree does not validate: {e}", s.name))?;
-    let tree_path = out.join(format!("{}.fpt", s.name));
-    write_atomic(&tree_path, &bytes).map_err(|e| cli_err!("{}: {e}", tree_path.display()))?;
     let st = &tree.stats;
     println!(
         "{}: {} {} polygons -> {} ({} splittings); {} connecting / {} switch nodes, {} levels, \
@@ -263,22 +274,9 @@ fn demo_coloured(out: &Path) -> CliResult {
     let mut materials: Vec<[u8; 3]> = model.polygons.iter().map(|p| p.color).collect();
     materials.sort_unstable();
     materials.dedup();
-    let tree = build(
-        model.polygons,
-        model.closed,
-        Method::Static,
-        DEFAULT_SEED,
-        &mut NoProgress,
-    );
-    let opts = SerializeOptions {
-        up: UpAxis::Z,
-        ..SerializeOptions::default()
-    };
-    let bytes = serialize(&tree, &opts)?;
+    let (tree, bytes, tree_path) = build_z_up("robot", model.polygons, model.closed, out)?;
     let t = Tree::from_bytes(&bytes)
         .map_err(|e| cli_err!("robot: the serialized tree does not validate: {e}"))?;
-    let tree_path = out.join("robot.fpt");
-    write_atomic(&tree_path, &bytes).map_err(|e| cli_err!("{}: {e}", tree_path.display()))?;
     let st = &tree.stats;
     println!(
         "robot: {} written as OBJ + MTL and read back: {} materials, {} polygons -> {}; \
