@@ -9,7 +9,7 @@ mod common;
 
 use common::{fpt, s, tmp};
 use glam::DVec3;
-use host_sim::reference::{Camera, Projection};
+use host_sim::reference::{differences_off_outlines, Camera, Projection};
 use std::path::{Path, PathBuf};
 
 const W: usize = 96;
@@ -128,25 +128,6 @@ fn cameras(scale: f64, offset: DVec3) -> Vec<(&'static str, Vec<String>)> {
     ]
 }
 
-/// Pixels of `got` that differ from `want`, not counting pixels on an
-/// outline of `want` (a 4-neighbour with another id), where the rounding
-/// of the scaled vertices may tip a sample to the other side.
-fn differences(want: &[u32], got: &[u32]) -> usize {
-    let at = |x: i64, y: i64| -> Option<u32> {
-        ((0..W as i64).contains(&x) && (0..H as i64).contains(&y))
-            .then(|| want[y as usize * W + x as usize])
-    };
-    (0..W * H)
-        .filter(|&i| {
-            let (x, y) = ((i % W) as i64, (i / W) as i64);
-            let on_outline = [(1, 0), (-1, 0), (0, 1), (0, -1)]
-                .iter()
-                .any(|(dx, dy)| at(x + dx, y + dy).is_some_and(|v| v != want[i]));
-            want[i] != got[i] && !on_outline
-        })
-        .count()
-}
-
 #[test]
 fn every_scale_and_offset_draws_like_the_unit_cube() {
     let unit = build("unit", 1.0, DVec3::ZERO).unwrap();
@@ -181,7 +162,7 @@ fn every_scale_and_offset_draws_like_the_unit_cube() {
                 .unwrap_or_else(|out| panic!("{name}: {}", String::from_utf8_lossy(&out.stderr)));
             for ((form, args), (_, want)) in cameras(scale, at).iter().zip(&reference) {
                 let got = ids(&tree, args);
-                let wrong = differences(want, &got);
+                let wrong = differences_off_outlines(want, &got, W);
                 assert_eq!(wrong, 0, "{name} {form}: {wrong} pixels differ");
             }
             models += 1;

@@ -13,7 +13,7 @@ use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{near_w_for, Frame};
 use glam::DVec3;
 use host_sim::build::{build, NoProgress};
-use host_sim::reference::{Camera, Projection};
+use host_sim::reference::{differences_off_outlines, Camera, Projection};
 use host_sim::serialize::{serialize, SerializeOptions};
 use host_sim::tree::Method;
 use render_common::render_ids;
@@ -69,25 +69,6 @@ fn rows(scale: f64, offset: DVec3, projection: Projection) -> [[f64; 4]; 4] {
     r
 }
 
-/// Pixels where `got` differs from `want`, off `want`'s outlines (a
-/// 4-neighbour with another id), where the rounding of scaled vertices may
-/// tip a sample.
-fn differences(want: &[u32], got: &[u32]) -> usize {
-    let at = |x: i64, y: i64| -> Option<u32> {
-        ((0..W as i64).contains(&x) && (0..H as i64).contains(&y))
-            .then(|| want[y as usize * W + x as usize])
-    };
-    (0..W * H)
-        .filter(|&i| {
-            let (x, y) = ((i % W) as i64, (i / W) as i64);
-            let on_outline = [(1, 0), (-1, 0), (0, 1), (0, -1)]
-                .iter()
-                .any(|(dx, dy)| at(x + dx, y + dy).is_some_and(|v| v != want[i]));
-            want[i] != got[i] && !on_outline
-        })
-        .count()
-}
-
 #[test]
 fn every_scale_and_offset_draws_like_the_unit_cube_through_the_library() {
     let projections = [
@@ -124,7 +105,7 @@ fn every_scale_and_offset_draws_like_the_unit_cube_through_the_library() {
                 let near = f64::from(near_w_for(&r, &tree));
                 let got =
                     render_ids::<DefaultPrecision>(&tree, &Frame::from_f64(&tree, &r, near), W, H);
-                let wrong = differences(&want, &got);
+                let wrong = differences_off_outlines(&want, &got, W);
                 assert_eq!(
                     wrong, 0,
                     "from_f64 {scale:e} {ratio:e}: {wrong} pixels differ"
@@ -139,7 +120,7 @@ fn every_scale_and_offset_draws_like_the_unit_cube_through_the_library() {
                 if fits && offset == DVec3::ZERO {
                     let cam = RasterCamera::from_matrix(Mat4(m32), near as f32);
                     let got = render_ids::<DefaultPrecision>(&tree, &Frame::new(&tree, &cam), W, H);
-                    let wrong = differences(&want, &got);
+                    let wrong = differences_off_outlines(&want, &got, W);
                     assert_eq!(wrong, 0, "Frame::new {scale:e}: {wrong} pixels differ");
                     checked += 1;
                 }

@@ -356,5 +356,26 @@ pub fn painter_ids(
     ids
 }
 
+/// Pixels of the `w`-wide ids buffer `got` that differ from `want`, not
+/// counting pixels on an outline of `want` (one with a 4-neighbour of
+/// another id), where rounding vertices (of a scaled or moved model, of a
+/// different precision) may tip a sample to the other side.
+pub fn differences_off_outlines(want: &[u32], got: &[u32], w: usize) -> usize {
+    let h = want.len() / w.max(1);
+    let at = |x: i64, y: i64| -> Option<u32> {
+        ((0..w as i64).contains(&x) && (0..h as i64).contains(&y))
+            .then(|| want[y as usize * w + x as usize])
+    };
+    (0..w * h)
+        .filter(|&i| {
+            let (x, y) = ((i % w) as i64, (i / w) as i64);
+            let on_outline = [(1, 0), (-1, 0), (0, 1), (0, -1)]
+                .iter()
+                .any(|(dx, dy)| at(x + dx, y + dy).is_some_and(|v| v != want[i]));
+            got.get(i) != Some(&want[i]) && !on_outline
+        })
+        .count()
+}
+
 #[cfg(test)]
 mod tests;
