@@ -475,21 +475,23 @@ impl<'a> PolygonRef<'a> {
         self.id
     }
 
+    /// The same polygon borrowing this one's copy of the geometry.
+    #[inline]
+    fn at(&self) -> PolygonAt<'_, 'a> {
+        PolygonAt {
+            g: &self.g,
+            id: self.id,
+        }
+    }
+
     /// The face of the input mesh it came from.
     pub fn source(&self) -> u32 {
-        rd_u32(
-            self.g.bytes,
-            self.g.polygon_off(self.id).wrapping_add(pg::SOURCE),
-        )
+        self.at().source()
     }
 
     /// Its colour, RGB.
     pub fn color(&self) -> [u8; 3] {
-        let c: [u8; 4] = rd(
-            self.g.bytes,
-            self.g.polygon_off(self.id).wrapping_add(pg::COLOR),
-        );
-        [c[0], c[1], c[2]]
+        self.at().color()
     }
 
     /// Its outline mask: bit `i` set when edge `i` (vertex `i` to `i + 1`)
@@ -523,7 +525,7 @@ impl<'a> PolygonRef<'a> {
 
     /// Its plane, relative to the origin (the plane of its run).
     pub fn plane(&self) -> Plane {
-        self.g.polygon_plane(self.id)
+        self.at().plane()
     }
 
     /// Number of vertices (at least 3).
@@ -579,6 +581,58 @@ impl<'a> PolygonRef<'a> {
     /// every format); the origin when `i ≥ vertex_count()`.
     pub fn vertex_model(&self, i: usize) -> [f64; 3] {
         self.g.decode_model(self.vertex_raw(i))
+    }
+}
+
+/// Polygon `id` of a tree as the draw loops read it: what [`PolygonRef`]
+/// gives of it (id, source, colour, plane, vertex indices), borrowing the
+/// tree's geometry instead of copying it. A `PolygonRef` carries a copy of
+/// the geometry (about 100 bytes); the full frame's walk, where the whole
+/// pipeline is inlined, made that copy with `memcpy` for every polygon
+/// (8 % of a `socket.off` frame on the Cortex-M4F).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PolygonAt<'t, 'a> {
+    g: &'t Geometry<'a>,
+    id: u32,
+}
+
+impl<'a> PolygonAt<'_, 'a> {
+    /// Its id.
+    #[inline]
+    pub(crate) fn id(&self) -> u32 {
+        self.id
+    }
+
+    /// [`PolygonRef::source`].
+    #[inline]
+    pub(crate) fn source(&self) -> u32 {
+        rd_u32(
+            self.g.bytes,
+            self.g.polygon_off(self.id).wrapping_add(pg::SOURCE),
+        )
+    }
+
+    /// [`PolygonRef::color`].
+    #[inline]
+    pub(crate) fn color(&self) -> [u8; 3] {
+        let c: [u8; 4] = rd(
+            self.g.bytes,
+            self.g.polygon_off(self.id).wrapping_add(pg::COLOR),
+        );
+        [c[0], c[1], c[2]]
+    }
+
+    /// [`PolygonRef::plane`].
+    #[inline]
+    pub(crate) fn plane(&self) -> Plane {
+        self.g.polygon_plane(self.id)
+    }
+
+    /// [`PolygonRef::vertex_indices`].
+    #[inline]
+    pub(crate) fn vertex_indices(&self) -> VertexIndices<'a> {
+        let (first, end) = self.g.polygon_range(self.id);
+        self.g.indices_of(first, end.saturating_sub(first))
     }
 }
 
@@ -890,14 +944,20 @@ impl<'a> Tree<'a> {
     /// when `id ≥ polygon_count()`.
     #[inline]
     pub fn polygon_vertex_indices(&self, id: u32) -> VertexIndices<'a> {
-        if id >= self.counts.polygons {
-            return VertexIndices {
+        match self.polygon_at(id) {
+            Some(p) => p.vertex_indices(),
+            None => VertexIndices {
                 indices: &[],
                 wide: false,
-            };
+            },
         }
-        let (first, end) = self.g.polygon_range(id);
-        self.g.indices_of(first, end.saturating_sub(first))
+    }
+
+    /// Polygon `id` borrowing the tree ([`PolygonAt`]), or `None` if
+    /// `id ≥ polygon_count()`.
+    #[inline]
+    pub(crate) fn polygon_at(&self, id: u32) -> Option<PolygonAt<'_, 'a>> {
+        (id < self.counts.polygons).then_some(PolygonAt { g: &self.g, id })
     }
 
     /// Stored vertex `v` relative to the origin, decoded to `f32`.

@@ -59,7 +59,7 @@ use crate::raster::{
     Camera, Face, Framebuffer, FramebufferError, Light, Mat4, PixelFormat, Precision, RenderStats,
     Renderer, Scratch, SpanSink,
 };
-use crate::reader::{Plane, PolygonRef, Tree};
+use crate::reader::{Plane, PolygonAt, Tree};
 
 pub use cached::{memory_words, memory_words_for};
 pub use probe::{NoProbe, Phase, Probe};
@@ -665,7 +665,7 @@ pub(crate) fn walk_effects<P: Precision, E: Compiled>(
 #[inline(always)]
 pub(crate) fn face_of(
     tree: &Tree<'_>,
-    p: &PolygonRef<'_>,
+    p: &PolygonAt<'_, '_>,
     view: &LocalView,
     fx: WalkFx,
     id: u32,

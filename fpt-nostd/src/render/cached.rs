@@ -52,7 +52,7 @@ use crate::raster::{
     Band, Face, Framebuffer, Outcome, PixelFormat, Precision, RenderStats, Renderer, Scratch,
     SpanBounds, SpanSink,
 };
-use crate::reader::{PolygonRef, Tree};
+use crate::reader::{PolygonAt, Tree};
 
 /// The clip-space scalar of `P`'s vertex path.
 type PathScalar<P> = <<P as Precision>::Path as VertexPath>::Scalar;
@@ -213,8 +213,16 @@ impl Walk<'_, '_, '_> {
         order.restart();
         let view = order.view();
         while let Some(range) = order.next_range() {
-            for p in range.filter_map(|id| self.tree.polygon(id)) {
-                probe.polygon(&p);
+            for id in range {
+                // The polygon borrowing the tree: a `PolygonRef` (a copy
+                // of the tree's geometry) only for the probe, which
+                // `NoProbe` leaves unused.
+                let Some(p) = self.tree.polygon_at(id) else {
+                    continue;
+                };
+                if let Some(p) = self.tree.polygon(id) {
+                    probe.polygon(&p);
+                }
                 let id = match self.ids {
                     FaceIds::Source => p.source(),
                     FaceIds::Polygon => p.id(),
@@ -263,7 +271,7 @@ impl Walk<'_, '_, '_> {
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
-        p: &PolygonRef<'_>,
+        p: &PolygonAt<'_, '_>,
         face: &Face,
         reach: &SpanBounds,
     ) -> (Result<Ready, Outcome>, bool) {
@@ -292,7 +300,7 @@ impl Walk<'_, '_, '_> {
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
-        p: &PolygonRef<'_>,
+        p: &PolygonAt<'_, '_>,
         (decode, xf): (
             impl Fn(u32) -> X,
             impl Fn(&<P::Path as VertexPath>::Matrix, X) -> Option<ClipVert<PathScalar<P>>>,
