@@ -108,6 +108,16 @@ impl<T: SpanSink> SpanSink for Band<'_, T> {
     fn span(&mut self, y: i32, x0: i32, x1: i32, color: T::Color) {
         self.inner.span(y.wrapping_sub(self.y0), x0, x1, color);
     }
+    /// The buffer's rows from `y − y0` on.
+    #[inline(always)]
+    fn span_rows<I: Iterator<Item = (i32, i32)>>(
+        &mut self,
+        y: i32,
+        spans: I,
+        color: T::Color,
+    ) -> usize {
+        self.inner.span_rows(y.wrapping_sub(self.y0), spans, color)
+    }
 }
 
 impl<T: DrawTarget> Dimensions for Band<'_, T> {

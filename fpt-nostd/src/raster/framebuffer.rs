@@ -375,6 +375,42 @@ impl<F: PixelFormat> SpanSink for Framebuffer<'_, F> {
     fn span(&mut self, y: i32, x0: i32, x1: i32, c: F::Color) {
         self.fill_span(y, x0, x1, c);
     }
+    /// Steps a row slice down the image instead of computing and checking
+    /// each row's place ([`Framebuffer::fill_span`]). Spans on rows outside
+    /// the image, or not within its columns (the fill never sends those),
+    /// are dropped rather than clipped.
+    #[inline(always)]
+    fn span_rows<I: Iterator<Item = (i32, i32)>>(
+        &mut self,
+        y: i32,
+        spans: I,
+        c: F::Color,
+    ) -> usize {
+        let stride = self.stride.max(1);
+        let from = if (y as u32) < self.height {
+            y as usize * stride
+        } else {
+            self.buf.len()
+        };
+        let end = self.buf.len().min(stride * self.height as usize);
+        let mut rows = self
+            .buf
+            .get_mut(from..end)
+            .unwrap_or_default()
+            .chunks_exact_mut(stride);
+        let mut n = 0;
+        for (x0, x1) in spans {
+            let row = rows.next();
+            if x0 < x1 {
+                n += 1;
+                if let Some(row) = row {
+                    // A negative `x0` becomes a huge index: no pixel.
+                    F::fill_row(row, x0 as usize, x1 as usize, c);
+                }
+            }
+        }
+        n
+    }
 }
 
 #[cfg(test)]

@@ -109,6 +109,32 @@ pub trait SpanSink {
     fn bounds(&self) -> SpanBounds;
     /// Paints pixels `x0..x1` of row `y`.
     fn span(&mut self, y: i32, x0: i32, x1: i32, color: Self::Color);
+    /// Paints one span a row on rows `y`, `y + 1`, … as `spans` yields
+    /// them (`x0 ≥ x1`: nothing on that row), consuming `spans` to its end
+    /// (the fill steps its edges as it yields); returns how many were not
+    /// empty. The fill's row loops call this, with every span within
+    /// [`SpanSink::bounds`], rather than [`SpanSink::span`] once a row: a
+    /// sink that knows its rows' layout keeps a row pointer instead of
+    /// computing and checking each row's address again (the
+    /// framebuffers do). The default calls [`SpanSink::span`].
+    #[inline(always)]
+    fn span_rows<I: Iterator<Item = (i32, i32)>>(
+        &mut self,
+        y: i32,
+        spans: I,
+        color: Self::Color,
+    ) -> usize {
+        let mut n = 0;
+        let mut row = y;
+        for (x0, x1) in spans {
+            if x0 < x1 {
+                self.span(row, x0, x1, color);
+                n += 1;
+            }
+            row = row.wrapping_add(1);
+        }
+        n
+    }
 }
 
 impl<K: SpanSink + ?Sized> SpanSink for &mut K {
@@ -122,6 +148,15 @@ impl<K: SpanSink + ?Sized> SpanSink for &mut K {
     }
     fn span(&mut self, y: i32, x0: i32, x1: i32, color: K::Color) {
         (**self).span(y, x0, x1, color)
+    }
+    #[inline(always)]
+    fn span_rows<I: Iterator<Item = (i32, i32)>>(
+        &mut self,
+        y: i32,
+        spans: I,
+        color: K::Color,
+    ) -> usize {
+        (**self).span_rows(y, spans, color)
     }
 }
 
@@ -337,32 +372,54 @@ pub(super) fn pair_rows<S: Stepper, K: SpanSink>(
     c: &mut S,
     pair: Pair,
     b: &SpanBounds,
-    mut y: i32,
+    y: i32,
     stop: i32,
     color: K::Color,
     sink: &mut K,
 ) -> usize {
-    let mut spans = 0usize;
-    while y < stop {
-        if pair != Pair::Step {
-            let (xa, xb) = (a.crossing(), c.crossing());
-            let (l, r) = match pair {
-                Pair::Ab => (xa, xb),
-                Pair::Ba => (xb, xa),
-                _ if xa <= xb => (xa, xb),
-                _ => (xb, xa),
-            };
-            let (x0, x1) = (l.max(b.x0), r.min(b.x1));
-            if x0 < x1 {
-                sink.span(y, x0, x1, color);
-                spans += 1;
+    // One loop per order, so that no row tests `pair`.
+    match pair {
+        Pair::Step => {
+            for _ in y..stop {
+                a.step();
+                c.step();
             }
+            0
         }
-        a.step();
-        c.step();
-        y += 1;
+        Pair::Ab => span_run(a, c, true, b, y, stop, color, sink),
+        Pair::Ba => span_run(c, a, true, b, y, stop, color, sink),
+        Pair::Span => span_run(a, c, false, b, y, stop, color, sink),
     }
-    spans
+}
+
+/// [`pair_rows`] painting `[l, r)` with `l`'s crossing on the left
+/// (`ordered`) or the smaller crossing on the left, through
+/// [`SpanSink::span_rows`].
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn span_run<S: Stepper, K: SpanSink>(
+    l: &mut S,
+    r: &mut S,
+    ordered: bool,
+    b: &SpanBounds,
+    y: i32,
+    stop: i32,
+    color: K::Color,
+    sink: &mut K,
+) -> usize {
+    let (lo, hi) = (b.x0, b.x1);
+    let spans = (y..stop).map(|_| {
+        let (xl, xr) = (l.crossing(), r.crossing());
+        l.step();
+        r.step();
+        let (x0, x1) = if ordered || xl <= xr {
+            (xl, xr)
+        } else {
+            (xr, xl)
+        };
+        (x0.max(lo), x1.min(hi))
+    });
+    sink.span_rows(y, spans, color)
 }
 
 /// The active-edge loop over edges sorted by first row.
