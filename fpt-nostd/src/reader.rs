@@ -589,7 +589,7 @@ impl<'a> PolygonRef<'a> {
 /// tree's geometry instead of copying it. A `PolygonRef` carries a copy of
 /// the geometry (about 100 bytes); the full frame's walk, where the whole
 /// pipeline is inlined, made that copy with `memcpy` for every polygon
-/// (8 % of a `socket.off` frame on the Cortex-M4F).
+/// (10 % of a `socket.off` frame on the Cortex-M4F).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PolygonAt<'t, 'a> {
     g: &'t Geometry<'a>,

@@ -383,12 +383,21 @@ impl<F: PixelFormat> SpanSink for Framebuffer<'_, F> {
     fn span_rows<I: Iterator<Item = (i32, i32)>>(
         &mut self,
         y: i32,
-        spans: I,
+        mut spans: I,
         c: F::Color,
     ) -> usize {
+        let mut n = 0;
+        // Rows above the image: their spans are counted, not painted.
+        for _ in 0..y.min(0).unsigned_abs() {
+            match spans.next() {
+                Some((x0, x1)) => n += usize::from(x0 < x1),
+                None => return n,
+            }
+        }
         let stride = self.stride.max(1);
-        let from = if (y as u32) < self.height {
-            y as usize * stride
+        let first = y.max(0) as u32;
+        let from = if first < self.height {
+            first as usize * stride
         } else {
             self.buf.len()
         };
@@ -398,7 +407,6 @@ impl<F: PixelFormat> SpanSink for Framebuffer<'_, F> {
             .get_mut(from..end)
             .unwrap_or_default()
             .chunks_exact_mut(stride);
-        let mut n = 0;
         for (x0, x1) in spans {
             let row = rows.next();
             if x0 < x1 {
@@ -441,6 +449,50 @@ mod tests {
                     assert_eq!(F::get(&row, x), want, "x0={x0} x1={x1} x={x}");
                 }
             }
+        }
+    }
+
+    /// A framebuffer's `span_rows` (a row slice stepped down the image)
+    /// paints and counts what `span` once a row does, with the band's
+    /// offset too, and consumes every span even for rows outside.
+    #[test]
+    fn span_rows_equal_span_per_row() {
+        use super::super::band::Band;
+        let (w, h) = (9u32, 6u32);
+        let runs: [(i32, &[(i32, i32)]); 4] = [
+            (0, &[(0, 9), (3, 3), (2, 7), (8, 9)]),
+            (2, &[(1, 4), (5, 2), (0, 1)]),
+            (4, &[(4, 6), (0, 9), (7, 8)]), // the last row is outside
+            (-1, &[(0, 3), (2, 5)]),        // the first row is outside
+        ];
+        for y0 in [0, 3] {
+            let mut a = vec![0u16; (w * h) as usize];
+            let mut b = a.clone();
+            let mut fa = Rgb565Framebuffer::new(&mut a, w, h).unwrap();
+            let mut fb = Rgb565Framebuffer::new(&mut b, w, h).unwrap();
+            let c = Rgb565::new(31, 0, 7);
+            for (y, spans) in runs {
+                let mut used = 0;
+                let mut band = Band::new(&mut fa, y0);
+                let n = band.span_rows(
+                    y + y0,
+                    spans.iter().map(|&s| {
+                        used += 1;
+                        s
+                    }),
+                    c,
+                );
+                assert_eq!(used, spans.len());
+                let mut want = 0;
+                for (k, &(x0, x1)) in spans.iter().enumerate() {
+                    if x0 < x1 {
+                        fb.span(y + k as i32, x0, x1, c);
+                        want += 1;
+                    }
+                }
+                assert_eq!(n, want);
+            }
+            assert_eq!(fa.data(), fb.data());
         }
     }
 
