@@ -376,28 +376,22 @@ impl<F: PixelFormat> SpanSink for Framebuffer<'_, F> {
         self.fill_span(y, x0, x1, c);
     }
     /// Steps a row slice down the image instead of computing and checking
-    /// each row's place ([`Framebuffer::fill_span`]). Spans on rows outside
-    /// the image, or not within its columns (the fill never sends those),
-    /// are dropped rather than clipped.
+    /// each row's place ([`Framebuffer::fill_span`]). The spans of a run
+    /// that starts outside the image, of rows past its bottom, and spans
+    /// not within its columns (the fill never sends any of these) are
+    /// counted but dropped, not clipped. (Painting the rows of a run that
+    /// starts above the image made the fill's code dearer: +3.6 % on a
+    /// `bench_city` frame, Cortex-M4F.)
     #[inline(always)]
     fn span_rows<I: Iterator<Item = (i32, i32)>>(
         &mut self,
         y: i32,
-        mut spans: I,
+        spans: I,
         c: F::Color,
     ) -> usize {
-        let mut n = 0;
-        // Rows above the image: their spans are counted, not painted.
-        for _ in 0..y.min(0).unsigned_abs() {
-            match spans.next() {
-                Some((x0, x1)) => n += usize::from(x0 < x1),
-                None => return n,
-            }
-        }
         let stride = self.stride.max(1);
-        let first = y.max(0) as u32;
-        let from = if first < self.height {
-            first as usize * stride
+        let from = if (y as u32) < self.height {
+            y as usize * stride
         } else {
             self.buf.len()
         };
@@ -407,6 +401,7 @@ impl<F: PixelFormat> SpanSink for Framebuffer<'_, F> {
             .get_mut(from..end)
             .unwrap_or_default()
             .chunks_exact_mut(stride);
+        let mut n = 0;
         for (x0, x1) in spans {
             let row = rows.next();
             if x0 < x1 {
@@ -454,7 +449,8 @@ mod tests {
 
     /// A framebuffer's `span_rows` (a row slice stepped down the image)
     /// paints and counts what `span` once a row does, with the band's
-    /// offset too, and consumes every span even for rows outside.
+    /// offset too, and consumes every span even for rows outside; a run
+    /// that starts above the image is counted and dropped whole.
     #[test]
     fn span_rows_equal_span_per_row() {
         use super::super::band::Band;
@@ -463,7 +459,7 @@ mod tests {
             (0, &[(0, 9), (3, 3), (2, 7), (8, 9)]),
             (2, &[(1, 4), (5, 2), (0, 1)]),
             (4, &[(4, 6), (0, 9), (7, 8)]), // the last row is outside
-            (-1, &[(0, 3), (2, 5)]),        // the first row is outside
+            (-1, &[(0, 3), (2, 5)]),        // starts above: dropped whole
         ];
         for y0 in [0, 3] {
             let mut a = vec![0u16; (w * h) as usize];
@@ -486,7 +482,9 @@ mod tests {
                 let mut want = 0;
                 for (k, &(x0, x1)) in spans.iter().enumerate() {
                     if x0 < x1 {
-                        fb.span(y + k as i32, x0, x1, c);
+                        if y >= 0 {
+                            fb.span(y + k as i32, x0, x1, c);
+                        }
                         want += 1;
                     }
                 }
