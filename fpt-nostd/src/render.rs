@@ -62,6 +62,7 @@ use crate::raster::{
 use crate::reader::{Plane, PolygonRef, Tree};
 
 pub use cached::{memory_words, memory_words_for};
+pub use double::{BandBuffers, BandTransfer};
 pub use probe::{NoProbe, Phase, Probe};
 
 /// Which number a polygon writes into id buffers (as `number + 1`).
@@ -959,6 +960,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
 }
 
 pub(crate) mod cached;
+pub mod double;
 pub mod probe;
 #[cfg(test)]
 mod tests;
