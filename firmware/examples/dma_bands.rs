@@ -149,7 +149,7 @@ fn main() -> ! {
 
         let before = link.spi.wire;
         let stats = r
-            .render_double_buffered_in::<_, N, _>(
+            .render_double_buffered_in::<N, _, _>(
                 &tree,
                 &frame,
                 &mut bands,
@@ -167,7 +167,7 @@ fn main() -> ! {
             rows: ROWS,
             background,
         };
-        r.render_banded_in::<_, N>(&tree, &frame, one, &mut memory[..], |y, fb| {
+        r.render_banded_in::<N, _>(&tree, &frame, one, &mut memory[..], |y, fb| {
             let mut dma = SpiDma {
                 spi: stub::Spi { wire: single },
                 in_flight: None,

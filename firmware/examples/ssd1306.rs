@@ -97,7 +97,7 @@ fn main() -> ! {
         // Two levels (on/off) with ordered dithering: the grey of each
         // face becomes a density of lit pixels.
         let stats = r
-            .render::<_, N>(&tree, &frame, &mut Dither::new(&mut fb, 2))
+            .render::<N, _>(&tree, &frame, &mut Dither::new(&mut fb, 2))
             .unwrap_or_else(|e| fail(format_args!("frame {i}: {e}")));
         display
             .set_draw_area((0, 0), (WIDTH as u8, HEIGHT as u8))

@@ -105,7 +105,7 @@ fn main() -> ! {
             background: Rgb565::new(2, 4, 6),
         };
         let stats = r
-            .try_render_banded_in::<_, N, _>(&tree, &frame, bands, &mut memory[..], |y, fb| {
+            .try_render_banded_in::<N, _, _>(&tree, &frame, bands, &mut memory[..], |y, fb| {
                 // Rows y ..= y + height − 1, all columns (inclusive ends).
                 let last = (y as u32 + fb.height() - 1) as u16;
                 let colors = fb.data().iter().map(|&w| Rgb565::from(RawU16::new(w)));

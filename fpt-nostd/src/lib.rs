@@ -59,7 +59,7 @@
 //!             background: Rgb565::BLACK,
 //!         };
 //!         // A display error stops the frame and comes back here.
-//!         let stats = r.try_render_banded_in::<_, 64, _>(&tree, &frame, bands, &mut memory, |y, fb| {
+//!         let stats = r.try_render_banded_in::<64, _, _>(&tree, &frame, bands, &mut memory, |y, fb| {
 //!             send_rows(y, fb.panel_bytes())
 //!         })?;
 //!         // Enough memory for this tree: one walk a frame, nothing skipped.
@@ -109,10 +109,14 @@
 pub mod effects;
 pub mod fixed;
 pub mod format;
-pub mod frames;
 pub mod order;
+pub mod prelude;
 pub mod raster;
 pub mod reader;
 pub mod render;
-#[cfg(test)]
-mod test_util;
+/// Hand-made tree files for tests (this crate's, and the measuring
+/// harness's behind the `test-util` feature); not part of the API.
+#[cfg(any(test, feature = "test-util"))]
+#[doc(hidden)]
+#[allow(missing_docs)]
+pub mod test_util;

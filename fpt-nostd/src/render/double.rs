@@ -238,14 +238,14 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     ///     background: Rgb565::new(0, 0, 0),
     /// };
     /// let mut link = Link { in_flight: None, rows: Vec::new() };
-    /// r.render_double_buffered_in::<_, 64, _>(&tree, &frame, &mut bands, &mut [], &mut link)
+    /// r.render_double_buffered_in::<64, _, _>(&tree, &frame, &mut bands, &mut [], &mut link)
     ///     .unwrap();
     /// assert_eq!(link.rows, [0, 16, 32, 48]);
     /// assert!(link.in_flight.is_none()); // the last band was finished
     /// // Both buffers are back for the next frame.
     /// assert_eq!((bands.front.len(), bands.back.len()), (64 * 16, 64 * 16));
     /// ```
-    pub fn render_double_buffered_in<'b, F: PixelFormat, const N: usize, T>(
+    pub fn render_double_buffered_in<'b, const N: usize, F: PixelFormat, T>(
         &mut self,
         tree: &Tree<'_>,
         frame: &Frame,

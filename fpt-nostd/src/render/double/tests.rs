@@ -110,7 +110,7 @@ fn one_buffer(tree: &Tree<'_>, frame: &Frame, memory: &mut [u32]) -> Vec<u16> {
         rows: ROWS,
         background: BG,
     };
-    let out = renderer().render_banded_in::<_, 64>(tree, frame, band, memory, |y, fb| {
+    let out = renderer().render_banded_in::<64, _>(tree, frame, band, memory, |y, fb| {
         let at = y as usize * W as usize;
         image[at..at + fb.data().len()].copy_from_slice(fb.data());
     });
@@ -141,7 +141,7 @@ fn double(
         background: BG,
     };
     let out = renderer()
-        .render_double_buffered_in::<_, 64, _>(tree, frame, &mut bands, memory, &mut inner);
+        .render_double_buffered_in::<64, _, _>(tree, frame, &mut bands, memory, &mut inner);
     assert!(inner.in_flight.is_none(), "a transfer left in flight");
     // Both buffers come back but for the band of a failed `start` or
     // `finish` (that one stays with the driver).
@@ -171,7 +171,7 @@ fn same_pixels_as_one_buffer_and_full_frame() {
             Err(e) => panic!("{e}"),
         };
         fb.fill_all(BG);
-        if let Err(e) = renderer().render::<_, 64>(&tree, &frame, &mut fb) {
+        if let Err(e) = renderer().render::<64, _>(&tree, &frame, &mut fb) {
             panic!("{e}");
         }
         let full: Vec<u16> = full.iter().map(|w| w.to_be()).collect();
@@ -289,7 +289,7 @@ fn refusals_send_nothing() {
         background: BG,
     };
     let mut inner = Link::new();
-    let out = renderer().render_double_buffered_in::<_, 4, _>(
+    let out = renderer().render_double_buffered_in::<4, _, _>(
         &tree,
         &frame(&tree, 1.0),
         &mut bands,
