@@ -76,6 +76,27 @@
 //! Cortex-M0, and `fpt mcu-bench TREE` runs it for any tree and reports
 //! instructions a frame, RAM and whether every frame matches the host.
 //!
+//! # Complete firmware to start from
+//!
+//! `firmware/examples/` holds three programs that CI runs under QEMU
+//! (their buses are documented embedded-hal 1.0 stand-ins; swap in a
+//! HAL's): `st7789.rs`, an ST7789 240×240 over SPI with the `mipidsi`
+//! crate, bands handed to `set_pixels`; `dma_bands.rs`, double-buffered
+//! bands for a DMA link ([`render::TreeRenderer::render_double_buffered_in`]
+//! and its [`render::BandTransfer`] contract, [`render::double`]: band k+1
+//! is drawn while band k is sent); `ssd1306.rs`, a 128×64 1-bit OLED on a
+//! Cortex-M0, dithered ([`raster::Dither`]) with the integer vertex path.
+//! `host-sim/examples/render_png.rs` draws into an `embedded-graphics`
+//! `DrawTarget` on the host.
+//!
+//! [`prelude`] imports what these use in one line. Generic parameters
+//! come in one order everywhere: the arithmetic `P`, the walk depth `N`,
+//! the vertex capacity `V`, the effects `E`, then what the call draws into
+//! (a sink `K` or pixel format `F`, a probe, an error type):
+//! `TreeRenderer<P, V, E>`, [`render::draw_frame`]`::<P, N, V, E, K>`,
+//! `r.render_banded_in::<N, F>(..)`. The project's measuring harness (its
+//! frame set, checksums and probes) is the separate `fpt-frames` crate.
+//!
 //! # Tree files
 //!
 //! [`format`] documents the flat tree file field by field (a table of every
