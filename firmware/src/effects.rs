@@ -6,11 +6,11 @@
 
 use cortex_m_semihosting::hprintln;
 
-use fpt_nostd::effects::{AllEffects, Compiled, Effects, Pipeline};
 use fpt_frames::effects::{
     bare_pipeline, on_off, render_effect, EffectTarget, EFFECT_SCENE, EFFECT_VIEW, MONO_BYTES,
 };
 use fpt_frames::{FramePrecision, FrameRenderer, VIEWS};
+use fpt_nostd::effects::{AllEffects, Compiled, Effects, Pipeline};
 use fpt_nostd::raster::{Camera, Mat4, Renderer};
 use fpt_nostd::reader::Tree;
 
@@ -29,11 +29,9 @@ fn run<E: Compiled>(
     mono: bool,
 ) -> (u64, u32) {
     let camera = Camera::from_matrix(Mat4::IDENTITY, 1.0);
-    let Some(mut renderer) = Renderer::<FramePrecision, E>::new(
-        fpt_frames::WIDTH,
-        fpt_frames::HEIGHT,
-        &camera,
-    ) else {
+    let Some(mut renderer) =
+        Renderer::<FramePrecision, E>::new(fpt_frames::WIDTH, fpt_frames::HEIGHT, &camera)
+    else {
         fail(format_args!("effect renderer size"))
     };
     let view = &VIEWS[EFFECT_VIEW];

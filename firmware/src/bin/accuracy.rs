@@ -34,9 +34,9 @@ mod stack;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 
-use fpt_nostd::format::VertexFormat;
 use fpt_frames::accuracy::{render_config, vertex_format, AccuracyLine, CONFIGS};
 use fpt_frames::{FRAME_WORDS, VIEWS};
+use fpt_nostd::format::VertexFormat;
 use fpt_nostd::reader::Tree;
 
 use clock::Clock;

@@ -22,11 +22,11 @@
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 
-use fpt_nostd::effects::{Effects, Pipeline};
 use fpt_frames::{
     FrameLine, FramePrecision, PixelCrc, BACKGROUND, FRAME_WORDS, HEIGHT, MAX_VERTS, VIEWS,
     WALK_DEPTH, WIDTH,
 };
+use fpt_nostd::effects::{Effects, Pipeline};
 use fpt_nostd::raster::{Light, Rgb565Framebuffer};
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::TreeRenderer;
