@@ -17,7 +17,7 @@
 //!   `OUT_DIR` from the environment (see [`BenchConfig`]).
 use std::{env, fs, path::PathBuf};
 
-use fpt_nostd::frames::orbit::{band_words, OrbitPrecision};
+use fpt_frames::orbit::{band_words, OrbitPrecision};
 use fpt_nostd::reader::Tree;
 
 /// The benchmark's configuration, from `FPT_BENCH_*` variables.

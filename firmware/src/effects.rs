@@ -1,16 +1,16 @@
 //! `effect name=NAME on=N off=N bare=N` lines (feature `full`): the
 //! instructions per frame of the benchmark scene with each effect on, off,
 //! and through a pipeline compiled without it (see
-//! [`fpt_nostd::frames::effects`] for the scene, view, targets and the
+//! [`fpt_frames::effects`] for the scene, view, targets and the
 //! rule that `off` and `bare` draw the same pixels, which is checked here).
 
 use cortex_m_semihosting::hprintln;
 
-use fpt_nostd::effects::{AllEffects, Compiled, Effects, Pipeline};
-use fpt_nostd::frames::effects::{
+use fpt_frames::effects::{
     bare_pipeline, on_off, render_effect, EffectTarget, EFFECT_SCENE, EFFECT_VIEW, MONO_BYTES,
 };
-use fpt_nostd::frames::{FramePrecision, FrameRenderer, VIEWS};
+use fpt_frames::{FramePrecision, FrameRenderer, VIEWS};
+use fpt_nostd::effects::{AllEffects, Compiled, Effects, Pipeline};
 use fpt_nostd::raster::{Camera, Mat4, Renderer};
 use fpt_nostd::reader::Tree;
 
@@ -29,11 +29,9 @@ fn run<E: Compiled>(
     mono: bool,
 ) -> (u64, u32) {
     let camera = Camera::from_matrix(Mat4::IDENTITY, 1.0);
-    let Some(mut renderer) = Renderer::<FramePrecision, E>::new(
-        fpt_nostd::frames::WIDTH,
-        fpt_nostd::frames::HEIGHT,
-        &camera,
-    ) else {
+    let Some(mut renderer) =
+        Renderer::<FramePrecision, E>::new(fpt_frames::WIDTH, fpt_frames::HEIGHT, &camera)
+    else {
         fail(format_args!("effect renderer size"))
     };
     let view = &VIEWS[EFFECT_VIEW];

@@ -1,4 +1,4 @@
-//! The two measuring probes of a frame ([`fpt_nostd::frames::Probe`]).
+//! The two measuring probes of a frame ([`fpt_frames::Probe`]).
 //!
 //! Each frame is drawn twice:
 //!
@@ -22,7 +22,7 @@
 use core::cell::Cell;
 
 use cortex_m::peripheral::SYST;
-use fpt_nostd::frames::{Phase, Probe};
+use fpt_frames::{Phase, Probe};
 
 use crate::clock::now;
 

@@ -59,7 +59,7 @@
 //!             background: Rgb565::BLACK,
 //!         };
 //!         // A display error stops the frame and comes back here.
-//!         let stats = r.try_render_banded_in::<_, 64, _>(&tree, &frame, bands, &mut memory, |y, fb| {
+//!         let stats = r.try_render_banded_in::<64, _, _>(&tree, &frame, bands, &mut memory, |y, fb| {
 //!             send_rows(y, fb.panel_bytes())
 //!         })?;
 //!         // Enough memory for this tree: one walk a frame, nothing skipped.
@@ -75,6 +75,27 @@
 //! (`firmware/src/bin/bench.rs`) is this loop on QEMU's Cortex-M4F and
 //! Cortex-M0, and `fpt mcu-bench TREE` runs it for any tree and reports
 //! instructions a frame, RAM and whether every frame matches the host.
+//!
+//! # Complete firmware to start from
+//!
+//! `firmware/examples/` holds three programs that CI runs under QEMU
+//! (their buses are documented embedded-hal 1.0 stand-ins; swap in a
+//! HAL's): `st7789.rs`, an ST7789 240×240 over SPI with the `mipidsi`
+//! crate, bands handed to `set_pixels`; `dma_bands.rs`, double-buffered
+//! bands for a DMA link ([`render::TreeRenderer::render_double_buffered_in`]
+//! and its [`render::BandTransfer`] contract, [`render::double`]: band k+1
+//! is drawn while band k is sent); `ssd1306.rs`, a 128×64 1-bit OLED on a
+//! Cortex-M0, dithered ([`raster::Dither`]) with the integer vertex path.
+//! `host-sim/examples/render_png.rs` draws into an `embedded-graphics`
+//! `DrawTarget` on the host.
+//!
+//! [`prelude`] imports what these use in one line. Generic parameters
+//! come in one order everywhere: the arithmetic `P`, the walk depth `N`,
+//! the vertex capacity `V`, the effects `E`, then what the call draws into
+//! (a sink `K` or pixel format `F`, a probe, an error type):
+//! `TreeRenderer<P, V, E>`, [`render::draw_frame`]`::<P, N, V, E, K>`,
+//! `r.render_banded_in::<N, F>(..)`. The project's measuring harness (its
+//! frame set, checksums and probes) is the separate `fpt-frames` crate.
 //!
 //! # Tree files
 //!
@@ -109,10 +130,14 @@
 pub mod effects;
 pub mod fixed;
 pub mod format;
-pub mod frames;
 pub mod order;
+pub mod prelude;
 pub mod raster;
 pub mod reader;
 pub mod render;
-#[cfg(test)]
-mod test_util;
+/// Hand-made tree files for tests (this crate's, and the measuring
+/// harness's behind the `test-util` feature); not part of the API.
+#[cfg(any(test, feature = "test-util"))]
+#[doc(hidden)]
+#[allow(missing_docs)]
+pub mod test_util;

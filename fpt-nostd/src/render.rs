@@ -62,6 +62,7 @@ use crate::raster::{
 use crate::reader::{Plane, PolygonAt, Tree};
 
 pub use cached::{memory_words, memory_words_for};
+pub use double::{BandBuffers, BandTransfer};
 pub use probe::{NoProbe, Phase, Probe};
 
 /// Which number a polygon writes into id buffers (as `number + 1`).
@@ -581,7 +582,7 @@ impl Frame {
 /// set, its effects as [`Renderer::begin_tree`] decides (the tree's own
 /// unless overridden). Fails only when `N` or `V` is smaller than the tree
 /// needs ([`check_capacities`]); then nothing is drawn.
-pub fn render_tree<P: Precision, E: Compiled, K: SpanSink, const N: usize, const V: usize>(
+pub fn render_tree<P: Precision, const N: usize, const V: usize, E: Compiled, K: SpanSink>(
     tree: &Tree<'_>,
     camera: &Camera,
     renderer: &mut Renderer<P, E>,
@@ -590,7 +591,7 @@ pub fn render_tree<P: Precision, E: Compiled, K: SpanSink, const N: usize, const
     sink: &mut K,
 ) -> Result<RenderStats, RenderError> {
     let frame = Frame::new(tree, camera);
-    draw_frame::<P, E, K, N, V>(tree, &frame, renderer, scratch, ids, sink)
+    draw_frame::<P, N, V, E, K>(tree, &frame, renderer, scratch, ids, sink)
 }
 
 /// [`render_tree`] for an already derived [`Frame`] (saves deriving it
@@ -601,7 +602,7 @@ pub fn render_tree<P: Precision, E: Compiled, K: SpanSink, const N: usize, const
 /// with its normal flipped toward the viewer (without it, such a face is
 /// lit by its own normal, usually only by the ambient term). The others
 /// are the renderer's.
-pub fn draw_frame<P: Precision, E: Compiled, K: SpanSink, const N: usize, const V: usize>(
+pub fn draw_frame<P: Precision, const N: usize, const V: usize, E: Compiled, K: SpanSink>(
     tree: &Tree<'_>,
     frame: &Frame,
     renderer: &mut Renderer<P, E>,
@@ -809,13 +810,13 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     }
 
     /// [`draw_frame`] into `sink`, walking with a stack of `N` frames.
-    pub fn render<K: SpanSink, const N: usize>(
+    pub fn render<const N: usize, K: SpanSink>(
         &mut self,
         tree: &Tree<'_>,
         frame: &Frame,
         sink: &mut K,
     ) -> Result<RenderStats, RenderError> {
-        draw_frame::<P, E, K, N, V>(
+        draw_frame::<P, N, V, E, K>(
             tree,
             frame,
             &mut self.renderer,
@@ -832,38 +833,28 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     /// the tree is walked and every polygon transformed once per band;
     /// [`TreeRenderer::render_banded_in`] does it once a frame. The
     /// counters count each polygon once.
-    pub fn render_banded<F: PixelFormat, const N: usize>(
+    pub fn render_banded<const N: usize, F: PixelFormat>(
         &mut self,
         tree: &Tree<'_>,
         frame: &Frame,
         band: BandBuffer<'_, F>,
         emit: impl FnMut(i32, &Framebuffer<'_, F>),
     ) -> Result<RenderStats, RenderError> {
-        self.render_banded_in::<F, N>(tree, frame, band, &mut [], emit)
+        self.render_banded_in::<N, F>(tree, frame, band, &mut [], emit)
     }
 
     /// [`TreeRenderer::render`] with a vertex cache in `memory` (one word
     /// per vertex of the tree, [`Tree::vertex_count`]; less caches the
     /// vertices with the lowest indices): each vertex shared by several
     /// polygons is transformed once. The same pixels as without memory.
-    pub fn render_cached<K: SpanSink, const N: usize>(
+    pub fn render_cached<const N: usize, K: SpanSink>(
         &mut self,
         tree: &Tree<'_>,
         frame: &Frame,
         memory: &mut [u32],
         sink: &mut K,
     ) -> Result<RenderStats, RenderError> {
-        check_capacities::<N, V>(tree)?;
-        Ok(cached::draw_direct::<P, E, K, NoProbe, N, V>(
-            tree,
-            frame,
-            &mut self.renderer,
-            &mut self.scratch,
-            self.ids,
-            memory,
-            sink,
-            &NoProbe,
-        )?)
+        self.render_probed::<N, K, NoProbe>(tree, frame, memory, sink, &NoProbe)
     }
 
     /// [`TreeRenderer::render_banded`] with working memory: one walk and
@@ -872,7 +863,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     /// gives the same picture with more walks (see the module docs of
     /// `render::cached` in the source, summarised in the README). The
     /// counters count each polygon once.
-    pub fn render_banded_in<F: PixelFormat, const N: usize>(
+    pub fn render_banded_in<const N: usize, F: PixelFormat>(
         &mut self,
         tree: &Tree<'_>,
         frame: &Frame,
@@ -881,7 +872,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
         emit: impl FnMut(i32, &Framebuffer<'_, F>),
     ) -> Result<RenderStats, RenderError> {
         let mut emit = emit;
-        self.try_render_banded_in::<F, N, core::convert::Infallible>(
+        self.try_render_banded_in::<N, F, core::convert::Infallible>(
             tree,
             frame,
             band,
@@ -916,14 +907,14 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     /// let band = BandBuffer::<Rgb565BeFormat> { buf: &mut buf, rows: 8, background: Rgb565::new(0, 0, 0) };
     /// let mut sent = 0;
     /// // A display whose SPI bus fails at the third band.
-    /// let out = r.try_render_banded_in::<_, 64, &str>(&tree, &frame, band, &mut [], |_y, fb| {
+    /// let out = r.try_render_banded_in::<64, _, &str>(&tree, &frame, band, &mut [], |_y, fb| {
     ///     sent += fb.panel_bytes().len();
     ///     if sent > 2 * 64 * 8 * 2 { Err("spi") } else { Ok(()) }
     /// });
     /// assert_eq!(out, Err(BandError::Display("spi")));
     /// assert_eq!(sent, 3 * 64 * 8 * 2); // nothing after the failed band
     /// ```
-    pub fn try_render_banded_in<F: PixelFormat, const N: usize, D>(
+    pub fn try_render_banded_in<const N: usize, F: PixelFormat, D>(
         &mut self,
         tree: &Tree<'_>,
         frame: &Frame,
@@ -931,26 +922,18 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
         memory: &mut [u32],
         mut emit: impl FnMut(i32, &Framebuffer<'_, F>) -> Result<(), D>,
     ) -> Result<RenderStats, BandError<D>> {
-        check_capacities::<N, V>(tree).map_err(|e| BandError::Render(e.into()))?;
         let mut failed = None;
-        let stats = cached::draw_bands::<P, E, F, NoProbe, N, V>(
-            tree,
-            frame,
-            &mut self.renderer,
-            &mut self.scratch,
-            self.ids,
-            memory,
-            band,
-            &NoProbe,
-            |y, fb| match emit(y, fb) {
-                Ok(()) => true,
-                Err(e) => {
-                    failed = Some(e);
-                    false
+        let stats = self
+            .render_banded_probed::<N, F, NoProbe>(tree, frame, band, memory, &NoProbe, |y, fb| {
+                match emit(y, fb) {
+                    Ok(()) => true,
+                    Err(e) => {
+                        failed = Some(e);
+                        false
+                    }
                 }
-            },
-        )
-        .map_err(BandError::Render)?;
+            })
+            .map_err(BandError::Render)?;
         match failed {
             Some(e) => Err(BandError::Display(e)),
             None => Ok(stats),
@@ -959,6 +942,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
 }
 
 pub(crate) mod cached;
+pub mod double;
 pub mod probe;
 #[cfg(test)]
 mod tests;

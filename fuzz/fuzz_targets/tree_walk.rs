@@ -154,10 +154,10 @@ fn draw(tree: &Tree<'_>, control: u8) {
             for fx in effects {
                 tr.renderer.set_effects(Some(fx));
                 if let Ok(mut fb) = Rgb565Framebuffer::new(&mut words, W, H) {
-                    let _ = tr.render::<_, 64>(tree, &frame, &mut fb);
+                    let _ = tr.render::<64, _>(tree, &frame, &mut fb);
                 }
                 if let Ok(mut fb) = BinaryFramebuffer::new(&mut bits, W, H) {
-                    let _ = tr.render::<_, 64>(tree, &frame, &mut Dither::new(&mut fb, 2));
+                    let _ = tr.render::<64, _>(tree, &frame, &mut Dither::new(&mut fb, 2));
                 }
             }
         }};

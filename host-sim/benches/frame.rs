@@ -48,7 +48,7 @@ fn banded_picture(b: &Bench, w: u32, h: u32) -> Vec<u16> {
         rows: BAND_ROWS,
         background: BACKGROUND,
     };
-    tr.render_banded::<_, STACK>(&tree, &frame, bb, |y0, fb| {
+    tr.render_banded::<STACK, _>(&tree, &frame, bb, |y0, fb| {
         let at = y0 as usize * w as usize;
         let data = fb.data();
         out[at..at + data.len()].copy_from_slice(data);
@@ -179,7 +179,7 @@ fn frame_time(c: &mut Criterion) {
                         background: BACKGROUND,
                     };
                     // A display driver would send each band out here.
-                    tr.render_banded::<_, STACK>(&tree, &frame, bb, |_, fb| {
+                    tr.render_banded::<STACK, _>(&tree, &frame, bb, |_, fb| {
                         black_box(fb.data());
                     })
                     .expect("walk stack")

@@ -45,7 +45,7 @@ fn run(tree_path: &str, out: &str) -> Result<(), String> {
     let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(W, H));
     let mut sink = DrawTargetSink::new(&mut display);
     let stats = r
-        .render::<_, DEPTH>(&tree, &frame, &mut sink)
+        .render::<DEPTH, _>(&tree, &frame, &mut sink)
         .map_err(|e| format!("{tree_path}: {e}"))?;
     sink.finish()
         .map_err(|_| "the display refused a span".to_string())?;

@@ -261,7 +261,7 @@ fn bench_accuracy_writes_the_csv_and_the_plot() {
     let mcu = out_dir.join("mcu.txt");
     let mut text = String::new();
     for c in CONFIGS {
-        for k in 0..fpt_nostd::frames::VIEWS.len() {
+        for k in 0..fpt_frames::VIEWS.len() {
             text.push_str(&format!(
                 "accuracy config={} view={k} crc=00000000 instr={}\n",
                 c.name,

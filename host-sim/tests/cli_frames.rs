@@ -20,15 +20,12 @@ fn work_lines_count_every_frame() {
     assert!(out.status.success(), "{out:?}");
     let text = String::from_utf8_lossy(&out.stdout);
     let lines: Vec<&str> = text.lines().collect();
-    let (scenes, views) = (
-        fpt_nostd::frames::SCENES.len(),
-        fpt_nostd::frames::VIEWS.len(),
-    );
+    let (scenes, views) = (fpt_frames::SCENES.len(), fpt_frames::VIEWS.len());
     assert_eq!(lines.len(), scenes * views, "{text}");
     for (i, l) in lines.iter().enumerate() {
         let want = format!(
             "work scene={} view={} ",
-            fpt_nostd::frames::SCENES[i / views],
+            fpt_frames::SCENES[i / views],
             i % views
         );
         assert!(l.starts_with(&want), "{l}");

@@ -179,10 +179,10 @@ fn product(tree: &Tree<'_>, cam: &Camera, fx: Effects, mono: bool) -> Vec<[u8; 3
             for y in 0..H as i32 {
                 d.span(y, 0, W as i32, bg);
             }
-            tr.render::<_, STACK>(tree, &f, &mut d).expect("walk");
+            tr.render::<STACK, _>(tree, &f, &mut d).expect("walk");
         } else {
             fb.fill_all(BinaryColor::from(BG));
-            tr.render::<_, STACK>(tree, &f, &mut fb).expect("walk");
+            tr.render::<STACK, _>(tree, &f, &mut fb).expect("walk");
         }
         (0..H)
             .flat_map(|y| (0..W).map(move |x| (x, y)))
@@ -195,7 +195,7 @@ fn product(tree: &Tree<'_>, cam: &Camera, fx: Effects, mono: bool) -> Vec<[u8; 3
         let mut buf = vec![0u8; 3 * W * H];
         let mut fb = Rgb888Framebuffer::new(&mut buf, W as u32, H as u32).expect("fb");
         fb.fill_all(BG);
-        tr.render::<_, STACK>(tree, &f, &mut fb).expect("walk");
+        tr.render::<STACK, _>(tree, &f, &mut fb).expect("walk");
         buf.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
     }
 }

@@ -1,13 +1,11 @@
 //! Effects as pipeline stages: the firmware's `effect` measurement run on
 //! the host (same code, same scene), and the builder's clipping proof.
 
-use fpt_nostd::effects::{AllEffects, Compiled, Effects, Pipeline};
-use fpt_nostd::frames::effects::{
+use fpt_frames::effects::{
     bare_pipeline, on_off, render_effect, EffectTarget, EFFECT_SCENE, EFFECT_VIEW, MONO_BYTES,
 };
-use fpt_nostd::frames::{
-    FramePrecision, NoProbe, ViewSpec, FRAME_WORDS, HEIGHT, MAX_VERTS, VIEWS, WIDTH,
-};
+use fpt_frames::{FramePrecision, NoProbe, ViewSpec, FRAME_WORDS, HEIGHT, MAX_VERTS, VIEWS, WIDTH};
+use fpt_nostd::effects::{AllEffects, Compiled, Effects, Pipeline};
 use fpt_nostd::raster::{
     Camera, DefaultPrecision, Libm, Mat4, Orbit, Renderer, Rgb565Framebuffer, Scratch,
 };
@@ -82,15 +80,13 @@ fn off_and_compiled_out_draw_alike_and_each_visible_effect_shows() {
 /// Draws `tree` from `orbit` (z up, like the frame set) with `fx`; the
 /// picture and how many polygons were clipped.
 fn draw(tree: &Tree<'_>, orbit: &Orbit, fx: Effects) -> (Vec<u16>, u32) {
-    let cam = orbit
-        .camera::<Libm>(1.0)
-        .with_model(&fpt_nostd::frames::Z_UP);
+    let cam = orbit.camera::<Libm>(1.0).with_model(&fpt_frames::Z_UP);
     let frame = Frame::relative(tree, &cam);
     let mut tr = Box::new(TreeRenderer::<DefaultPrecision, 64>::new(96, 96).expect("renderer"));
     tr.renderer.set_effects(Some(fx));
     let mut buf = vec![0u16; 96 * 96];
     let mut fb = Rgb565Framebuffer::new(&mut buf, 96, 96).expect("fb");
-    let stats = tr.render::<_, 64>(tree, &frame, &mut fb).expect("walk");
+    let stats = tr.render::<64, _>(tree, &frame, &mut fb).expect("walk");
     (buf, stats.clipped)
 }
 

@@ -30,8 +30,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use fpt_nostd::frames::accuracy::AccuracyLine;
-use fpt_nostd::frames::{FrameLine, SCENES, VIEWS};
+use fpt_frames::accuracy::AccuracyLine;
+use fpt_frames::{FrameLine, SCENES, VIEWS};
 use host_sim::cli::frames::{
     accuracy_lines, accuracy_tree_file, accuracy_trees, expected_text, frame_lines,
     read_accuracy_trees, read_trees, scene_trees, ACCURACY_FILE, EXPECTED_FILE,

@@ -1,8 +1,8 @@
-//! The standard orbit of `fpt mcu-bench` (`fpt_nostd::frames::orbit`) on
+//! The standard orbit of `fpt mcu-bench` (`fpt_frames::orbit`) on
 //! a committed tree: the eye is where the definition puts it, the
 //! checksum does not depend on the band height, and the frames differ.
 
-use fpt_nostd::frames::orbit::{frame, frame_crc, MAX_VERTS};
+use fpt_frames::orbit::{frame, frame_crc, MAX_VERTS};
 use fpt_nostd::order::View;
 use fpt_nostd::raster::{FixedPrecision, FloatLibm, Precision};
 use fpt_nostd::reader::Tree;
@@ -43,7 +43,7 @@ fn crcs<P: Precision>(tree: &Tree<'_>, band: u32, n: u32) -> Vec<u32> {
     let mut buf = vec![0u16; (w * rows) as usize];
     (0..n)
         .map(|i| {
-            frame_crc::<P, MAX_VERTS, 64>(&mut r, tree, (i, n), (&mut buf, &mut []), band)
+            frame_crc::<P, 64, MAX_VERTS>(&mut r, tree, (i, n), (&mut buf, &mut []), band)
                 .unwrap()
                 .0
         })

@@ -151,7 +151,7 @@ fn picture(tree: &Tree<'_>, cam: &Camera) -> Vec<[u8; 3]> {
     let mut buf = vec![0u8; 3 * W * H];
     let mut fb = Rgb888Framebuffer::new(&mut buf, W as u32, H as u32).expect("fb");
     fb.fill_all(BG);
-    tr.render::<_, STACK>(tree, &f, &mut fb).expect("walk");
+    tr.render::<STACK, _>(tree, &f, &mut fb).expect("walk");
     buf.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
 }
 

@@ -88,7 +88,7 @@ where
     let mut fast = vec![F::Word::default(); Framebuffer::<F>::required_len(W, H)];
     let mut fb = Framebuffer::<F>::new(&mut fast, W, H).expect("fb");
     fb.fill_all(bg);
-    let stats = r.render::<_, STACK>(tree, f, &mut fb).expect("walk");
+    let stats = r.render::<STACK, _>(tree, f, &mut fb).expect("walk");
     let fast_px: Vec<F::Color> = (0..H)
         .flat_map(|y| (0..W).map(move |x| (x, y)))
         .filter_map(|(x, y)| fb.pixel(x, y))
@@ -99,7 +99,7 @@ where
         px: vec![bg; (W * H) as usize],
     };
     let mut sink = DrawTargetSink::new(&mut disp);
-    r.render::<_, STACK>(tree, f, &mut sink).expect("walk");
+    r.render::<STACK, _>(tree, f, &mut sink).expect("walk");
     assert!(sink.finish().is_ok());
     assert!(disp.px == fast_px, "{label}: DrawTarget path differs");
 
@@ -119,7 +119,7 @@ where
                 background: bg,
             };
             let s = r
-                .render_banded_in::<F, STACK>(tree, f, band, &mut memory, |y0, b| {
+                .render_banded_in::<STACK, F>(tree, f, band, &mut memory, |y0, b| {
                     let at = y0 as usize * stride;
                     banded[at..at + b.data().len()].copy_from_slice(b.data());
                 })
@@ -146,7 +146,7 @@ where
         let mut cached = vec![F::Word::default(); fast.len()];
         let mut fb = Framebuffer::<F>::new(&mut cached, W, H).expect("fb");
         fb.fill_all(bg);
-        r.render_cached::<_, STACK>(tree, f, &mut memory, &mut fb)
+        r.render_cached::<STACK, _>(tree, f, &mut memory, &mut fb)
             .expect("walk");
         assert!(cached == fast, "{label}: cache of {words} words differs");
     }

@@ -40,7 +40,7 @@ fn draw<P: Precision>(tree: &Tree<'_>, f: &Frame) -> RenderStats {
     let mut ids = vec![0u32; (W * H) as usize];
     let mut sink = IdBuffer::new(&mut ids, W, H).expect("ids");
     let mut r = Box::new(TreeRenderer::<P, VERTS>::new(W, H).expect("renderer"));
-    let stats = r.render::<_, STACK>(tree, f, &mut sink).expect("walk");
+    let stats = r.render::<STACK, _>(tree, f, &mut sink).expect("walk");
     assert!(ids.iter().all(|&v| v <= tree.polygon_count()));
     let mut buf = vec![0u8; (W as usize).div_ceil(8) * 7];
     let band = BandBuffer::<BinaryFormat> {
@@ -48,7 +48,7 @@ fn draw<P: Precision>(tree: &Tree<'_>, f: &Frame) -> RenderStats {
         rows: 7,
         background: BinaryColor::Off,
     };
-    r.render_banded::<_, STACK>(tree, f, band, |_, _| {})
+    r.render_banded::<STACK, _>(tree, f, band, |_, _| {})
         .expect("bands");
     stats
 }

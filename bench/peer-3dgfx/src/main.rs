@@ -51,7 +51,7 @@ use nalgebra::{Point3, Vector3};
 use config::{CHUNK, CMD_CAP, CPU, FRAMES, NF, RADIUS, SIZE};
 use fail::fail;
 
-/// The standard orbit (as `fpt_nostd::frames::orbit`): vertical field of
+/// The standard orbit (as `fpt_frames::orbit`): vertical field of
 /// view, eye distance in bounding radii, pitch.
 const FOV_DEGREES: f32 = 60.0;
 const DISTANCE: f32 = 2.1;

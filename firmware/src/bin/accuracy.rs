@@ -3,7 +3,7 @@
 //!
 //! `cargo run --release --bin accuracy` (in `firmware/`) draws the
 //! benchmark scene from every view with every configuration of
-//! [`fpt_nostd::frames::accuracy::CONFIGS`] (the `vertex-q16`/`vertex-q32`
+//! [`fpt_frames::accuracy::CONFIGS`] (the `vertex-q16`/`vertex-q32`
 //! rows from the trees stored in that encoding) and prints one line per
 //! frame,
 //!
@@ -34,9 +34,9 @@ mod stack;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 
+use fpt_frames::accuracy::{render_config, vertex_format, AccuracyLine, CONFIGS};
+use fpt_frames::{FRAME_WORDS, VIEWS};
 use fpt_nostd::format::VertexFormat;
-use fpt_nostd::frames::accuracy::{render_config, vertex_format, AccuracyLine, CONFIGS};
-use fpt_nostd::frames::{FRAME_WORDS, VIEWS};
 use fpt_nostd::reader::Tree;
 
 use clock::Clock;

@@ -1,5 +1,5 @@
 //! `fpt mcu-bench`'s firmware: one tree drawn over the standard orbit
-//! ([`fpt_nostd::frames::orbit`]) on the emulated MCU, Cortex-M4F or
+//! ([`fpt_frames::orbit`]) on the emulated MCU, Cortex-M4F or
 //! Cortex-M0.
 //!
 //! The tree, the display size, the band height, the precision and the
@@ -45,8 +45,8 @@ use core::mem::MaybeUninit;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 
-use fpt_nostd::frames::orbit::{draw_band_frame, OrbitLine};
-use fpt_nostd::frames::PixelCrc;
+use fpt_frames::orbit::{draw_band_frame, OrbitLine};
+use fpt_frames::PixelCrc;
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::TreeRenderer;
 use static_cell::ConstStaticCell;
@@ -111,7 +111,7 @@ fn frame(
     let mut crc = PixelCrc::new();
     let mut outside = 0;
     let t0 = now();
-    let drawn = draw_band_frame::<BenchPrecision, VERTS, WALK_DEPTH>(
+    let drawn = draw_band_frame::<BenchPrecision, WALK_DEPTH, VERTS>(
         r,
         tree,
         (i, FRAMES),

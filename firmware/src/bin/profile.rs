@@ -22,11 +22,11 @@
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 
-use fpt_nostd::effects::{Effects, Pipeline};
-use fpt_nostd::frames::{
+use fpt_frames::{
     FrameLine, FramePrecision, PixelCrc, BACKGROUND, FRAME_WORDS, HEIGHT, MAX_VERTS, VIEWS,
     WALK_DEPTH, WIDTH,
 };
+use fpt_nostd::effects::{Effects, Pipeline};
 use fpt_nostd::raster::{Light, Rgb565Framebuffer};
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::TreeRenderer;
@@ -61,11 +61,11 @@ fn main() -> ! {
     ) {
         (Ok(tree), Some(mut r), Ok(mut fb)) => {
             let frame = VIEWS[0].frame(&tree);
-            // The frame set's light (`fpt_nostd::frames`).
+            // The frame set's light (`fpt_frames`).
             r.renderer
                 .set_light(Light::new(frame.key_light(), 0.25, 0.75));
             fb.fill_all(BACKGROUND);
-            let drawn = r.render::<_, WALK_DEPTH>(&tree, &frame, &mut fb).is_ok();
+            let drawn = r.render::<WALK_DEPTH, _>(&tree, &frame, &mut fb).is_ok();
             let mut crc = PixelCrc::new();
             crc.update(fb.data());
             let crc = crc.finish();

@@ -42,7 +42,7 @@
 //!         background: Rgb565::new(2, 4, 6),
 //!     };
 //!     // 64-walk depth; `memory_words(tree)` words make it one walk.
-//!     r.render_banded_in::<_, 64>(tree, frame, band, memory, |y0, fb| send(y0, fb.data()))?;
+//!     r.render_banded_in::<64, _>(tree, frame, band, memory, |y0, fb| send(y0, fb.data()))?;
 //!     Ok(())
 //! }
 //! # let _ = memory_words;

@@ -38,8 +38,9 @@ use super::transform::MAX_DIM;
 pub trait PixelFormat {
     /// The embedded-graphics colour type.
     type Color: PixelColor + From<Rgb888>;
-    /// The storage word.
-    type Word: Copy;
+    /// The storage word (plain data, so that bands of it can be lent
+    /// for any lifetime).
+    type Word: Copy + 'static;
     /// Words per row for `width` pixels.
     fn words_per_row(width: u32) -> usize;
     /// Sets pixels `x0..x1` of `row` (callers guarantee `x0 ≤ x1 ≤ width`).
@@ -291,6 +292,21 @@ impl<'a, F: PixelFormat> Framebuffer<'a, F> {
     /// The whole storage in use (`height` rows).
     pub fn data(&self) -> &[F::Word] {
         &self.buf[..self.stride * self.height as usize]
+    }
+
+    /// The whole storage the framebuffer was made over (all of it, not
+    /// only the `height` rows in use), given back: what a band loop that
+    /// lends a band to a display driver gets back to draw the next one in.
+    ///
+    /// ```
+    /// use fpt_nostd::raster::Rgb565Framebuffer;
+    /// let mut buf = [0u16; 8];
+    /// let fb = Rgb565Framebuffer::new(&mut buf, 2, 3).unwrap();
+    /// assert_eq!(fb.data().len(), 6);
+    /// assert_eq!(fb.into_storage().len(), 8);
+    /// ```
+    pub fn into_storage(self) -> &'a mut [F::Word] {
+        self.buf
     }
 
     /// The colour at `(x, y)`, `None` outside the image.

@@ -490,13 +490,13 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
 
 /// Band `y0` (of `rows` rows in a `size` frame) as a framebuffer over
 /// `buf`, cleared to `background`.
-fn open_band<F: PixelFormat>(
-    buf: &mut [F::Word],
+fn open_band<'b, F: PixelFormat>(
+    buf: &'b mut [F::Word],
     (w, h): (i32, i32),
     rows: i32,
     y0: i32,
     background: F::Color,
-) -> Result<Framebuffer<'_, F>, RenderError> {
+) -> Result<Framebuffer<'b, F>, RenderError> {
     let n = rows.min(h - y0) as u32;
     let mut fb = Framebuffer::<F>::new(buf, w as u32, n).map_err(RenderError::Band)?;
     fb.fill_all(background);
@@ -526,7 +526,25 @@ where
     F: PixelFormat,
     Pr: Probe,
 {
-    let out = bands::<P, E, F, Pr, N, V>(tree, frame, r, scratch, ids, memory, band, probe, emit);
+    let BandBuffer {
+        buf,
+        rows,
+        background,
+    } = band;
+    let mut one = OneBuffer {
+        buf: Some(buf),
+        emit,
+    };
+    let out = bands::<P, E, F, Pr, N, V>(
+        tree,
+        frame,
+        r,
+        scratch,
+        (ids, memory),
+        (rows, background),
+        &mut one,
+        probe,
+    );
     if out.is_err() {
         // Every error leaves the probe running.
         probe.stop();
@@ -534,18 +552,79 @@ where
     out
 }
 
-/// [`draw_bands`] but for stopping the probe on an error.
+/// Where the band loop takes the storage of each band and where it
+/// hands the finished band: one buffer reused for every band
+/// ([`OneBuffer`]), or two in turns while a display transfer sends the
+/// other (`render::double`).
+pub(crate) trait BandStore<'b, F: PixelFormat> {
+    /// The storage for the next band; `None` ends the frame.
+    fn take(&mut self) -> Option<&'b mut [F::Word]>;
+    /// Band `y` is finished in `fb`; `false` ends the frame.
+    fn emit(&mut self, y: i32, fb: Framebuffer<'b, F>) -> bool;
+}
+
+/// One band buffer, lent to `emit` for each finished band and reused.
+struct OneBuffer<'b, F: PixelFormat, X> {
+    buf: Option<&'b mut [F::Word]>,
+    emit: X,
+}
+
+impl<'b, F: PixelFormat, X> BandStore<'b, F> for OneBuffer<'b, F, X>
+where
+    X: FnMut(i32, &Framebuffer<'_, F>) -> bool,
+{
+    fn take(&mut self) -> Option<&'b mut [F::Word]> {
+        self.buf.take()
+    }
+
+    fn emit(&mut self, y: i32, fb: Framebuffer<'b, F>) -> bool {
+        let go = (self.emit)(y, &fb);
+        self.buf = Some(fb.into_storage());
+        go
+    }
+}
+
+/// [`draw_bands`] with the bands' storage from `store` and `rows` rows a
+/// band cleared to `background`; the probe is left running on an error.
 #[allow(clippy::too_many_arguments)]
-fn bands<P, E, F, Pr, const N: usize, const V: usize>(
+pub(crate) fn bands_into<'b, P, E, F, S, const N: usize, const V: usize>(
     tree: &Tree<'_>,
     frame: &Frame,
     r: &mut Renderer<P, E>,
     scratch: &mut Scratch<P, V>,
-    ids: FaceIds,
-    memory: &mut [u32],
-    band: BandBuffer<'_, F>,
+    (ids, memory): (FaceIds, &mut [u32]),
+    (rows, background): (u32, F::Color),
+    store: &mut S,
+) -> Result<RenderStats, RenderError>
+where
+    P: Precision,
+    E: Compiled,
+    F: PixelFormat,
+    S: BandStore<'b, F>,
+{
+    bands::<P, E, F, super::NoProbe, N, V>(
+        tree,
+        frame,
+        r,
+        scratch,
+        (ids, memory),
+        (rows, background),
+        store,
+        &super::NoProbe,
+    )
+}
+
+/// [`draw_bands`] but for stopping the probe on an error.
+#[allow(clippy::too_many_arguments)]
+fn bands<'b, P, E, F, Pr, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    (ids, memory): (FaceIds, &mut [u32]),
+    (rows, background): (u32, F::Color),
+    store: &mut impl BandStore<'b, F>,
     probe: &Pr,
-    mut emit: impl FnMut(i32, &Framebuffer<'_, F>) -> bool,
 ) -> Result<RenderStats, RenderError>
 where
     P: Precision,
@@ -584,10 +663,7 @@ where
     let mut list = DisplayList::new(list_words, needs_id, outlines);
     let screen = r.viewport_bounds();
     let (w, h) = (screen.x1, screen.y1);
-    let rows = band.rows.clamp(1, h.max(1) as u32) as i32;
-    let BandBuffer {
-        buf, background, ..
-    } = band;
+    let rows = rows.clamp(1, h.max(1) as u32) as i32;
     let mut spans = 0u64;
     let mut stats: Option<RenderStats> = None;
     let mut y = 0;
@@ -600,7 +676,11 @@ where
         // fills it directly.
         let mut direct = false;
         probe.enter(Phase::Fill);
-        let mut fb = open_band::<F>(&mut *buf, (w, h), rows, y, background)?;
+        let Some(buf) = store.take() else {
+            probe.stop();
+            return Ok(stats.unwrap_or_default());
+        };
+        let mut fb = open_band::<F>(buf, (w, h), rows, y, background)?;
         let mut walk = Walk {
             tree,
             source,
@@ -684,18 +764,22 @@ where
             spans += replay(r, scratch, tree, &list, &cache, (y, y + rows), &mut sink);
         }
         probe.stop();
-        if !emit(y, &fb) {
+        if !store.emit(y, fb) {
             return Ok(stats.unwrap_or_default());
         }
         probe.start(Phase::Fill);
         let mut y0 = y + rows;
         while y0 < cut.get() {
             probe.enter(Phase::Fill);
-            let mut fb = open_band::<F>(&mut *buf, (w, h), rows, y0, background)?;
+            let Some(buf) = store.take() else {
+                probe.stop();
+                return Ok(stats.unwrap_or_default());
+            };
+            let mut fb = open_band::<F>(buf, (w, h), rows, y0, background)?;
             let mut sink = Band::new(&mut fb, y0);
             spans += replay(r, scratch, tree, &list, &cache, (y0, y0 + rows), &mut sink);
             probe.stop();
-            if !emit(y0, &fb) {
+            if !store.emit(y0, fb) {
                 return Ok(stats.unwrap_or_default());
             }
             probe.start(Phase::Fill);

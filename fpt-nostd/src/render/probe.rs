@@ -4,10 +4,16 @@
 //! boundaries between the phases of a frame ([`Phase`]: tree walk,
 //! transform, fill). Every hook has an empty default body and the probe is
 //! a generic parameter, so with [`NoProbe`] (what the product API passes)
-//! they compile to nothing. The firmware's measuring harness
-//! ([`crate::frames`]) passes probes that read a cycle counter.
+//! they compile to nothing. The project's measuring harness (the
+//! `fpt-frames` crate, shared by the firmware and `fpt frames`) passes
+//! probes that read a cycle counter, through
+//! [`TreeRenderer::render_probed`] and
+//! [`TreeRenderer::render_banded_probed`].
 
-use crate::reader::PolygonRef;
+use super::{cached, check_capacities, BandBuffer, Frame, RenderError, TreeRenderer};
+use crate::effects::Compiled;
+use crate::raster::{Framebuffer, PixelFormat, Precision, RenderStats, SpanSink};
+use crate::reader::{PolygonRef, Tree};
 
 /// The phases of a frame's cost.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,3 +76,58 @@ pub trait Probe {
 pub struct NoProbe;
 
 impl Probe for NoProbe {}
+
+impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
+    /// [`TreeRenderer::render_cached`] with `probe`'s hooks at the
+    /// boundaries of the phases of the frame ([`Probe`]: walk, transform,
+    /// fill; the measuring harness's cycle counters). The caller starts
+    /// the probe before and stops it after; with [`NoProbe`] this is
+    /// `render_cached`.
+    pub fn render_probed<const N: usize, K: SpanSink, Pr: Probe>(
+        &mut self,
+        tree: &Tree<'_>,
+        frame: &Frame,
+        memory: &mut [u32],
+        sink: &mut K,
+        probe: &Pr,
+    ) -> Result<RenderStats, RenderError> {
+        check_capacities::<N, V>(tree)?;
+        Ok(cached::draw_direct::<P, E, K, Pr, N, V>(
+            tree,
+            frame,
+            &mut self.renderer,
+            &mut self.scratch,
+            self.ids,
+            memory,
+            sink,
+            probe,
+        )?)
+    }
+
+    /// [`TreeRenderer::render_banded_in`] with `probe`'s hooks (see
+    /// [`TreeRenderer::render_probed`]; the probe is stopped while `emit`
+    /// runs and started again after it, and left stopped on an error).
+    /// `emit` returns `false` to end the frame there.
+    pub fn render_banded_probed<const N: usize, F: PixelFormat, Pr: Probe>(
+        &mut self,
+        tree: &Tree<'_>,
+        frame: &Frame,
+        band: BandBuffer<'_, F>,
+        memory: &mut [u32],
+        probe: &Pr,
+        emit: impl FnMut(i32, &Framebuffer<'_, F>) -> bool,
+    ) -> Result<RenderStats, RenderError> {
+        check_capacities::<N, V>(tree)?;
+        cached::draw_bands::<P, E, F, Pr, N, V>(
+            tree,
+            frame,
+            &mut self.renderer,
+            &mut self.scratch,
+            self.ids,
+            memory,
+            band,
+            probe,
+            emit,
+        )
+    }
+}

@@ -52,7 +52,7 @@ fn ids<P: Precision>(t: &Tree<'_>, cam: &Camera, which: FaceIds) -> Vec<u32> {
         panic!("renderer")
     };
     r.ids = which;
-    if let Err(e) = r.render::<_, 8>(t, &Frame::new(t, cam), &mut sink) {
+    if let Err(e) = r.render::<8, _>(t, &Frame::new(t, cam), &mut sink) {
         panic!("{e:?}");
     }
     buf
@@ -215,7 +215,7 @@ fn open_models_light_the_side_turned_to_the_viewer() {
         Ok(f) => f,
         Err(e) => panic!("{e:?}"),
     };
-    let stats = match r.render::<_, 8>(&t, &Frame::new(&t, &below), &mut fb) {
+    let stats = match r.render::<8, _>(&t, &Frame::new(&t, &below), &mut fb) {
         Ok(s) => s,
         Err(e) => panic!("{e:?}"),
     };
@@ -240,7 +240,7 @@ fn bands_put_together_are_the_full_frame() {
             Ok(f) => f,
             Err(e) => panic!("{e:?}"),
         };
-        if let Err(e) = r.render::<_, 8>(&t, &Frame::new(&t, &cam), &mut fb) {
+        if let Err(e) = r.render::<8, _>(&t, &Frame::new(&t, &cam), &mut fb) {
             panic!("{e:?}");
         }
         for rows in [1u32, 7, 30, 64] {
@@ -251,7 +251,7 @@ fn bands_put_together_are_the_full_frame() {
                 rows,
                 background: Rgb888::new(0, 0, 0),
             };
-            let res = r.render_banded::<_, 8>(&t, &Frame::new(&t, &cam), band, |y0, fb| {
+            let res = r.render_banded::<8, _>(&t, &Frame::new(&t, &cam), band, |y0, fb| {
                 let start = 3 * y0 as usize * w as usize;
                 let d = fb.data();
                 banded[start..start + d.len()].copy_from_slice(d);
@@ -277,7 +277,7 @@ fn band_buffer_too_small_is_an_error_not_a_panic() {
         rows: 4,
         background: Rgb565::new(0, 0, 0),
     };
-    let res = r.render_banded::<_, 8>(&t, &Frame::new(&t, &cam), band, |_, _| {});
+    let res = r.render_banded::<8, _>(&t, &Frame::new(&t, &cam), band, |_, _| {});
     assert_eq!(
         res,
         Err(RenderError::Band(FramebufferError::BufferTooSmall))
@@ -318,7 +318,7 @@ fn a_tree_deeper_than_the_stack_is_refused() {
         Ok(s) => s,
         Err(e) => panic!("{e:?}"),
     };
-    let res = r.render::<_, 1>(&t, &Frame::new(&t, &cam), &mut sink);
+    let res = r.render::<1, _>(&t, &Frame::new(&t, &cam), &mut sink);
     assert_eq!(
         res,
         Err(RenderError::Capacity(CapacityError::WalkDepth {
@@ -352,7 +352,7 @@ fn too_small_a_vertex_capacity_is_refused_before_drawing() {
         Ok(s) => s,
         Err(e) => panic!("{e:?}"),
     };
-    let res = r.render::<_, 16>(&t, &Frame::new(&t, &cam), &mut sink);
+    let res = r.render::<16, _>(&t, &Frame::new(&t, &cam), &mut sink);
     let err = RenderError::Capacity(CapacityError::Vertices { need: 9, have: 8 });
     assert_eq!(res, Err(err));
     assert_eq!(
@@ -383,7 +383,7 @@ fn relative_and_f64_frames_give_the_same_picture() {
             let Some(mut r) = TreeRenderer::<DefaultPrecision, 16>::new(32, 32) else {
                 panic!("renderer")
             };
-            if let Err(e) = r.render::<_, 8>(&t, f, &mut sink) {
+            if let Err(e) = r.render::<8, _>(&t, f, &mut sink) {
                 panic!("{e:?}");
             }
             buf

@@ -138,7 +138,7 @@ pub fn paint(
 ) -> RenderStats {
     let mut fb = Rgb565Framebuffer::new(buf, w, h).expect("framebuffer size");
     fb.fill_all(BACKGROUND);
-    tr.render::<_, STACK>(tree, frame, &mut fb)
+    tr.render::<STACK, _>(tree, frame, &mut fb)
         .expect("walk stack")
 }
 
@@ -175,7 +175,7 @@ pub fn painted_pixels(b: &Bench, w: u32, h: u32) -> u64 {
         inner: fb,
         pixels: 0,
     };
-    tr.render::<_, STACK>(&tree, &frame, &mut sink)
+    tr.render::<STACK, _>(&tree, &frame, &mut sink)
         .expect("walk stack");
     sink.pixels
 }

@@ -17,7 +17,7 @@
 //!   Cortex-M4 instructions per frame of the benchmark scene over the
 //!   firmware's views, read from `--mcu FILE`: the output of the
 //!   firmware's `accuracy` binary (`cd firmware && cargo run --release
-//!   --bin accuracy > FILE`, see [`fpt_nostd::frames::accuracy`]), whose
+//!   --bin accuracy > FILE`, see [`fpt_frames::accuracy`]), whose
 //!   checksums the firmware has already checked against the host's; empty
 //!   without `--mcu`; `m0_instr` the same for the Cortex-M0's code
 //!   (Thumb-1, no FPU, no divide), from `--m0 FILE`: the same binary
@@ -200,20 +200,19 @@ pub fn mcu_means(text: &str) -> Result<Vec<(String, u64)>, CliError> {
         let costs: Vec<u64> = text
             .lines()
             .filter(|l| {
-                fpt_nostd::frames::accuracy::AccuracyLine::parse(l)
-                    .is_some_and(|p| p.config == c.name)
+                fpt_frames::accuracy::AccuracyLine::parse(l).is_some_and(|p| p.config == c.name)
             })
             .map(|l| {
-                fpt_nostd::frames::accuracy::AccuracyLine::instr(l)
+                fpt_frames::accuracy::AccuracyLine::instr(l)
                     .ok_or_else(|| cli_err!("--mcu: no instr= in '{l}'"))
             })
             .collect::<Result<_, _>>()?;
-        if costs.len() != fpt_nostd::frames::VIEWS.len() {
+        if costs.len() != fpt_frames::VIEWS.len() {
             return Err(cli_err!(
                 "--mcu: {} lines for {}, expected one per view ({})",
                 costs.len(),
                 c.name,
-                fpt_nostd::frames::VIEWS.len()
+                fpt_frames::VIEWS.len()
             ));
         }
         let n = costs.len() as u64;

@@ -2,7 +2,7 @@
 //! what less costs.
 //!
 //! For each tree, every frame of the standard orbit
-//! ([`fpt_nostd::frames::orbit`]) is drawn in bands through the same
+//! ([`fpt_frames::orbit`]) is drawn in bands through the same
 //! `no_std` code the firmware runs, first with all the memory a frame
 //! could want ([`fpt_nostd::render::memory_words`]), which gives the words
 //! a frame really uses (vertex cache plus the display list's peak), then
@@ -21,7 +21,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use fpt_nostd::frames::orbit::{band_words, frame_crc};
+use fpt_frames::orbit::{band_words, frame_crc};
 use fpt_nostd::raster::FloatLibm;
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{memory_words, TreeRenderer};
@@ -83,7 +83,7 @@ pub fn run(a: &BenchMemoryArgs) -> CliResult {
         let mut used = Vec::new();
         for i in 0..n {
             let (crc, s) =
-                frame_crc::<_, VERTS, DEPTH>(&mut r, &tree, (i, n), (&mut buf, &mut all), a.band)
+                frame_crc::<_, DEPTH, VERTS>(&mut r, &tree, (i, n), (&mut buf, &mut all), a.band)
                     .map_err(|e| cli_err!("{name} frame {i}: {e}"))?;
             crcs.push(crc);
             used.push(s.memory_used as usize);
@@ -103,7 +103,7 @@ pub fn run(a: &BenchMemoryArgs) -> CliResult {
             let mut memory = vec![0u32; words];
             let mut walks = Vec::new();
             for (i, &want) in crcs.iter().enumerate() {
-                let (crc, s) = frame_crc::<_, VERTS, DEPTH>(
+                let (crc, s) = frame_crc::<_, DEPTH, VERTS>(
                     &mut r,
                     &tree,
                     (i as u32, n),

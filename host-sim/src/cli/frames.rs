@@ -1,5 +1,5 @@
 //! `fpt frames`: the firmware's frames, drawn on the host by the same no_std
-//! code ([`fpt_nostd::frames`]), one line per frame:
+//! code ([`fpt_frames`]), one line per frame:
 //! `frame scene=NAME view=K crc=XXXXXXXX`.
 //!
 //! The trees are built here from the procedural scenes
@@ -21,14 +21,14 @@
 //! buffer; the two checksums must agree (the firmware's two features rely
 //! on it), otherwise the command fails.
 //!
-//! The accuracy configurations ([`fpt_nostd::frames::accuracy`], the
+//! The accuracy configurations ([`fpt_frames::accuracy`], the
 //! firmware's feature `accuracy`) draw the benchmark scene from trees in
 //! every vertex encoding: `--export` also writes
 //! `bench_city.q16.fpt`, `bench_city.q32.fpt` and their lines,
 //! `accuracy.txt`; `fpt frames --accuracy` prints those lines.
 //!
 //! `fpt frames --work` prints what each frame is made of instead
-//! ([`fpt_nostd::frames::work`]: polygons handed out by the walk, their
+//! ([`fpt_frames::work`]: polygons handed out by the walk, their
 //! vertices, polygons drawn, spans, pixels painted), the counts that the
 //! firmware's instruction counts divide into.
 
@@ -36,15 +36,13 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use fpt_nostd::format::VertexFormat;
-use fpt_nostd::frames::accuracy::{
-    render_config, vertex_format, AccuracyLine, ACCURACY_SCENE, CONFIGS,
-};
-use fpt_nostd::frames::work::frame_work;
-use fpt_nostd::frames::{
+use fpt_frames::accuracy::{render_config, vertex_format, AccuracyLine, ACCURACY_SCENE, CONFIGS};
+use fpt_frames::work::frame_work;
+use fpt_frames::{
     render_banded, render_full, FrameLine, FrameRenderer, NoProbe, BAND_WORDS, FRAME_WORDS, HEIGHT,
     SCENES, VIEWS, WIDTH,
 };
+use fpt_nostd::format::VertexFormat;
 use fpt_nostd::reader::Tree;
 
 use super::{CliError, CliResult};
@@ -224,7 +222,7 @@ pub fn frame_lines(trees: &[(String, Vec<u8>)]) -> Result<Vec<String>, CliError>
     Ok(lines)
 }
 
-/// The work lines of every frame of `trees` ([`fpt_nostd::frames::work`]),
+/// The work lines of every frame of `trees` ([`fpt_frames::work`]),
 /// in the order of [`frame_lines`].
 pub fn work_lines(trees: &[(String, Vec<u8>)]) -> Result<Vec<String>, CliError> {
     let mut r = FrameRenderer::new(WIDTH, HEIGHT).ok_or_else(|| cli_err!("renderer size"))?;

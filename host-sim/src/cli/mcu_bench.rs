@@ -1,5 +1,5 @@
 //! `fpt mcu-bench TREE`: draws a tree over the standard orbit
-//! ([`fpt_nostd::frames::orbit`]) on an emulated microcontroller and prints
+//! ([`fpt_frames::orbit`]) on an emulated microcontroller and prints
 //! one JSON object with its cost, its memory and whether every frame's
 //! checksum equals the host's.
 //!
@@ -41,7 +41,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use clap::Args;
-use fpt_nostd::frames::orbit::{
+use fpt_frames::orbit::{
     band_rows, band_words, frame_crc, OrbitLine, OrbitPrecision, PrecisionVisitor, MAX_VERTS,
 };
 use fpt_nostd::raster::Precision;
@@ -80,7 +80,7 @@ pub struct McuBenchArgs {
     #[arg(long, default_value = "f32-libm", value_parser = OrbitPrecision::NAMES)]
     pub precision: String,
     /// Frames of the orbit.
-    #[arg(long, default_value_t = fpt_nostd::frames::orbit::DEFAULT_FRAMES,
+    #[arg(long, default_value_t = fpt_frames::orbit::DEFAULT_FRAMES,
           allow_negative_numbers = true,
           value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub frames: u32,
@@ -243,7 +243,7 @@ impl PrecisionVisitor for HostCrcs<'_> {
         let mut used = 0;
         let crcs = (0..self.frames)
             .map(|i| {
-                frame_crc::<P, MAX_VERTS, HOST_DEPTH>(
+                frame_crc::<P, HOST_DEPTH, MAX_VERTS>(
                     &mut r,
                     self.tree,
                     (i, self.frames),

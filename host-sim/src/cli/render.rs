@@ -374,7 +374,7 @@ fn render_with<P: Precision>(tree: &Tree<'_>, job: &Job) -> Result<Rendered, Cli
         let mut sink =
             IdBuffer::new(&mut ids, job.w, job.h).map_err(|e| cli_err!("id buffer: {e}"))?;
         tr.ids = FaceIds::Source;
-        tr.render::<_, WALK_STACK>(tree, &frame, &mut sink)?;
+        tr.render::<WALK_STACK, _>(tree, &frame, &mut sink)?;
     }
     Ok(Rendered {
         image,
@@ -401,7 +401,7 @@ where
             let mut fb = Framebuffer::<F>::new(&mut out, job.w, job.h)
                 .map_err(|e| cli_err!("framebuffer: {e}"))?;
             fb.fill_all(background);
-            tr.render::<_, WALK_STACK>(tree, frame, &mut fb)?
+            tr.render::<WALK_STACK, _>(tree, frame, &mut fb)?
         }
         Some(rows) => {
             let rows = rows.clamp(1, job.h);
@@ -412,7 +412,7 @@ where
                 rows,
                 background,
             };
-            tr.render_banded::<F, WALK_STACK>(tree, frame, band, |y0, fb| {
+            tr.render_banded::<WALK_STACK, F>(tree, frame, band, |y0, fb| {
                 let d = fb.data();
                 let at = y0 as usize * stride;
                 if let Some(dst) = out.get_mut(at..at + d.len()) {
@@ -459,7 +459,7 @@ where
         for y in y0..y0 + n as i32 {
             fpt_nostd::raster::SpanSink::span(&mut sink, y, 0, job.w as i32, bg);
         }
-        let s = tr.render::<_, WALK_STACK>(tree, frame, &mut sink)?;
+        let s = tr.render::<WALK_STACK, _>(tree, frame, &mut sink)?;
         total += s;
         let d = fb.data();
         let at = y0 as usize * stride;

@@ -74,7 +74,7 @@ pub fn render_polygon_ids<P: Precision>(
     let mut sink = IdBuffer::new(&mut ids, w as u32, h as u32).expect("id buffer");
     let mut tr = Box::new(TreeRenderer::<P, VERTS>::new(w as u32, h as u32).expect("renderer"));
     tr.ids = FaceIds::Polygon;
-    tr.render::<_, STACK>(tree, frame, &mut sink).expect("walk");
+    tr.render::<STACK, _>(tree, frame, &mut sink).expect("walk");
     ids
 }
 
@@ -84,7 +84,7 @@ pub fn render_ids<P: Precision>(tree: &Tree<'_>, frame: &Frame, w: usize, h: usi
     let mut sink = IdBuffer::new(&mut ids, w as u32, h as u32).expect("id buffer");
     let mut tr = Box::new(TreeRenderer::<P, VERTS>::new(w as u32, h as u32).expect("renderer"));
     tr.ids = FaceIds::Source;
-    tr.render::<_, STACK>(tree, frame, &mut sink).expect("walk");
+    tr.render::<STACK, _>(tree, frame, &mut sink).expect("walk");
     ids
 }
 

@@ -436,7 +436,7 @@ pub fn render_raw_q16(tree: &Tree<'_>, job: &Job) -> Result<Vec<u32>, CliError> 
     ) -> Result<(), CliError> {
         // The integer path draws a q16 tree's vertices as stored
         // (`VertexPath::RAW_Q16_FRAC`).
-        draw_frame::<RawQ16, AllEffects, _, RAW_STACK, RAW_VERTS>(
+        draw_frame::<RawQ16, RAW_STACK, RAW_VERTS, AllEffects, _>(
             tree,
             frame,
             &mut tr.renderer,

@@ -171,15 +171,15 @@ fn more_sub_pixel_bits_give_fewer_wrong_pixels_on_the_house() {
 #[test]
 fn the_firmware_measures_exactly_the_csv_rows() {
     let names: Vec<&str> = CONFIGS.iter().map(|c| c.name).collect();
-    assert_eq!(names, fpt_nostd::frames::accuracy::CONFIGS.to_vec());
+    assert_eq!(names, fpt_frames::accuracy::CONFIGS.to_vec());
     for c in &CONFIGS {
-        assert_eq!(fpt_nostd::frames::accuracy::vertex_format(c.name), c.vertex);
+        assert_eq!(fpt_frames::accuracy::vertex_format(c.name), c.vertex);
     }
 }
 
 #[test]
 fn mcu_means_average_the_views_and_need_every_row() {
-    let views = fpt_nostd::frames::VIEWS.len() as u64;
+    let views = fpt_frames::VIEWS.len() as u64;
     let mut text = String::from("calib whatever\n");
     for (i, c) in CONFIGS.iter().enumerate() {
         for k in 0..views {

@@ -1,7 +1,7 @@
 //! The price of each effect, measured the same way on the firmware and
 //! checked on the host: the benchmark scene drawn with an effect on, with
 //! it off, and through a pipeline compiled without it
-//! ([`crate::effects`]).
+//! ([`fpt_nostd::effects`]).
 //!
 //! * **Scene and view**: [`EFFECT_SCENE`] from view [`EFFECT_VIEW`] of
 //!   [`super::VIEWS`], with the frame set's precision, light and
@@ -12,7 +12,7 @@
 //!   the same flags, so they must draw the same pixels; the firmware checks
 //!   their checksums agree.
 //! * **Target**: `dither` is measured on a 240×240 `BinaryColor`
-//!   framebuffer (ordered dithering through [`crate::raster::Dither`] when
+//!   framebuffer (ordered dithering through [`fpt_nostd::raster::Dither`] when
 //!   on, the plain threshold when off); every other effect on the frame
 //!   set's RGB565 framebuffer. The checksum is the CRC-32 of the
 //!   framebuffer's storage (`u16` little-endian, or the packed bytes).
@@ -21,12 +21,12 @@ use embedded_graphics::pixelcolor::{BinaryColor, Rgb888};
 
 use super::{clear, FrameError, FramePrecision, PixelCrc, Probe, ViewSpec, AMBIENT, DIFFUSE};
 use super::{Phase, HEIGHT, MAX_VERTS, WALK_DEPTH, WIDTH};
-use crate::effects::{Compiled, Effects};
-use crate::raster::{
+use fpt_nostd::effects::{Compiled, Effects};
+use fpt_nostd::raster::{
     BinaryFramebuffer, DepthCue, Dither, Light, Renderer, Rgb565Framebuffer, Scratch, SpanSink,
 };
-use crate::reader::Tree;
-use crate::render::{draw_frame, FaceIds, Frame};
+use fpt_nostd::reader::Tree;
+use fpt_nostd::render::{draw_frame, FaceIds, Frame};
 
 /// The scene the effects are measured on.
 pub const EFFECT_SCENE: &str = "bench_city";
@@ -57,7 +57,7 @@ pub fn on_off(base: Effects, e: Effects) -> (Effects, Effects) {
 }
 
 /// The bits of a pipeline with every effect but `e`: the `BITS` of
-/// [`crate::effects::Pipeline`] for the `bare` run.
+/// [`fpt_nostd::effects::Pipeline`] for the `bare` run.
 pub const fn bare_pipeline(e: Effects) -> u32 {
     Effects::ALL.without(e).bits()
 }
@@ -130,7 +130,7 @@ fn draw<E: Compiled, K: SpanSink>(
     frame: &Frame,
     sink: &mut K,
 ) -> Result<(), FrameError> {
-    draw_frame::<FramePrecision, E, K, WALK_DEPTH, MAX_VERTS>(
+    draw_frame::<FramePrecision, WALK_DEPTH, MAX_VERTS, E, K>(
         tree,
         frame,
         renderer,

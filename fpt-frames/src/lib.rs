@@ -1,6 +1,11 @@
-//! The firmware's frame set: the same frames, drawn by the same code, on the
-//! Cortex-M4 (`firmware/`) and on the host (`fpt frames`), so that their
-//! checksums can be compared bit for bit.
+//! `fpt-frames`: the project's measuring harness, not part of the
+//! renderer's API. The firmware's frame set: the same frames, drawn by the
+//! same code, on the Cortex-M4 and Cortex-M0 (`firmware/`) and on the host
+//! (`fpt frames`, `fpt mcu-bench`), so that their checksums can be
+//! compared bit for bit, and the probes that measure the phases of a
+//! frame. `#![no_std]`, no `alloc`, like the renderer it measures
+//! (`fpt-nostd`); a product needs none of it (see `fpt-nostd`'s
+//! quickstart and `firmware/examples/`).
 //!
 //! # Contract
 //!
@@ -15,9 +20,9 @@
 //!   the frame's key light. [`render_full`] draws into a caller-supplied
 //!   full framebuffer; [`render_banded`] draws the same picture through a
 //!   [`BAND_ROWS`]-row band buffer, with the working memory the caller
-//!   gives (one walk a frame when it suffices; `crate::render::cached`).
+//!   gives (one walk a frame when it suffices; `fpt_nostd::render::cached`).
 //! * **Checksum.** [`PixelCrc`]: the CRC-32 (IEEE 802.3 / zlib, the same as
-//!   the tree files' [`crate::format::crc32`]) of the pixels' RGB565 storage
+//!   the tree files' [`fpt_nostd::format::crc32`]) of the pixels' RGB565 storage
 //!   values as **little-endian** `u16`, row-major from the top-left pixel.
 //!   The banded render feeds the bands to it top to bottom, so its checksum
 //!   equals the full frame's.
@@ -34,26 +39,27 @@
 //! phases of a frame ([`Phase`]: tree walk, transform, fill). Every hook has
 //! an empty default body and the probe is a generic parameter, so with
 //! [`NoProbe`] they compile to nothing. The draw loops are the product's
-//! own (`crate::render::cached`, the loops of [`crate::render::draw_frame`]
-//! and [`crate::render::TreeRenderer::render_banded_in`]), which call the
+//! own ([`TreeRenderer::render_probed`] and
+//! [`TreeRenderer::render_banded_probed`], the loops of
+//! [`fpt_nostd::render::TreeRenderer::render_cached`] and
+//! [`fpt_nostd::render::TreeRenderer::render_banded_in`]), which call the
 //! hooks: the fill phase starts when a prepared polygon (transformed,
 //! clipped, projected, shaded) is handed to the scan conversion.
+#![no_std]
+#![deny(unsafe_code, missing_docs)]
 
 use core::fmt;
 
 use embedded_graphics::pixelcolor::Rgb565;
 
-use crate::order::OrderError;
-use crate::raster::{
+use fpt_nostd::order::OrderError;
+use fpt_nostd::raster::{
     FloatLibm, FramebufferError, Libm, Light, Mat4, Orbit, RenderStats, Rgb565Format,
     Rgb565Framebuffer, SpanSink, Up,
 };
-use crate::reader::Tree;
-use crate::render::cached::{draw_bands, draw_direct};
-use crate::render::{
-    check_capacities, BandBuffer, CapacityError, Frame, RenderError, TreeRenderer,
-};
-pub use crate::render::{NoProbe, Phase, Probe};
+use fpt_nostd::reader::Tree;
+use fpt_nostd::render::{BandBuffer, CapacityError, Frame, RenderError, TreeRenderer};
+pub use fpt_nostd::render::{NoProbe, Phase, Probe};
 
 /// Frame width in pixels.
 pub const WIDTH: u32 = 240;
@@ -71,13 +77,13 @@ pub const FRAME_WORDS: usize = (WIDTH * HEIGHT) as usize;
 /// `u16` words of a band buffer.
 pub const BAND_WORDS: usize = (WIDTH * BAND_ROWS) as usize;
 /// Vertex capacity of the per-polygon scratch: what the scenes' trees
-/// need (`fpt info`, [`crate::reader::Capacities::vertices`]): house 103,
+/// need (`fpt info`, [`fpt_nostd::reader::Capacities::vertices`]): house 103,
 /// vise 61, bench_city 48; on the Cortex-M0, which draws only the vise,
 /// 61. A tree that needs more is refused
-/// ([`crate::render::CapacityError`]).
+/// ([`fpt_nostd::render::CapacityError`]).
 pub const MAX_VERTS: usize = if SMALL_RAM { 61 } else { 103 };
 /// Stack frames of the tree walk: the scenes' trees are at most 37 deep
-/// (a deeper tree is refused with [`crate::render::CapacityError`]).
+/// (a deeper tree is refused with [`fpt_nostd::render::CapacityError`]).
 pub const WALK_DEPTH: usize = 40;
 /// The arithmetic of the frames: the `f32` vertex path with libm, 4
 /// sub-pixel bits. On a Cortex-M4F the FPU makes it about 5× cheaper in
@@ -282,7 +288,7 @@ impl PixelCrc {
 
 /// Draws view `view` of `tree` into `buf` (at least [`FRAME_WORDS`]
 /// words, a `WIDTH × HEIGHT` RGB565 image on return) and checksums it.
-/// `memory` is the vertex cache ([`crate::render::memory_words`]; any
+/// `memory` is the vertex cache ([`fpt_nostd::render::memory_words`]; any
 /// length, empty included: the picture is the same).
 pub fn render_full<Pr: Probe>(
     r: &mut FrameRenderer,
@@ -311,7 +317,7 @@ pub fn render_full<Pr: Probe>(
 /// Draws the same frame as [`render_full`] through `band` (at least
 /// [`BAND_WORDS`] words) one [`BAND_ROWS`]-row band at a time, with
 /// `memory` as the frame's working memory (vertex cache and display list,
-/// [`crate::render::memory_words`]; any length: the picture is the same),
+/// [`fpt_nostd::render::memory_words`]; any length: the picture is the same),
 /// checksumming each band as it is finished (outside the probe's
 /// start/stop).
 pub fn render_banded<Pr: Probe>(
@@ -322,7 +328,7 @@ pub fn render_banded<Pr: Probe>(
     memory: &mut [u32],
     probe: &Pr,
 ) -> Result<Rendered, FrameError> {
-    check_capacities::<WALK_DEPTH, MAX_VERTS>(tree)?;
+    fpt_nostd::render::check_capacities::<WALK_DEPTH, MAX_VERTS>(tree)?;
     probe.start(Phase::Xform);
     let frame = setup(r, tree, view);
     let mut crc = PixelCrc::new();
@@ -331,20 +337,11 @@ pub fn render_banded<Pr: Probe>(
         rows: BAND_ROWS,
         background: BACKGROUND,
     };
-    let stats = draw_bands::<_, _, _, _, WALK_DEPTH, MAX_VERTS>(
-        tree,
-        &frame,
-        &mut r.renderer,
-        &mut r.scratch,
-        r.ids,
-        memory,
-        band,
-        probe,
-        |_, fb| {
+    let stats =
+        r.render_banded_probed::<WALK_DEPTH, _, _>(tree, &frame, band, memory, probe, |_, fb| {
             crc.update(fb.data());
             true
-        },
-    )?;
+        })?;
     Ok(Rendered {
         crc: crc.finish(),
         stats,
@@ -368,8 +365,9 @@ fn setup(r: &mut FrameRenderer, tree: &Tree<'_>, view: &ViewSpec) -> Frame {
     frame
 }
 
-/// The full frame's draw loop ([`crate::render::TreeRenderer::render_cached`]'s)
-/// with the probe's hooks, into `sink`.
+/// The full frame's draw loop ([`TreeRenderer::render_probed`]: the one
+/// of [`TreeRenderer::render_cached`]) with the probe's hooks, into
+/// `sink`.
 ///
 /// Not inlined: inlining it into its callers let the optimiser duplicate
 /// the whole pipeline (+24 KiB of `.text` on the Cortex-M4) for no
@@ -383,17 +381,7 @@ fn draw_tree<K: SpanSink, Pr: Probe>(
     sink: &mut K,
     probe: &Pr,
 ) -> Result<RenderStats, FrameError> {
-    check_capacities::<WALK_DEPTH, MAX_VERTS>(tree)?;
-    Ok(draw_direct::<_, _, _, _, WALK_DEPTH, MAX_VERTS>(
-        tree,
-        frame,
-        &mut r.renderer,
-        &mut r.scratch,
-        r.ids,
-        memory,
-        sink,
-        probe,
-    )?)
+    Ok(r.render_probed::<WALK_DEPTH, _, _>(tree, frame, memory, sink, probe)?)
 }
 
 /// The line both sides print for a frame: `frame scene=NAME view=K

@@ -3,11 +3,11 @@
 //! firmware's feature `accuracy` and checked against the host bit for bit.
 //!
 //! * **Configurations**: [`CONFIGS`], the rows of `fpt bench-accuracy`,
-//!   each one arithmetic ([`crate::raster::Precision`]) and, for
+//!   each one arithmetic ([`fpt_nostd::raster::Precision`]) and, for
 //!   `vertex-q16`/`vertex-q32`, the benchmark tree stored in that encoding
 //!   ([`vertex_format`]). `trig-*` build the orbit camera with the
 //!   configuration's own trigonometry; the others with `libm`. `int` is
-//!   the integer vertex path ([`crate::raster::int_path`]) on the `f32`
+//!   the integer vertex path ([`fpt_nostd::raster::int_path`]) on the `f32`
 //!   tree; `int-q16` the same path on the q16 tree with its vertices
 //!   drawn as stored (`VertexPath::RAW_Q16_FRAC`: no decoding to `f32`), the
 //!   configuration of a core without an FPU.
@@ -23,14 +23,14 @@ use core::fmt;
 
 use super::{clear, FrameError, PixelCrc, Probe, ViewSpec, AMBIENT, DIFFUSE, Z_UP};
 use super::{Phase, HEIGHT, MAX_VERTS, WALK_DEPTH, WIDTH};
-use crate::effects::AllEffects;
-use crate::format::VertexFormat;
-use crate::raster::{
+use fpt_nostd::effects::AllEffects;
+use fpt_nostd::format::VertexFormat;
+use fpt_nostd::raster::{
     Camera, FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, FramebufferError,
     IntPrecision, Libm, Light, Mat4, MathFns, Precision, Renderer, Rgb565Framebuffer, Scratch,
 };
-use crate::reader::Tree;
-use crate::render::{draw_frame, FaceIds, Frame};
+use fpt_nostd::reader::Tree;
+use fpt_nostd::render::{draw_frame, FaceIds, Frame};
 
 /// The scene of the measurement.
 pub const ACCURACY_SCENE: &str = "bench_city";
@@ -132,7 +132,7 @@ fn render_with<P: Precision, T: MathFns, Pr: Probe>(
     clear(&mut fb);
     // A q16 tree with the integer path is drawn as stored (see
     // `VertexPath::RAW_Q16_FRAC`).
-    let drawn = draw_frame::<P, AllEffects, _, WALK_DEPTH, MAX_VERTS>(
+    let drawn = draw_frame::<P, WALK_DEPTH, MAX_VERTS, AllEffects, _>(
         tree,
         &frame,
         &mut renderer,
@@ -210,7 +210,7 @@ mod tests {
     #[test]
     fn every_configuration_is_known_and_others_are_not() {
         let mut buf = [0u16; 4];
-        let bytes = crate::test_util::Raw::empty().bytes();
+        let bytes = fpt_nostd::test_util::Raw::empty().bytes();
         let tree = Tree::from_bytes(&bytes).unwrap_or_else(|e| panic!("{e:?}"));
         let view = &super::super::VIEWS[0];
         for c in CONFIGS {

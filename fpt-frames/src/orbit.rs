@@ -11,7 +11,7 @@
 //! * the eye at [`DISTANCE`] (2.1) bounding radii from the bounding-sphere
 //!   centre, looking at that centre, pitch [`PITCH_DEGREES`] (25°), yaw
 //!   `360° · i / n`, the model's y axis up (no rotation of the model);
-//! * lit by [`crate::render::Frame::key_light`] (ambient [`AMBIENT`], diffuse
+//! * lit by [`fpt_nostd::render::Frame::key_light`] (ambient [`AMBIENT`], diffuse
 //!   [`DIFFUSE`]); drawn with the tree's declared effects;
 //! * background [`BACKGROUND`], RGB565 (2, 4, 6);
 //! * checksummed as [`super::PixelCrc`] (the firmware frames' checksum:
@@ -31,13 +31,13 @@ use core::fmt;
 use embedded_graphics::pixelcolor::Rgb565;
 
 use super::PixelCrc;
-use crate::raster::framebuffer::Rgb565Format;
-use crate::raster::{
+use fpt_nostd::raster::framebuffer::Rgb565Format;
+use fpt_nostd::raster::{
     FixedPrecision, FloatLibm, Framebuffer, IntPrecision, Libm, Light, Orbit, Precision,
     RenderStats,
 };
-use crate::reader::Tree;
-use crate::render::{BandBuffer, Frame, RenderError, TreeRenderer};
+use fpt_nostd::reader::Tree;
+use fpt_nostd::render::{BandBuffer, Frame, RenderError, TreeRenderer};
 
 /// Vertical field of view, degrees.
 pub const FOV_DEGREES: f32 = 60.0;
@@ -55,8 +55,8 @@ pub const AMBIENT: f32 = Light::AMBIENT;
 pub const DIFFUSE: f32 = Light::DIFFUSE;
 /// Vertex capacity of the host's scratch for the orbit: more than the
 /// trees of the project's scenes and shared models need (house 103); a
-/// tree that needs more is refused ([`crate::render::CapacityError`]). The
-/// firmware takes the tree's own ([`crate::reader::Capacities`]).
+/// tree that needs more is refused ([`fpt_nostd::render::CapacityError`]). The
+/// firmware takes the tree's own ([`fpt_nostd::reader::Capacities`]).
 pub const MAX_VERTS: usize = 256;
 
 /// The orbit of frame `i` of `n` (`n = 0` is taken as 1), in coordinates
@@ -176,12 +176,12 @@ pub fn band_words(width: u32, height: u32, band: u32) -> usize {
 /// display's) through `buf` (at least [`band_words`] words), `band` rows at
 /// a time (0: full frame), handing every finished band's pixels to `emit`
 /// top to bottom. `memory` is the frame's working memory (vertex cache and,
-/// for bands, display list: [`crate::render::memory_words`]; any length,
+/// for bands, display list: [`fpt_nostd::render::memory_words`]; any length,
 /// the picture is the same). The walk's stack holds `N` frames (at least
 /// the tree's `max_depth`). Returns the renderer's counters.
 ///
 /// This is the one place that calls the renderer for the orbit frames.
-pub fn draw_band_frame<P: Precision, const V: usize, const N: usize>(
+pub fn draw_band_frame<P: Precision, const N: usize, const V: usize>(
     r: &mut TreeRenderer<P, V>,
     tree: &Tree<'_>,
     (i, n): (u32, u32),
@@ -200,7 +200,7 @@ pub fn draw_band_frame<P: Precision, const V: usize, const N: usize>(
         let mut fb =
             Framebuffer::<Rgb565Format>::new(buf, width, height).map_err(RenderError::Band)?;
         fb.fill_all(BACKGROUND);
-        let stats = r.render_cached::<_, N>(tree, &frame, memory, &mut fb)?;
+        let stats = r.render_cached::<N, _>(tree, &frame, memory, &mut fb)?;
         emit(fb.data());
         return Ok(stats);
     }
@@ -209,12 +209,12 @@ pub fn draw_band_frame<P: Precision, const V: usize, const N: usize>(
         rows,
         background: BACKGROUND,
     };
-    r.render_banded_in::<Rgb565Format, N>(tree, &frame, band, memory, |_, fb| emit(fb.data()))
+    r.render_banded_in::<N, Rgb565Format>(tree, &frame, band, memory, |_, fb| emit(fb.data()))
 }
 
 /// The checksum of frame `i` of `n` and the renderer's counters (see
 /// [`draw_band_frame`]).
-pub fn frame_crc<P: Precision, const V: usize, const N: usize>(
+pub fn frame_crc<P: Precision, const N: usize, const V: usize>(
     r: &mut TreeRenderer<P, V>,
     tree: &Tree<'_>,
     (i, n): (u32, u32),
@@ -222,7 +222,7 @@ pub fn frame_crc<P: Precision, const V: usize, const N: usize>(
     band: u32,
 ) -> Result<(u32, RenderStats), RenderError> {
     let mut crc = PixelCrc::new();
-    let stats = draw_band_frame::<P, V, N>(r, tree, (i, n), bufs, band, |px| crc.update(px))?;
+    let stats = draw_band_frame::<P, N, V>(r, tree, (i, n), bufs, band, |px| crc.update(px))?;
     Ok((crc.finish(), stats))
 }
 

@@ -10,10 +10,10 @@ use std::vec::Vec;
 use embedded_graphics::pixelcolor::IntoStorage;
 
 use super::*;
-use crate::format::{crc32, FLAG_CLOSED};
-use crate::render::draw_frame;
-use crate::render::FaceIds;
-use crate::test_util::two_floors;
+use fpt_nostd::format::{crc32, FLAG_CLOSED};
+use fpt_nostd::render::draw_frame;
+use fpt_nostd::render::FaceIds;
+use fpt_nostd::test_util::two_floors;
 
 fn tree(bytes: &[u8]) -> Tree<'_> {
     match Tree::from_bytes(bytes) {
@@ -125,7 +125,7 @@ fn full_frame_equals_draw_frame_and_bands_equal_full() {
                 Err(e) => panic!("{e:?}"),
             };
             fb.fill_all(BACKGROUND);
-            let stats = draw_frame::<_, _, _, WALK_DEPTH, MAX_VERTS>(
+            let stats = draw_frame::<_, WALK_DEPTH, MAX_VERTS, _, _>(
                 &t,
                 &frame,
                 &mut r.renderer,
@@ -143,7 +143,7 @@ fn full_frame_equals_draw_frame_and_bands_equal_full() {
 
             // Bands and a vertex cache, with any amount of memory: the same
             // picture and counters.
-            let need = crate::render::memory_words(&t);
+            let need = fpt_nostd::render::memory_words(&t);
             // Walks, memory and spans (a band boundary may cut a run) differ.
             let counts = |s: RenderStats| (s.drawn, s.invisible, s.skipped, s.clipped);
             for words in [0, 1, 5, 12, 20, need] {
@@ -234,7 +234,7 @@ fn probe_hooks_mark_every_polygon_and_nest() {
     // out.
     let q = Counting::default();
     let mut band = vec![0u16; BAND_WORDS];
-    let mut memory = vec![0u32; crate::render::memory_words(&t)];
+    let mut memory = vec![0u32; fpt_nostd::render::memory_words(&t)];
     if let Err(e) = render_banded(&mut renderer(), &t, &VIEWS[0], &mut band, &mut memory, &q) {
         panic!("{e}");
     }

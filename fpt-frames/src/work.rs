@@ -9,8 +9,8 @@ use core::fmt;
 use embedded_graphics::pixelcolor::Rgb565;
 
 use super::{draw_tree, setup, FrameError, FrameRenderer, Probe, ViewSpec, HEIGHT, WIDTH};
-use crate::raster::{Paint, SpanBounds, SpanSink};
-use crate::reader::{PolygonRef, Tree};
+use fpt_nostd::raster::{Paint, SpanBounds, SpanSink};
+use fpt_nostd::reader::{PolygonRef, Tree};
 
 /// The work of one frame ([`frame_work`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -96,8 +96,8 @@ mod tests {
     extern crate std;
     use super::super::{render_full, NoProbe, BACKGROUND, FRAME_WORDS, VIEWS};
     use super::*;
-    use crate::test_util::two_floors;
     use embedded_graphics::pixelcolor::IntoStorage;
+    use fpt_nostd::test_util::two_floors;
 
     /// The counts agree with the renderer's own counters and with the
     /// picture: two stacked squares, so the walk hands out at most two
