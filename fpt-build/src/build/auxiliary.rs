@@ -8,21 +8,33 @@
 //! cuts nothing. A switch node does not need a polygon in its plane (its
 //! `O_k` bunch is then empty): it is a separating plane like any other, and
 //! the walk treats it the same way. So when the best polygon plane would
-//! split, the builder also scores two families of planes by the same rule
-//! and takes the best one that cuts nothing:
+//! split, the builder also looks for planes that cut nothing, scored by the
+//! same rule, and takes the best one if it beats the polygon plane.
 //!
-//! - axis-aligned planes through the group's vertex coordinates (all of
-//!   them, or evenly spaced samples in large groups): CAD parts;
-//! - *edge planes*: the plane through an edge of a member, perpendicular
-//!   to that member. It passes between the member and its neighbour across
-//!   the edge, cutting the surface along a path of edges rather than through
-//!   faces; on a small saddle-shaped patch of a curved mesh (where every
-//!   facet's plane cuts a neighbour) one of them often separates the patch
-//!   in two without a split. Tried in groups of up to [`EDGE_GROUP`] members
-//!   (larger groups rarely have such a plane, and would pay for every edge).
+//! For a direction `u`, every member covers an interval of `u · x`; sorted
+//! by their low ends, the intervals leave a gap wherever a low end is not
+//! below every high end before it, and a plane `u · x = c` in a gap cuts
+//! nothing. One sweep finds every gap of a direction and keeps the most
+//! balanced. Directions tried:
 //!
-//! Candidates are counted through the group's bounding-volume hierarchy;
-//! every candidate tested counts its classifications as one-way relations.
+//! - the three axes, in every group (CAD parts: the plane of a countersunk
+//!   hole's rim);
+//! - in groups of up to [`EDGE_GROUP`] members, each member's normal (its
+//!   plane moved past its neighbours) and, for each edge, the normal of the
+//!   plane through the edge perpendicular to the member: on a saddle-shaped
+//!   patch of a curved mesh, where every facet's plane cuts a neighbour,
+//!   such a plane often runs along edges between the facets;
+//! - in groups of up to [`PAIR_GROUP`], the cross products of edges of two
+//!   members: with the normals, the directions in which two disjoint convex
+//!   polygons can always be separated (separating axis theorem), so two
+//!   members that do not intersect are never split against each other.
+//!
+//! The larger the group, the rarer such a plane and the dearer the search,
+//! hence the limits (`fpt bench-build`: the limits of 64 and 12 find as many
+//! planes on the shared models as 256 do, at a fraction of the time).
+//! The best few gaps are checked with the exact classification through the
+//! group's bounding-volume hierarchy; every candidate direction counts its
+//! classifications as one-way relations.
 
 use super::table::{Rel, Table};
 use super::Ctx;
