@@ -287,3 +287,47 @@ fn the_build_rs_recipe_gives_fpt_builds_bytes() {
     let bytes = fpt_build::serialize::serialize(&tree, &Default::default()).expect("serializes");
     assert_eq!(std::fs::read(&out_tree).expect("tree written"), bytes);
 }
+
+/// An open mesh: the build says how many boundary and non-manifold edges
+/// it has, counted apart, names the first few by their end positions, and
+/// says what an open tree costs.
+#[test]
+fn build_says_why_a_mesh_is_open() {
+    // A box of side 2.5 without its top (4 rim edges of one face), with a
+    // fin hanging from a bottom edge (that edge has three faces; the fin's
+    // two other edges have one).
+    let obj = "v 0 0 0\nv 2.5 0 0\nv 2.5 2.5 0\nv 0 2.5 0\n\
+               v 0 0 2.5\nv 2.5 0 2.5\nv 2.5 2.5 2.5\nv 0 2.5 2.5\nv 1.25 -1 -1\n\
+               f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nf 1 2 9\n";
+    let mesh = write("open-box-fin.obj", obj.as_bytes());
+    let out_tree = tmp("open-box-fin.fpt");
+    let out = fpt(&["build", s(&mesh), "-o", s(&out_tree)]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let lines: Vec<&str> = err.lines().collect();
+    let at = |start: &str| {
+        lines
+            .iter()
+            .find(|l| l.starts_with(start))
+            .unwrap_or_else(|| panic!("no line {start:?} in {err}"))
+            .to_string()
+    };
+    let head = at("note: the mesh is open: 7 edges are not shared");
+    assert!(
+        head.contains("draws both sides of every face in every view"),
+        "{err}"
+    );
+    assert_eq!(
+        at("note:   6 boundary"),
+        "note:   6 boundary edges (of one face only), the first at \
+         (2.5, 0, 2.5)-(0, 0, 2.5); (2.5, 2.5, 2.5)-(2.5, 0, 2.5); \
+         (0, 2.5, 2.5)-(2.5, 2.5, 2.5)"
+    );
+    assert_eq!(
+        at("note:   1 non-manifold"),
+        "note:   1 non-manifold edge (of three or more faces), the first at \
+         (2.5, 0, 0)-(0, 0, 0)"
+    );
+    assert!(!err.contains("inconsistently wound"), "{err}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("open static tree"));
+}

@@ -275,6 +275,19 @@ impl Table {
             .collect()
     }
 
+    /// Front, back and cut counts of the alive members against `plane`
+    /// (any plane, not only a member's).
+    pub fn plane_counts(&self, plane: &Plane, ctx: &Ctx) -> [u32; 3] {
+        self.bvh.counts(
+            plane,
+            usize::MAX,
+            &self.alive,
+            &self.ids,
+            &ctx.polys,
+            ctx.tol,
+        )
+    }
+
     /// Starts watching row `q` (alive, computed, exact counts).
     pub fn watch(&self, w: &mut Watch, q: usize) {
         let at = u64::from(self.stamp[q]) + u64::from((w.slack)(self.counts[q]));

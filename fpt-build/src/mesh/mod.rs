@@ -54,8 +54,35 @@ pub struct Model {
     pub report: ImportReport,
 }
 
+/// How many edges of one kind make a mesh open, and the first few of
+/// them (in file order) as their two end positions.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OpenEdgeKind {
+    /// Edges of this kind.
+    pub count: usize,
+    /// The first [`OPEN_EDGE_EXAMPLES`] of them, in the order the faces
+    /// use them.
+    pub first: [Option<[[f64; 3]; 2]>; OPEN_EDGE_EXAMPLES],
+}
+
+/// Examples of each kind of open edge kept in an [`OpenEdges`].
+pub const OPEN_EDGE_EXAMPLES: usize = 3;
+
+/// The edges that are not shared by exactly two faces winding opposite
+/// ways across them, by kind: what makes a mesh open.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OpenEdges {
+    /// Edges of one face only: the rim of a hole or the border of a sheet.
+    pub boundary: OpenEdgeKind,
+    /// Edges of three or more faces.
+    pub non_manifold: OpenEdgeKind,
+    /// Edges of two faces that wind the same way across them (one of the
+    /// faces is flipped).
+    pub misoriented: OpenEdgeKind,
+}
+
 /// Counts of what the import did, for the user and for tests.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ImportReport {
     /// Faces in the input.
     pub faces_read: usize,
@@ -77,8 +104,11 @@ pub struct ImportReport {
     /// ([`ImportOptions::keep_orientation`]); otherwise they were turned
     /// outward.
     pub orientation_kept: bool,
-    /// Edges not shared by exactly two faces in opposite directions.
+    /// Edges not shared by exactly two faces in opposite directions (the
+    /// sum of the counts in `open_edges`).
     pub boundary_edges: usize,
+    /// Those edges by kind, with the first few of each.
+    pub open_edges: OpenEdges,
     /// OBJ `mtllib` files not found next to the OBJ file.
     pub missing_material_files: usize,
     /// OBJ `usemtl` materials with a diffuse colour in no material file
@@ -185,6 +215,44 @@ impl ImportReport {
                 if n == 1 { "was" } else { "were" }
             )),
         }
+    }
+
+    /// Why the mesh is open, one line per kind of open edge with its count
+    /// and the first few as end positions, e.g. `240 boundary edges (of
+    /// one face only), the first at (0, 0, 0)-(1, 0, 0); ...`. Empty when
+    /// every edge is closed.
+    pub fn open_edge_lines(&self) -> Vec<String> {
+        let e = &self.open_edges;
+        let point = |p: &[f64; 3]| format!("({}, {}, {})", short(p[0]), short(p[1]), short(p[2]));
+        [
+            (&e.boundary, "boundary edge", "of one face only"),
+            (
+                &e.non_manifold,
+                "non-manifold edge",
+                "of three or more faces",
+            ),
+            (
+                &e.misoriented,
+                "inconsistently wound edge",
+                "of two faces winding the same way",
+            ),
+        ]
+        .into_iter()
+        .filter(|(k, _, _)| k.count > 0)
+        .map(|(k, noun, what)| {
+            let at: Vec<String> = k
+                .first
+                .iter()
+                .flatten()
+                .map(|[a, b]| format!("{}-{}", point(a), point(b)))
+                .collect();
+            format!(
+                "{} ({what}), the first at {}",
+                count(k.count, noun),
+                at.join("; ")
+            )
+        })
+        .collect()
     }
 
     /// Every warning line of the import, in the order they are printed.

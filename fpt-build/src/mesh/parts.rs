@@ -20,6 +20,7 @@
 //! an outward closed part: it is then a cavity (the inner wall of a hollow
 //! solid), which must wind inward.
 
+use super::{OpenEdgeKind, OpenEdges, OPEN_EDGE_EXAMPLES};
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -35,6 +36,8 @@ pub(crate) struct Parts {
     pub inverted: Vec<bool>,
     /// Edges of the whole mesh that are not closed.
     pub boundary_edges: usize,
+    /// Those edges by kind, with the first few of each.
+    pub open_edges: OpenEdges,
 }
 
 impl Parts {
@@ -128,6 +131,7 @@ pub(crate) fn analyse(loops: &[Vec<u32>], positions: &[DVec3]) -> Parts {
             }
         }
     }
+    let open_edges = open_edges(loops, positions, &edges);
     let boxes = bounding_boxes(loops, positions, &part_of, parts);
     let mut inverted: Vec<bool> = signed_volumes(loops, positions, &part_of, &boxes)
         .iter()
@@ -142,7 +146,59 @@ pub(crate) fn analyse(loops: &[Vec<u32>], positions: &[DVec3]) -> Parts {
         closed,
         inverted,
         boundary_edges,
+        open_edges,
     }
+}
+
+/// The edges that are not closed, by kind, with the first few of each in
+/// the order the loops use them (not the hash map's order, so the same
+/// file always names the same edges).
+fn open_edges(
+    loops: &[Vec<u32>],
+    positions: &[DVec3],
+    edges: &HashMap<(u32, u32), Uses>,
+) -> OpenEdges {
+    let mut out = OpenEdges::default();
+    /// The kind of a not-closed edge.
+    fn of<'a>(out: &'a mut OpenEdges, u: &Uses) -> Option<&'a mut OpenEdgeKind> {
+        match (u.forward + u.backward, u.forward == 1) {
+            (2, true) => None,
+            (1, _) => Some(&mut out.boundary),
+            (2, false) => Some(&mut out.misoriented),
+            _ => Some(&mut out.non_manifold),
+        }
+    }
+    for u in edges.values() {
+        if let Some(k) = of(&mut out, u) {
+            k.count += 1;
+        }
+    }
+    let mut named: Vec<(u32, u32)> = Vec::new();
+    for l in loops {
+        for (k, &a) in l.iter().enumerate() {
+            let b = l[(k + 1) % l.len()];
+            let key = (a.min(b), a.max(b));
+            let Some(u) = edges.get(&key) else {
+                continue;
+            };
+            let Some(kind) = of(&mut out, u) else {
+                continue;
+            };
+            let Some(slot) = kind.first.iter_mut().find(|s| s.is_none()) else {
+                continue;
+            };
+            if named.contains(&key) {
+                continue;
+            }
+            named.push(key);
+            *slot = Some([at(positions, a).to_array(), at(positions, b).to_array()]);
+        }
+        // Every kind is named in full (or the scan goes on to the end).
+        if named.len() == 3 * OPEN_EDGE_EXAMPLES {
+            break;
+        }
+    }
+    out
 }
 
 /// A closed part counts as inverted when its signed volume is below
@@ -395,6 +451,46 @@ mod tests {
         assert_eq!((p.open_count(), p.closed_count()), (1, 1));
         assert_eq!(p.boundary_edges, 4);
         assert_eq!(p.inverted, vec![false, false]);
+        let e = p.open_edges;
+        assert_eq!(
+            (e.boundary.count, e.non_manifold.count, e.misoriented.count),
+            (4, 0, 0)
+        );
+        // Three rim edges of the lidless box are named: the removed face
+        // is the one at x = 0, so is the rim.
+        let named: Vec<[[f64; 3]; 2]> = e.boundary.first.iter().flatten().copied().collect();
+        assert_eq!(named.len(), 3);
+        for [a, b] in &named {
+            assert!(a != b && a[0] == 0.0 && b[0] == 0.0, "{named:?}");
+        }
+        assert!(e.non_manifold.first.iter().all(Option::is_none));
+    }
+
+    #[test]
+    fn non_manifold_and_misoriented_edges_are_counted_apart() {
+        // Three triangles on the edge 0-1 (a fin on a two-triangle sheet).
+        let v = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::new(0.0, -1.0, 0.0),
+            DVec3::Z,
+        ];
+        let p = analyse(&[vec![0, 1, 2], vec![1, 0, 3], vec![0, 1, 4]], &v);
+        let e = p.open_edges;
+        assert_eq!(e.non_manifold.count, 1);
+        assert_eq!(e.non_manifold.first[0], Some([[0.0; 3], [1.0, 0.0, 0.0]]));
+        assert_eq!(e.boundary.count, 6);
+        assert_eq!(p.boundary_edges, 7);
+        // A cube with one face flipped: its four edges are wound the same
+        // way by both their faces.
+        let (v, mut l) = cube(DVec3::ZERO, 0);
+        l[0].reverse();
+        let e = analyse(&l, &v).open_edges;
+        assert_eq!(
+            (e.boundary.count, e.non_manifold.count, e.misoriented.count),
+            (0, 0, 4)
+        );
     }
 
     #[test]

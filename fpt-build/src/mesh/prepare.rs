@@ -158,6 +158,7 @@ pub fn from_faces_with(
     report.open_parts = parts.open_count();
     report.inverted_parts = parts.inverted_count();
     report.boundary_edges = parts.boundary_edges;
+    report.open_edges = parts.open_edges;
     report.orientation_kept = options.keep_orientation;
     if !options.keep_orientation && report.inverted_parts > 0 {
         let ends = first_polygon

@@ -127,17 +127,26 @@ fn check_memory(a: &BuildArgs, polygons: usize) -> CliResult {
     Ok(())
 }
 
-/// Why the mesh is open and what that costs, when it is.
-fn open_lines(report: &crate::mesh::ImportReport) -> Option<String> {
+/// Why the mesh is open and what that costs, when it is: the edges that
+/// make it open, by kind, with the first few of each as end positions.
+fn open_lines(report: &crate::mesh::ImportReport) -> Vec<String> {
     let n = report.boundary_edges;
-    (n > 0).then(|| {
-        format!(
-            "note: the mesh is open: {n} edge{} not shared by exactly two faces winding \
-             opposite ways (holes, non-manifold or inconsistently wound edges); an open tree \
-             draws both sides of every face in every view (no back-face culling)",
-            if n == 1 { " is" } else { "s are" }
-        )
-    })
+    if n == 0 {
+        return Vec::new();
+    }
+    let mut lines = vec![format!(
+        "note: the mesh is open: {n} edge{} not shared by exactly two faces winding \
+         opposite ways; an open tree draws both sides of every face in every view \
+         (no back-face culling)",
+        if n == 1 { " is" } else { "s are" }
+    )];
+    lines.extend(
+        report
+            .open_edge_lines()
+            .into_iter()
+            .map(|l| format!("note:   {l}")),
+    );
+    lines
 }
 
 /// The statistics as the JSON object `fpt build --stats` writes.
@@ -287,7 +296,7 @@ pub fn run(a: &BuildArgs) -> CliResult {
         false
     } else {
         if !model.closed {
-            if let Some(l) = open_lines(&model.report) {
+            for l in open_lines(&model.report) {
                 eprintln!("{l}");
             }
         }
