@@ -960,5 +960,6 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
 
 pub(crate) mod cached;
 pub mod probe;
+mod slivers;
 #[cfg(test)]
 mod tests;

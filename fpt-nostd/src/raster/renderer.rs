@@ -162,6 +162,11 @@ pub struct RenderStats {
     /// Polygons that needed clipping (crossed the near plane or the guard
     /// band).
     pub clipped: u32,
+    /// Polygons the culling walk of a closed tree leaves out that were
+    /// drawn all the same, first, because the sub-pixel snap turned them
+    /// toward the viewer (see [`crate::render`]'s slivers); not counted in
+    /// `drawn`, which counts what the walk emits.
+    pub slivers: u32,
     /// Spans emitted.
     pub spans: u64,
     /// Tree walks the frame took: 1 for a full frame and for bands whose
@@ -180,6 +185,7 @@ impl RenderStats {
         invisible: 0,
         skipped: 0,
         clipped: 0,
+        slivers: 0,
         spans: 0,
         walks: 0,
         memory_used: 0,
@@ -193,6 +199,7 @@ impl core::ops::AddAssign for RenderStats {
         self.invisible += o.invisible;
         self.skipped += o.skipped;
         self.clipped += o.clipped;
+        self.slivers += o.slivers;
         self.spans += o.spans;
         self.walks += o.walks;
         self.memory_used = self.memory_used.max(o.memory_used);
@@ -750,6 +757,7 @@ mod tests {
             invisible: 2,
             skipped: 3,
             clipped: 4,
+            slivers: 9,
             spans: 5,
             walks: 1,
             memory_used: 7,
@@ -763,6 +771,7 @@ mod tests {
                 invisible: 4,
                 skipped: 6,
                 clipped: 8,
+                slivers: 18,
                 spans: 10,
                 walks: 2,
                 memory_used: 7,
