@@ -18,9 +18,9 @@
 //! whose neighbour across faces away, like the rim of a hole seen at a
 //! slant): there the sub-pixel snap can wind a face seen almost edge-on
 //! toward the viewer although its plane is turned away, and the culling
-//! walk leaves it out; the renderer draws such slivers first
-//! (`fpt_nostd::render`'s sliver pass), and this test is what holds it to
-//! zero (11 pixels over all these renders without it).
+//! walk leaves it out; the renderer draws such slivers first when asked
+//! (`Renderer::set_slivers`, which these renders turn on), and this test
+//! is what holds it to zero (11 pixels over all these renders without it).
 //!
 //! Each model is drawn from 20 views around it (alternately parallel and
 //! perspective, directions spread evenly over the sphere) at 320×240,
@@ -39,7 +39,7 @@ use host_sim::geom::{bounds, Polygon};
 use host_sim::reference::{zbuffer_ids, Camera, Projection};
 use host_sim::serialize::{serialize, SerializeOptions};
 use host_sim::tree::Method;
-use render_common::{frame, render_polygon_ids};
+use render_common::{frame, render_polygon_ids_with};
 use std::sync::Mutex;
 
 /// The closed shared models (see `../shared/models/README.md`; the loader
@@ -201,7 +201,8 @@ fn check(file: &str, methods: &[Method]) -> Vec<String> {
             covered += reference.iter().filter(|&&id| id != 0).count();
             for (t, (method, bytes)) in trees.iter().enumerate() {
                 let tree = Tree::from_bytes(bytes).expect("tree");
-                let ours = render_polygon_ids::<DefaultPrecision>(&tree, &frame(&tree, cam), w, h);
+                let f = frame(&tree, cam);
+                let ours = render_polygon_ids_with::<DefaultPrecision>(&tree, &f, (w, h), true);
                 let (holes, at_edge): (Vec<_>, Vec<_>) = background_inside(&reference, &ours, w, h)
                     .into_iter()
                     .partition(|&px| !background_near(&m.polygons, cam, (w, h), px, SNAP));
@@ -324,131 +325,4 @@ fn background_inside_needs_the_pixel_and_its_neighbours_covered() {
     ours[w + 1] = 0;
     ours[2 * w + 3] = 0;
     assert_eq!(background_inside(&reference, &ours, w, h), vec![(1, 1)]);
-}
-
-/// TEMPORARY diagnosis: every background pixel inside the reference
-/// silhouette, with the polygon a culling-off render shows there.
-#[test]
-#[ignore = "diagnosis"]
-fn diag_pinholes() {
-    use fpt_nostd::effects::Effects;
-    use fpt_nostd::raster::IdBuffer;
-    use fpt_nostd::render::{FaceIds, TreeRenderer};
-    let only: Option<String> = std::env::var("DIAG_MODEL").ok();
-    for file in CLOSED {
-        if SLOW.contains(&file) {
-            continue;
-        }
-        if only.as_deref().is_some_and(|o| o != file) {
-            continue;
-        }
-        let Some(m) = shared_mesh(file) else { continue };
-        for method in [Method::Static, Method::Bsp] {
-            let t = build(m.polygons.clone(), true, method, 7, &mut NoProgress);
-            let bytes = serialize(&t, &SerializeOptions::default()).expect("serialize");
-            let tree = Tree::from_bytes(&bytes).expect("tree");
-            for &(w, h) in &SIZES {
-                for (k, cam) in cameras(&m.polygons, VIEWS, w as f64 / h as f64)
-                    .iter()
-                    .enumerate()
-                {
-                    let reference = zbuffer_ids(&m.polygons, cam, w, h, false);
-                    let fr = frame(&tree, cam);
-                    let ours = render_polygon_ids::<DefaultPrecision>(&tree, &fr, w, h);
-                    let holes = background_inside(&reference, &ours, w, h);
-                    if holes.is_empty() {
-                        continue;
-                    }
-                    let mut ids = vec![0u32; w * h];
-                    let mut sink = IdBuffer::new(&mut ids, w as u32, h as u32).expect("ids");
-                    let mut tr = Box::new(
-                        TreeRenderer::<DefaultPrecision, 256>::new(w as u32, h as u32).unwrap(),
-                    );
-                    tr.ids = FaceIds::Polygon;
-                    tr.renderer
-                        .set_effects(Some(Effects::defaults(true).without(Effects::CULLING)));
-                    tr.render::<_, 2048>(&tree, &fr, &mut sink).expect("walk");
-                    let view = fr.view.local(&tree);
-                    for &(i, j) in &holes {
-                        let id = ids[j * w + i];
-                        let mut info = String::new();
-                        if id != 0 {
-                            let p = tree.polygon(id - 1).unwrap();
-                            let verts: Vec<DVec3> = (0..p.vertex_count())
-                                .map(|v| DVec3::from(p.vertex_model(v)))
-                                .collect();
-                            let pts = render_common::project(cam, &verts, w, h);
-                            let area = |q: &[(f64, f64)]| {
-                                let mut a = 0.0;
-                                for v in 0..q.len() {
-                                    let (x0, y0) = q[v];
-                                    let (x1, y1) = q[(v + 1) % q.len()];
-                                    a += x0 * y1 - x1 * y0;
-                                }
-                                a * 0.5
-                            };
-                            let snap: Vec<(f64, f64)> = pts
-                                .iter()
-                                .map(|&(x, y)| ((x * 16.0).round() / 16.0, (y * 16.0).round() / 16.0))
-                                .collect();
-                            let plane = p.plane();
-                            let facing = match view {
-                                fpt_nostd::order::LocalView::Parallel(d) => plane.normal_dot(d),
-                                fpt_nostd::order::LocalView::Eye(e) => -plane.eval(e),
-                            };
-                            info = format!(
-                                "poly {} (src {}) n={} backward={} facing={:.3e} area={:.4} snapped_area={:.4} pts={:?}",
-                                id - 1,
-                                p.source(),
-                                p.vertex_count(),
-                                view.is_backward(&plane),
-                                facing,
-                                area(&pts),
-                                area(&snap),
-                                pts
-                            );
-                        }
-                        println!(
-                            "{file} {} {w}x{h} view {k} ({i},{j}): culling-off id {id} {info}",
-                            method.name()
-                        );
-                        let (sx, sy) = (i as f64 + 0.5, j as f64 + 0.5);
-                        let near = |verts: &[DVec3]| {
-                            let pts = render_common::project(cam, verts, w, h);
-                            let inside = render_common::inside(&pts, sx, sy);
-                            let d = (0..pts.len())
-                                .map(|e| render_common::seg_dist(pts[e], pts[(e + 1) % pts.len()], sx, sy).0)
-                                .fold(f64::INFINITY, f64::min);
-                            (inside, d, pts)
-                        };
-                        for q in 0..tree.polygon_count() {
-                            let p = tree.polygon(q).unwrap();
-                            let verts: Vec<DVec3> = (0..p.vertex_count())
-                                .map(|v| DVec3::from(p.vertex_model(v)))
-                                .collect();
-                            let (inside, d, pts) = near(&verts);
-                            if inside || d < 0.3 {
-                                println!(
-                                    "    tree poly {q} src {} backward={} inside={inside} dist={d:.4} pts={:?}",
-                                    p.source(),
-                                    view.is_backward(&p.plane()),
-                                    pts
-                                );
-                            }
-                        }
-                        let rv = cam.view();
-                        for (q, poly) in m.polygons.iter().enumerate() {
-                            let (inside, d, _) = near(&poly.verts);
-                            if inside || d < 0.3 {
-                                println!(
-                                    "    input face {q} faces={} inside={inside} dist={d:.4}",
-                                    rv.faces(&poly.plane)
-                                );
-                            }
-                        }
-                    }
-                }
-            }
-        }
-    }
 }

@@ -1,5 +1,6 @@
-//! Slivers (`fpt_nostd::render`'s sliver pass): the culling walk of a closed
-//! tree covers exactly the pixels that the walk without culling covers,
+//! Slivers (`fpt_nostd::render`'s sliver pass, `Renderer::set_slivers`):
+//! the culling walk of a closed tree covers exactly the pixels that the walk
+//! without culling covers,
 //! whatever the sub-pixel snap does to faces seen almost edge-on, for
 //! parallel and perspective views, mirrored matrices included, in every
 //! arithmetic configuration. With whole-pixel snapping (0 sub-pixel bits)
@@ -28,6 +29,7 @@ fn ids<P: Precision>(tree: &Tree<'_>, cam: &Camera, cull: bool) -> (Vec<u32>, us
     let mut sink = IdBuffer::new(&mut ids, W as u32, H as u32).expect("ids");
     let mut r = Box::new(TreeRenderer::<P, VERTS>::new(W as u32, H as u32).expect("renderer"));
     r.ids = FaceIds::Polygon;
+    r.renderer.set_slivers(true);
     if !cull {
         let all = Effects::defaults(true).without(Effects::CULLING);
         r.renderer.set_effects(Some(all));
@@ -37,7 +39,10 @@ fn ids<P: Precision>(tree: &Tree<'_>, cam: &Camera, cull: bool) -> (Vec<u32>, us
     assert!(cull || stats.slivers == 0, "no sliver pass without culling");
     let view = f.view.local(tree);
     let away = |id: u32| {
-        id != 0 && tree.polygon(id - 1).is_some_and(|p| !view.is_backward(&p.plane()))
+        id != 0
+            && tree
+                .polygon(id - 1)
+                .is_some_and(|p| !view.is_backward(&p.plane()))
     };
     let shown = ids.iter().filter(|&&id| away(id)).count();
     assert!(!cull || shown == 0 || stats.slivers > 0);
@@ -58,7 +63,11 @@ fn cameras(polys: &[host_sim::geom::Polygon], n: usize) -> Vec<Camera> {
         let s = (1.0 - z * z).sqrt();
         let a = golden * k as f64 + 0.7;
         let dir = DVec3::new(s * a.cos(), s * a.sin(), z);
-        let up = if dir.y.abs() < 0.9 { DVec3::Y } else { DVec3::X };
+        let up = if dir.y.abs() < 0.9 {
+            DVec3::Y
+        } else {
+            DVec3::X
+        };
         let (projection, dist) = if k % 2 == 0 {
             let p = Projection::Parallel {
                 half_height: 1.05 * r,
@@ -117,6 +126,19 @@ fn culling_covers_what_drawing_every_face_covers() {
         host_sim::scenes::house(),
     ];
     let mut coarse = 0;
+    // Off by default: the pass draws nothing.
+    let built = build_tree(&scenes[0].polygons, true);
+    let tree = Tree::from_bytes(&built.bytes).expect("tree");
+    for cam in cameras(&scenes[0].polygons, 4) {
+        let mut ids = vec![0u32; W * H];
+        let mut sink = IdBuffer::new(&mut ids, W as u32, H as u32).expect("ids");
+        let mut r =
+            Box::new(TreeRenderer::<FixedPrecision<0>, VERTS>::new(W as u32, H as u32).unwrap());
+        let stats = r
+            .render::<_, STACK>(&tree, &frame(&tree, &cam), &mut sink)
+            .expect("walk");
+        assert_eq!(stats.slivers, 0);
+    }
     for scene in &scenes {
         assert!(scene.closed, "{}", scene.name);
         let built = build_tree(&scene.polygons, true);

@@ -181,7 +181,8 @@ enum Source {
 /// renderer's camera for `frame` and says how vertices reach it: raw q16
 /// values when the tree stores them and the path prefers them; and how a
 /// face toward the viewer winds when the culling walk of a closed tree
-/// draws slivers first (0: no sliver pass, [`slivers`]).
+/// draws slivers first (asked for with `Renderer::set_slivers`; 0: no
+/// sliver pass, [`slivers`]).
 fn begin_frame<P: Precision, E: Compiled>(
     r: &mut Renderer<P, E>,
     tree: &Tree<'_>,
@@ -189,7 +190,7 @@ fn begin_frame<P: Precision, E: Compiled>(
 ) -> (Source, WalkFx, i32) {
     r.reset_stats();
     let fx = walk_effects(tree, r);
-    let turn = if fx.cull && tree.is_closed() {
+    let turn = if r.slivers() && fx.cull && tree.is_closed() {
         slivers::front_turn(frame)
     } else {
         0
@@ -275,7 +276,15 @@ impl Walk<'_, '_, '_> {
             for p in range.filter_map(|id| self.tree.polygon(id)) {
                 probe.polygon(&p);
                 let face = face_of(self.tree, &p, &view, self.fx, self.id_of(&p));
-                self.draw(r, scratch, (&p, &face, Pass::Walk), probe, count, &reach, &mut f);
+                self.draw(
+                    r,
+                    scratch,
+                    (&p, &face, Pass::Walk),
+                    probe,
+                    count,
+                    &reach,
+                    &mut f,
+                );
                 probe.enter(Phase::Post);
             }
         }

@@ -43,16 +43,21 @@
 //!
 //! Slivers are lit as faces toward the viewer (normal flipped) and draw no
 //! outline (the neighbouring faces draw the silhouette's). The pass runs
-//! only for a culling walk of a closed tree, in every draw loop
-//! (`render::cached`), before every walk of a frame.
+//! when the renderer asks for it (`Renderer::set_slivers`, off by default)
+//! and the walk culls a closed tree, in every draw loop (`render::cached`),
+//! before every walk of a frame.
 //!
 //! # Cost
 //!
 //! One facing test per run turned away (as the walk makes), and per polygon
 //! of those runs its screen points through the vertex cache (a vertex seen
 //! only from behind is transformed here, the others are then found in the
-//! cache by the walk) and one cross product per fan triangle. Measured in
-//! the README ("No pinholes").
+//! cache by the walk) and one cross product per fan triangle: about half
+//! the polygons and vertices of a frame more, +18 % of a socket.off frame
+//! on a Cortex-M4F (`fpt mcu-bench`, README "No pinholes"). That is why
+//! it is off by default: a cheap exact pre-test (per run, from its plane)
+//! would need per-polygon size bounds the format does not store, since a
+//! thin face can turn over at any angle.
 
 use crate::order::View;
 use crate::raster::ScreenPt;
@@ -78,13 +83,11 @@ pub(crate) fn front_turn(frame: &Frame) -> i32 {
     let n = [m[0], m[1], m[3]];
     let xyz = |v: [f32; 3]| n.map(|row| row[0] * v[0] + row[1] * v[1] + row[2] * v[2]);
     let ndc = match frame.view {
-        View::Perspective { .. } | View::PerspectiveRelative { .. } => {
-            -det3(
-                xyz([1.0, 0.0, 0.0]),
-                xyz([0.0, 1.0, 0.0]),
-                xyz([0.0, 0.0, 1.0]),
-            )
-        }
+        View::Perspective { .. } | View::PerspectiveRelative { .. } => -det3(
+            xyz([1.0, 0.0, 0.0]),
+            xyz([0.0, 1.0, 0.0]),
+            xyz([0.0, 0.0, 1.0]),
+        ),
         View::Parallel { dir } => {
             // u ⊥ n = −dir (from the axis least along it), v = n × u:
             // u × v = n · |u|².
@@ -119,7 +122,12 @@ pub(crate) fn turns_toward(pts: &[ScreenPt], turn: i32) -> bool {
     let Some((a, rest)) = pts.split_first() else {
         return false;
     };
-    let d = |p: &ScreenPt| (i64::from(p.x) - i64::from(a.x), i64::from(p.y) - i64::from(a.y));
+    let d = |p: &ScreenPt| {
+        (
+            i64::from(p.x) - i64::from(a.x),
+            i64::from(p.y) - i64::from(a.y),
+        )
+    };
     rest.windows(2).any(|w| {
         let (b, c) = (d(&w[0]), d(&w[1]));
         let cross = b.0 * c.1 - b.1 * c.0;
