@@ -293,7 +293,9 @@ fn slow_static_trees_show_no_pinholes() {
 /// silhouette passes within the snap's reach of, which it does not.
 #[test]
 fn only_background_within_the_snap_is_set_apart() {
-    let cases: [(&str, (usize, usize), usize, (usize, usize), bool); 5] = [
+    /// File, image size, view, pixel, whether set apart.
+    type Case = (&'static str, (usize, usize), usize, (usize, usize), bool);
+    let cases: [Case; 5] = [
         ("plate_holes.STL", (320, 240), 4, (185, 194), false),
         ("violin_case.obj", (800, 600), 6, (518, 221), false),
         ("fandisk.obj", (1024, 768), 17, (394, 389), false),
