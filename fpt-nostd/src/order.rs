@@ -391,6 +391,40 @@ impl<'a, const N: usize> Order<'a, N> {
         self.view
     }
 
+    /// The faces this walk of `tree` culls, apart from its order: for a
+    /// culling walk of a **closed** tree, one [`Class`] with every polygon whose plane
+    /// is turned away from the viewer (not backward), in file order; empty
+    /// for any other walk (an open tree's culls no face of a closed volume,
+    /// and a closed tree's walk without culling emits them itself, first).
+    /// The walk's own hand-out is untouched: it still emits no such face.
+    ///
+    /// What it is for: the rasterizer snaps vertices to its sub-pixel
+    /// grid, and a face turned away but seen almost edge-on can come out
+    /// of the snap wound toward the viewer, covering a sliver that no face
+    /// toward the viewer covers (see `render::cached`, which draws those
+    /// first).
+    ///
+    /// ```
+    /// # use fpt_nostd::order::{Order, View};
+    /// # use fpt_nostd::reader::Tree;
+    /// # fn walk(tree: &Tree<'_>) -> Result<(), fpt_nostd::order::OrderError> {
+    /// let order = Order::<64>::new(tree, View::parallel([0.0, 0.0, -1.0]))?;
+    /// for id in order.culled(tree) {
+    ///     let plane = tree.polygon(id).map(|p| p.plane());
+    ///     assert!(plane.is_some_and(|p| !order.view().is_backward(&p)));
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
+    pub fn culled(&self, tree: &Tree<'a>) -> Class<'a> {
+        let mut at = Cursor::EMPTY;
+        if self.closed && self.prelude == 0 && tree.is_closed() {
+            let seg = Seg::new(&self.w, (0, self.switch_base), Pick::Forward);
+            at.start(self.w.runs, &self.face, [seg, Seg::EMPTY]);
+        }
+        Class::resume(&self.w, self.face, at)
+    }
+
     /// Enters connecting node `node`, unless it is an empty leaf (no levels,
     /// no switch: a BSP tree has one below every leaf switch), which has
     /// nothing to emit.

@@ -944,5 +944,6 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
 pub(crate) mod cached;
 pub mod double;
 pub mod probe;
+mod slivers;
 #[cfg(test)]
 mod tests;

@@ -38,6 +38,7 @@
 use core::cell::Cell;
 
 use super::probe::{Phase, Probe};
+use super::slivers::{self, turns_toward};
 use super::{face_of, walk_effects, BandBuffer, FaceIds, Frame, RenderError, WalkFx};
 use crate::effects::{Compiled, Effects};
 use crate::format::VertexFormat;
@@ -144,6 +145,23 @@ struct Walk<'t, 'a, 'c> {
     fx: WalkFx,
     ids: FaceIds,
     cache: &'a mut VertexCache<'c>,
+    /// How a face toward the viewer winds on screen, when slivers are
+    /// drawn ([`slivers::front_turn`]); 0: no sliver pass.
+    turn: i32,
+}
+
+/// Which pass of [`Walk::run`] a polygon is drawn by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pass {
+    /// The walk's.
+    Walk,
+    /// The sliver pass's ([`slivers`]), its screen points found wound
+    /// toward the viewer.
+    Sliver,
+    /// The sliver pass's, not yet tested (it needs clipping): drawn only
+    /// when its clipped points turn toward the viewer, wound as this
+    /// [`slivers::front_turn`] says.
+    Unsure(i32),
 }
 
 /// How vertices reach the transform.
@@ -161,14 +179,22 @@ enum Source {
 /// Starts a frame: zeroes the counters, settles the effects
 /// ([`walk_effects`], once a frame for every walk of it), sets the
 /// renderer's camera for `frame` and says how vertices reach it: raw q16
-/// values when the tree stores them and the path prefers them.
+/// values when the tree stores them and the path prefers them; and how a
+/// face toward the viewer winds when the culling walk of a closed tree
+/// draws slivers first (asked for with `Renderer::set_slivers`; 0: no
+/// sliver pass, [`slivers`]).
 fn begin_frame<P: Precision, E: Compiled>(
     r: &mut Renderer<P, E>,
     tree: &Tree<'_>,
     frame: &Frame,
-) -> (Source, WalkFx) {
+) -> (Source, WalkFx, i32) {
     r.reset_stats();
     let fx = walk_effects(tree, r);
+    let turn = if r.slivers() && fx.cull && tree.is_closed() {
+        slivers::front_turn(frame)
+    } else {
+        0
+    };
     let source = match <P::Path as VertexPath>::RAW_Q16_FRAC {
         Some(frac) if tree.vertex_format() == VertexFormat::Q16 => {
             let cam = q16_camera(&frame.camera, frame.vertex_scale, tree.half_extent(), frac);
@@ -180,7 +206,7 @@ fn begin_frame<P: Precision, E: Compiled>(
             Source::Scaled(frame.vertex_scale)
         }
     };
-    (source, fx)
+    (source, fx, turn)
 }
 
 impl Walk<'_, '_, '_> {
@@ -209,9 +235,48 @@ impl Walk<'_, '_, '_> {
         ) -> Step,
     ) {
         probe.enter(Phase::Post);
-        let fx = self.fx;
         order.restart();
         let view = order.view();
+        // Slivers first (see `render::slivers`): culled polygons that the
+        // snap winds toward the viewer, under everything the walk draws.
+        if self.turn != 0 {
+            let mut culled = order.culled(self.tree);
+            while let Some(range) = culled.next_range() {
+                for id in range {
+                    let Some(p) = self.tree.polygon_at(id) else {
+                        continue;
+                    };
+                    let sure = match self.screen_points(r, scratch, &p) {
+                        Some(n) => {
+                            let pts = scratch.screen().get(..n).unwrap_or(&[]);
+                            if !turns_toward(pts, self.turn) {
+                                continue;
+                            }
+                            true
+                        }
+                        // Needs clipping: tested on its clipped points.
+                        None => false,
+                    };
+                    if let Some(p) = self.tree.polygon(id) {
+                        probe.polygon(&p);
+                    }
+                    let fx = WalkFx {
+                        two_sided: true,
+                        outline: false,
+                        ..self.fx
+                    };
+                    let mut face = face_of(self.tree, &p, &view, fx, self.id_of(&p));
+                    face.hidden_edges = u64::MAX;
+                    let pass = if sure {
+                        Pass::Sliver
+                    } else {
+                        Pass::Unsure(self.turn)
+                    };
+                    self.draw(r, scratch, (&p, &face, pass), probe, count, &reach, &mut f);
+                    probe.enter(Phase::Post);
+                }
+            }
+        }
         while let Some(range) = order.next_range() {
             for id in range {
                 // The polygon borrowing the tree: a `PolygonRef` (a copy
@@ -223,44 +288,120 @@ impl Walk<'_, '_, '_> {
                 if let Some(p) = self.tree.polygon(id) {
                     probe.polygon(&p);
                 }
-                let id = match self.ids {
-                    FaceIds::Source => p.source(),
-                    FaceIds::Polygon => p.id(),
-                };
-                let face = face_of(self.tree, &p, &view, fx, id);
-                let mut first = true;
-                let clipped = r.stats_mut().clipped;
-                loop {
-                    probe.enter(Phase::Xform);
-                    let (ready, by_index) = self.prepare(r, scratch, &p, &face, &reach());
-                    if !first {
-                        // Prepared again: count its clipping once.
-                        let now = r.stats_mut();
-                        now.clipped = now.clipped.min(clipped + 1);
-                    }
-                    if count && first {
-                        r.count(match ready {
-                            Ok(_) => Outcome::Drawn { spans: 0 },
-                            Err(o) => o,
-                        });
-                    }
-                    first = false;
-                    let step = match ready {
-                        // Every vertex cached: the polygon's index stands
-                        // for its points.
-                        Ok(ready) => {
-                            let poly = by_index.then(|| p.id());
-                            f(r, scratch, &ready, poly, &face, self.cache)
-                        }
-                        Err(_) => Step::Next,
-                    };
-                    if step == Step::Next {
-                        break;
-                    }
-                }
+                let face = face_of(self.tree, &p, &view, self.fx, self.id_of(&p));
+                self.draw(
+                    r,
+                    scratch,
+                    (&p, &face, Pass::Walk),
+                    probe,
+                    count,
+                    &reach,
+                    &mut f,
+                );
                 probe.enter(Phase::Post);
             }
         }
+    }
+
+    /// The id `p` writes into id buffers.
+    #[inline(always)]
+    fn id_of(&self, p: &PolygonAt<'_, '_>) -> u32 {
+        match self.ids {
+            FaceIds::Source => p.source(),
+            FaceIds::Polygon => p.id(),
+        }
+    }
+
+    /// Prepares polygon `p` (drawn as `face`) and hands it to `f` (again
+    /// while `f` asks for it), counting it once (slivers apart).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn draw<P: Precision, E: Compiled, Pr: Probe, const V: usize>(
+        &mut self,
+        r: &mut Renderer<P, E>,
+        scratch: &mut Scratch<P, V>,
+        (p, face, pass): (&PolygonAt<'_, '_>, &Face, Pass),
+        probe: &Pr,
+        count: bool,
+        reach: &impl Fn() -> SpanBounds,
+        f: &mut impl FnMut(
+            &mut Renderer<P, E>,
+            &mut Scratch<P, V>,
+            &Ready,
+            Option<u32>,
+            &Face,
+            &VertexCache<'_>,
+        ) -> Step,
+    ) {
+        let mut first = true;
+        let clipped = r.stats_mut().clipped;
+        loop {
+            probe.enter(Phase::Xform);
+            let (ready, by_index) = self.prepare(r, scratch, p, face, &reach());
+            if let Pass::Unsure(t) = pass {
+                let sliver = ready.as_ref().is_ok_and(|ready| {
+                    turns_toward(scratch.screen().get(..ready.n).unwrap_or(&[]), t)
+                });
+                if !sliver {
+                    // Not a sliver after all: as if never prepared.
+                    let now = r.stats_mut();
+                    now.clipped = now.clipped.min(clipped);
+                    return;
+                }
+            }
+            if !first {
+                // Prepared again: count its clipping once.
+                let now = r.stats_mut();
+                now.clipped = now.clipped.min(clipped + 1);
+            }
+            if count && first {
+                if pass != Pass::Walk {
+                    r.stats_mut().slivers += 1;
+                } else {
+                    r.count(match ready {
+                        Ok(_) => Outcome::Drawn { spans: 0 },
+                        Err(o) => o,
+                    });
+                }
+            }
+            first = false;
+            let step = match ready {
+                // Every vertex cached: the polygon's index stands for its
+                // points.
+                Ok(ready) => {
+                    let poly = by_index.then(|| p.id());
+                    f(r, scratch, &ready, poly, face, self.cache)
+                }
+                Err(_) => Step::Next,
+            };
+            if step == Step::Next {
+                break;
+            }
+        }
+    }
+
+    /// The screen points of `p` through the cache into `scratch.screen`
+    /// (their number), without shading or clipping; `None` when `p` needs
+    /// the per-polygon path (a vertex outside a clip plane, not finite or
+    /// far off screen).
+    #[inline(always)]
+    fn screen_points<P: Precision, E: Compiled, const V: usize>(
+        &mut self,
+        r: &Renderer<P, E>,
+        scratch: &mut Scratch<P, V>,
+        p: &PolygonAt<'_, '_>,
+    ) -> Option<usize> {
+        let dec = self.tree.vertex_decoder();
+        let loaded = match self.source {
+            Source::Scaled(s) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
+                let x = dec.get(v as usize);
+                <P::Path as VertexPath>::transform(r.matrix(), [x[0] * s, x[1] * s, x[2] * s])
+            }),
+            Source::Q16(frac) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
+                <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
+            }),
+        };
+        loaded.map(|(n, _)| n)
     }
 
     /// Prepares `p` through the cache when every vertex is inside the clip
@@ -363,7 +504,7 @@ where
     K: SpanSink,
     Pr: Probe,
 {
-    let (source, fx) = begin_frame(r, tree, frame);
+    let (source, fx, turn) = begin_frame(r, tree, frame);
     let limit = memory.len();
     let (mut cache, _) = take_cache(memory, tree, cacheable(r), limit);
     let reach = r.viewport_bounds().intersect(&sink.bounds());
@@ -376,6 +517,7 @@ where
         fx,
         ids,
         cache: &mut cache,
+        turn,
     };
     walk.run::<P, E, Pr, N, V>(
         &mut order,
@@ -634,7 +776,7 @@ where
 {
     // The caller has started the probe (before its own set-up).
     probe.enter(Phase::Xform);
-    let (source, fx) = begin_frame(r, tree, frame);
+    let (source, fx, turn) = begin_frame(r, tree, frame);
     let outlines = r.effects().contains(Effects::OUTLINE);
     // A frame that walks the tree more than once tests each plane once:
     // the facing memo comes first (a few dozen words), when the memory
@@ -687,6 +829,7 @@ where
             fx,
             ids,
             cache: &mut cache,
+            turn,
         };
         let reach = || SpanBounds {
             y0: y,

@@ -70,10 +70,22 @@ pub fn render_polygon_ids<P: Precision>(
     w: usize,
     h: usize,
 ) -> Vec<u32> {
+    render_polygon_ids_with::<P>(tree, frame, (w, h), false)
+}
+
+/// [`render_polygon_ids`], drawing slivers first when `slivers`
+/// (`Renderer::set_slivers`).
+pub fn render_polygon_ids_with<P: Precision>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    (w, h): (usize, usize),
+    slivers: bool,
+) -> Vec<u32> {
     let mut ids = vec![0u32; w * h];
     let mut sink = IdBuffer::new(&mut ids, w as u32, h as u32).expect("id buffer");
     let mut tr = Box::new(TreeRenderer::<P, VERTS>::new(w as u32, h as u32).expect("renderer"));
     tr.ids = FaceIds::Polygon;
+    tr.renderer.set_slivers(slivers);
     tr.render::<STACK, _>(tree, frame, &mut sink).expect("walk");
     ids
 }
