@@ -35,7 +35,7 @@ fn ids<P: Precision>(tree: &Tree<'_>, cam: &Camera, cull: bool) -> (Vec<u32>, us
         r.renderer.set_effects(Some(all));
     }
     let f = frame(tree, cam);
-    let stats = r.render::<_, STACK>(tree, &f, &mut sink).expect("walk");
+    let stats = r.render::<STACK, _>(tree, &f, &mut sink).expect("walk");
     assert!(cull || stats.slivers == 0, "no sliver pass without culling");
     let view = f.view.local(tree);
     let away = |id: u32| {
@@ -135,7 +135,7 @@ fn culling_covers_what_drawing_every_face_covers() {
         let mut r =
             Box::new(TreeRenderer::<FixedPrecision<0>, VERTS>::new(W as u32, H as u32).unwrap());
         let stats = r
-            .render::<_, STACK>(&tree, &frame(&tree, &cam), &mut sink)
+            .render::<STACK, _>(&tree, &frame(&tree, &cam), &mut sink)
             .expect("walk");
         assert_eq!(stats.slivers, 0);
     }

@@ -186,7 +186,7 @@ pub fn info(a: &InfoArgs) -> CliResult {
     println!("largest polygon:   {} vertices", c.polygon_vertices);
     println!(
         "renderer needs:    TreeRenderer<P, {v}> (vertex capacity V = {v}), walk stack N = {n} \
-         (render::<_, {n}>, render_banded_in::<_, {n}>), working memory {m} words for one walk a frame",
+         (render::<{n}, _>, render_banded_in::<{n}, _>), working memory {m} words for one walk a frame",
         v = c.vertices,
         n = c.walk_depth,
         m = c.memory_words
