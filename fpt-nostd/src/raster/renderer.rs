@@ -35,6 +35,7 @@ use embedded_graphics::pixelcolor::Rgb888;
 use super::camera::{Camera, Orbit};
 use super::clip::{clip_polygon, ClipNum, ClipVert};
 use super::edge::{Dda32, Edge};
+use super::gouraud::{Smooth, SmoothSink};
 use super::outline::draw_outline;
 use super::precision::Precision;
 use super::scan::{fill_polygon_in, Bbox, FillRule, Paint, SpanBounds, SpanSink};
@@ -328,6 +329,13 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Sets the light.
     pub fn set_light(&mut self, light: Light) {
         self.light = light;
+    }
+
+    /// The light, shading mode and depth cueing parameters (for the
+    /// `smooth` effect's corner colours, [`super::gouraud`]).
+    #[inline]
+    pub(crate) fn lighting(&self) -> (&Light, ShadeMode, &DepthCue) {
+        (&self.light, self.mode, &self.cue)
     }
 
     /// Sets the shading mode.
@@ -668,6 +676,8 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             end,
             rgb,
             clipped,
+            depth,
+            smooth: None,
         })
     }
 
@@ -688,18 +698,21 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         };
         let sub = self.viewport.sub_bits();
         let vp = self.viewport_bounds();
-        let color = sink.color(&Paint { rgb: ready.rgb, id });
-        let spans = match fill_polygon_in(
-            pts,
-            ready.bbox.as_ref(),
-            sub,
-            self.rule,
-            &vp,
-            &mut scratch.edges,
-            &mut scratch.active,
-            color,
-            sink,
-        ) {
+        let (edges, active) = (&mut scratch.edges, &mut scratch.active);
+        let filled = match ready.smooth.as_ref() {
+            // Gouraud: the same fill, its spans painted by the colour plane.
+            Some(s) if E::SET.contains(Effects::SMOOTH) => {
+                let mut smooth = SmoothSink::new(s, id, sink);
+                let (bbox, rule) = (ready.bbox.as_ref(), self.rule);
+                fill_polygon_in(pts, bbox, sub, rule, &vp, edges, active, (), &mut smooth)
+            }
+            _ => {
+                let color = sink.color(&Paint { rgb: ready.rgb, id });
+                let (bbox, rule) = (ready.bbox.as_ref(), self.rule);
+                fill_polygon_in(pts, bbox, sub, rule, &vp, edges, active, color, sink)
+            }
+        };
+        let spans = match filled {
             Ok(spans) => spans,
             Err(_) => return Outcome::Skipped(SkipReason::ClipCapacity),
         };
@@ -736,6 +749,11 @@ pub(crate) struct Ready {
     pub(crate) rgb: Rgb888,
     /// Whether clipping changed the polygon.
     pub(crate) clipped: bool,
+    /// Mean eye depth (with depth cueing; else 0).
+    pub(crate) depth: f32,
+    /// Its colour plane with the `smooth` effect ([`super::gouraud`]);
+    /// `None`: the flat `rgb`.
+    pub(crate) smooth: Option<Smooth>,
 }
 
 #[cfg(test)]

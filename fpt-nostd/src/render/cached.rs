@@ -240,7 +240,10 @@ impl Walk<'_, '_, '_> {
                     let step = match ready {
                         // Every vertex cached: the polygon's index stands
                         // for its points.
-                        Ok(ready) => {
+                        Ok(mut ready) => {
+                            if E::SET.contains(Effects::SMOOTH) && fx.smooth {
+                                ready.smooth = r.smooth_plane(scratch, &ready, self.tree, &p, &face);
+                            }
                             let poly = by_index.then(|| p.id());
                             f(r, scratch, &ready, poly, &face, self.cache)
                         }
@@ -472,6 +475,9 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
             end: e.end,
             rgb: e.rgb,
             clipped: e.clipped,
+            depth: 0.0,
+            // Not recorded: bands with smooth shading fill as they walk.
+            smooth: None,
         };
         if let Outcome::Drawn { spans: s } = r.fill_ready(scratch, &ready, e.id, e.hidden, sink) {
             spans += s as u64;
@@ -587,10 +593,13 @@ where
     while y < h {
         walks += 1;
         list.clear();
-        let cut = Cell::new(h);
+        // The list does not keep colour planes: with smooth shading every
+        // band is filled as its walk goes (one walk per band).
+        let smooth = E::SET.contains(Effects::SMOOTH) && fx.smooth;
+        let cut = Cell::new(if smooth { y + rows } else { h });
         // The list overflowed for band `y` alone: the rest of this walk
         // fills it directly.
-        let mut direct = false;
+        let mut direct = smooth;
         probe.enter(Phase::Fill);
         let mut fb = open_band::<F>(&mut *buf, (w, h), rows, y, background)?;
         let mut walk = Walk {

@@ -112,7 +112,7 @@ pub struct BuildArgs {
     #[arg(long = "vertex-format", default_value = "f32", value_parser = ["f32", "q16", "q32"])]
     pub vertex_format: String,
     /// The scene's effects, stored in the file: comma-separated culling,
-    /// two-sided, clipping, lighting, depth-cue, dither, outline; or none.
+    /// two-sided, clipping, lighting, depth-cue, dither, outline, smooth; or none.
     /// Default: culling (closed) or two-sided (open), clipping, lighting.
     #[arg(long)]
     pub effects: Option<String>,
