@@ -137,7 +137,8 @@ pub struct BuildArgs {
     pub color: Option<String>,
     /// The crease angle in degrees, 0 to 180: with the outline effect, an
     /// edge between faces meeting at a sharper angle is drawn, a smoother
-    /// one only where it is a silhouette.
+    /// one only where it is a silhouette; with the smooth effect, vertex
+    /// normals are averaged only over faces within this angle.
     #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
     pub crease: f32,
 }
