@@ -429,7 +429,7 @@ fn smooth_colour(tree: &Tree<'_>, cam: &Camera, light: &Light, id: u32, px: usiz
         let c = shade_color(
             ShadeMode::Lambert,
             p.color(),
-            light.intensity_q(n.map(i32::from)),
+            light.intensity_i8(n),
         );
         let xy = to_pixel(cam, DVec3::from(p.vertex_model(k))).expect("in front");
         (xy, [c.r(), c.g(), c.b()].map(f64::from))

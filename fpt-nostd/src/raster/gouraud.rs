@@ -11,7 +11,7 @@
 //!   section is drawn flat, as every corner would have the face's colour;
 //!   then faded by depth cueing exactly as the flat colour is (the
 //!   polygon's mean depth). The lighting of an `i8` normal is integer
-//!   ([`super::shade::Light::intensity_q`]), so every precision draws the
+//!   ([`super::shade::Light::intensity_i8`]), so every precision draws the
 //!   same corner colours, fixed point and `f32` alike.
 //! * **Interpolation**: screen-space (not perspective-corrected, as
 //!   Gouraud shading always was), per channel in 8.16 fixed point: the
@@ -21,9 +21,11 @@
 //!   of its widest fan triangle from corner 0 (its other corners' colours
 //!   are not matched exactly). The fill is the flat one ([`super::scan`]),
 //!   so coverage is identical; this module's [`SmoothSink`] receives its
-//!   spans and paints each as runs of equal colour through the target's
-//!   own sink ([`SpanSink::color`] once per run), so dithering, `Gray8`
-//!   and `BinaryColor` targets, bands and id buffers all work unchanged.
+//!   spans and paints each as runs of equal native colour through the
+//!   target's own sink ([`SpanSink::color`] when the 8-bit colour changes,
+//!   [`SpanSink::span`] when the native one does: an RGB565 target takes a
+//!   run per 4 or 8 levels), so dithering, `Gray8` and `BinaryColor`
+//!   targets, bands and id buffers all work unchanged.
 //! * **Equal corner colours draw the flat colour exactly**: the gradient
 //!   is then zero and every pixel rounds to the corners' colour.
 //! * **Clipped polygons** (crossing the near plane or the guard band) are
@@ -32,8 +34,9 @@
 //!   compiled without `smooth` has none of this code.
 //!
 //! Cost: three corner colours, two 64-bit divisions per channel and
-//! polygon, then per pixel three additions and a comparison, and a
-//! [`SpanSink::color`] call per run of equal colour.
+//! polygon, then per pixel three additions, three shifts and a
+//! comparison, a [`SpanSink::color`] call per change of the 8-bit colour
+//! and a [`SpanSink::span`] call per run of equal native colour.
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
@@ -135,11 +138,11 @@ impl CornerLight<'_> {
     /// when `flip`.
     #[inline]
     fn corner(&self, n: [i8; 3], flip: bool) -> Rgb888 {
-        let s = if flip { -1 } else { 1 };
-        let n = n.map(|c| i32::from(c) * s);
+        // (The reader has rejected −128, so negating is exact.)
+        let n = if flip { n.map(i8::saturating_neg) } else { n };
         let i = match self.mode {
             ShadeMode::Flat => Fx14::ONE,
-            _ => self.light.intensity_q(n),
+            _ => self.light.intensity_i8(n),
         };
         self.color_of(i)
     }
@@ -281,20 +284,25 @@ impl<K: SpanSink> SpanSink for SmoothSink<'_, K> {
             let ch = |v: i32| (v >> FRAC).clamp(0, 255) as u8;
             Rgb888::new(ch(c[0]), ch(c[1]), ch(c[2]))
         };
+        let id = self.id;
         let mut run = x0;
         let mut rgb = rgb_at(&c);
+        let mut color = self.sink.color(&Paint { rgb, id });
         for x in x0 + 1..x1 {
             for k in 0..3 {
                 c[k] = c[k].wrapping_add(d[k]);
             }
             let next = rgb_at(&c);
             if next != rgb {
-                let color = self.sink.color(&Paint { rgb, id: self.id });
-                self.sink.span(y, run, x, color);
-                (run, rgb) = (x, next);
+                rgb = next;
+                // A run ends only where the target's colour changes.
+                let native = self.sink.color(&Paint { rgb, id });
+                if native != color {
+                    self.sink.span(y, run, x, color);
+                    (run, color) = (x, native);
+                }
             }
         }
-        let color = self.sink.color(&Paint { rgb, id: self.id });
         self.sink.span(y, run, x1, color);
     }
 }
