@@ -658,7 +658,9 @@ pub(crate) fn walk_effects<P: Precision, E: Compiled>(
         outline: fx.contains(Effects::OUTLINE),
         // Without corner normals every corner has the flat colour: nothing
         // to interpolate.
-        smooth: fx.contains(Effects::SMOOTH) && fx.contains(Effects::LIGHTING) && tree.has_normals(),
+        smooth: fx.contains(Effects::SMOOTH)
+            && fx.contains(Effects::LIGHTING)
+            && tree.has_normals(),
     }
 }
 

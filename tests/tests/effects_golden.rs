@@ -138,7 +138,11 @@ fn ball() -> Scene {
     };
     let mut polygons = Vec::new();
     let mut tri = |a: DVec3, b: DVec3, c: DVec3, band: usize| {
-        let colour = if band % 2 == 0 { [230, 180, 90] } else { [120, 170, 240] };
+        let colour = if band & 1 == 0 {
+            [230, 180, 90]
+        } else {
+            [120, 170, 240]
+        };
         let id = polygons.len() as u32;
         polygons.push(Polygon::new(vec![a, b, c], id, colour).expect("triangle"));
     };
@@ -160,7 +164,7 @@ fn ball() -> Scene {
         name: "ball".into(),
         polygons,
         closed: true,
-        parts: vec![0..n],
+        parts: std::iter::once(0..n).collect(),
     }
 }
 
@@ -426,11 +430,7 @@ fn smooth_colour(tree: &Tree<'_>, cam: &Camera, light: &Light, id: u32, px: usiz
     assert_eq!(p.vertex_count(), 3, "the smooth case draws triangles");
     let corner = |k: usize| {
         let n = tree.corner_normal(id, k).expect("corner normal");
-        let c = shade_color(
-            ShadeMode::Lambert,
-            p.color(),
-            light.intensity_i8(n),
-        );
+        let c = shade_color(ShadeMode::Lambert, p.color(), light.intensity_i8(n));
         let xy = to_pixel(cam, DVec3::from(p.vertex_model(k))).expect("in front");
         (xy, [c.r(), c.g(), c.b()].map(f64::from))
     };

@@ -151,12 +151,18 @@ fn a_corrupt_or_truncated_section_is_rejected() {
         Tree::from_bytes(&with_crc(v)).err()
     };
     // A zero vector, and −128 in any component.
-    assert_eq!(edit(s.normals + 3, [0, 0, 0]), Some(FormatError::BadNormal(1)));
+    assert_eq!(
+        edit(s.normals + 3, [0, 0, 0]),
+        Some(FormatError::BadNormal(1))
+    );
     assert_eq!(
         edit(s.normals + 6, [0x80, 0, 10]),
         Some(FormatError::BadNormal(2))
     );
-    assert_eq!(edit(s.normals, [5, 0x80, 0]), Some(FormatError::BadNormal(0)));
+    assert_eq!(
+        edit(s.normals, [5, 0x80, 0]),
+        Some(FormatError::BadNormal(0))
+    );
     // The extreme valid values read back.
     let mut v = bytes.clone();
     v[s.normals..s.normals + 3].copy_from_slice(&[0x81, 127, 0]);
@@ -237,10 +243,16 @@ fn bands_draw_the_full_frame_and_depth_cueing_applies() {
                         background: Rgb888::new(0, 0, 0),
                     };
                     let mut memory = vec![0u32; words];
-                    r.render_banded_in::<Rgb888Format, STACK>(&tree, &f, band, &mut memory, |y, b| {
-                        let at = 3 * y as usize * W as usize;
-                        got[at..at + b.data().len()].copy_from_slice(b.data());
-                    })
+                    r.render_banded_in::<Rgb888Format, STACK>(
+                        &tree,
+                        &f,
+                        band,
+                        &mut memory,
+                        |y, b| {
+                            let at = 3 * y as usize * W as usize;
+                            got[at..at + b.data().len()].copy_from_slice(b.data());
+                        },
+                    )
                     .expect("bands");
                     assert!(got == want, "{fx}, yaw {yaw}: {rows} rows, {words} words");
                 }

@@ -179,7 +179,8 @@ impl Smooth {
     /// mean colour everywhere.
     pub(crate) fn new(p: [ScreenPt; 3], rgb: [Rgb888; 3], sub: u32) -> Smooth {
         let sub = sub.min(16);
-        let chans = |c: Rgb888| [c.r(), c.g(), c.b()].map(|v| (i64::from(v) << FRAC) + (1 << (FRAC - 1)));
+        let chans =
+            |c: Rgb888| [c.r(), c.g(), c.b()].map(|v| (i64::from(v) << FRAC) + (1 << (FRAC - 1)));
         let v = rgb.map(chans);
         // The pixel holding corner 0, and its centre in screen units.
         let (px, py) = (p[0].x >> sub, p[0].y >> sub);
@@ -189,33 +190,32 @@ impl Smooth {
             (i64::from(py) << sub) + half - i64::from(p[0].y),
         );
         let area = area2(p[0], p[1], p[2]);
-        let mut s = Smooth {
-            px,
-            py,
-            c: [0; 3],
-            gx: [0; 3],
-            gy: [0; 3],
-        };
         let (e1x, e1y) = (i64::from(p[1].x - p[0].x), i64::from(p[1].y - p[0].y));
         let (e2x, e2y) = (i64::from(p[2].x - p[0].x), i64::from(p[2].y - p[0].y));
-        for k in 0..3 {
+        // Per channel: the value at the centre of pixel (px, py) and the
+        // steps per pixel.
+        let plane = |[a, b, c]: [i64; 3]| -> (i32, i32, i32) {
             if area == 0 {
-                s.c[k] = ((v[0][k] + v[1][k] + v[2][k]) / 3) as i32;
-                continue;
+                return (((a + b + c) / 3) as i32, 0, 0);
             }
-            let (d1, d2) = (v[1][k] - v[0][k], v[2][k] - v[0][k]);
+            let (d1, d2) = (b - a, c - a);
             // dC/dx = (d1·e2y − d2·e1y) / area, dC/dy = (d2·e1x − d1·e2x) / area
             // per screen unit: |d| < 2^24, |e| ≤ 2^20, so the numerators
             // fit in 2^45; the steps per pixel (× 2^sub) in 2^61.
             let nx = d1 * e2y - d2 * e1y;
             let ny = d2 * e1x - d1 * e2x;
             let step = |n: i64| ((n << sub) / area).clamp(-LIMIT, LIMIT) as i32;
-            s.gx[k] = step(nx);
-            s.gy[k] = step(ny);
-            let at = v[0][k] + (nx * cx + ny * cy) / area;
-            s.c[k] = at.clamp(-LIMIT, LIMIT) as i32;
+            let at = a + (nx * cx + ny * cy) / area;
+            (at.clamp(-LIMIT, LIMIT) as i32, step(nx), step(ny))
+        };
+        let ch = [0, 1, 2].map(|k| plane([v[0][k], v[1][k], v[2][k]]));
+        Smooth {
+            px,
+            py,
+            c: ch.map(|t| t.0),
+            gx: ch.map(|t| t.1),
+            gy: ch.map(|t| t.2),
         }
-        s
     }
 
     /// Channel `k` at the centre of pixel `(x, y)`, unclamped.

@@ -242,7 +242,8 @@ impl Walk<'_, '_, '_> {
                         // for its points.
                         Ok(mut ready) => {
                             if E::SET.contains(Effects::SMOOTH) && fx.smooth {
-                                ready.smooth = r.smooth_plane(scratch, &ready, self.tree, &p, &face);
+                                ready.smooth =
+                                    r.smooth_plane(scratch, &ready, self.tree, &p, &face);
                             }
                             let poly = by_index.then(|| p.id());
                             f(r, scratch, &ready, poly, &face, self.cache)

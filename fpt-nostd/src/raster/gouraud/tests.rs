@@ -29,15 +29,33 @@ fn draw(poly: &[ScreenPt], flat: Option<Rgb888>, rgb: [Rgb888; 3]) -> vec::Vec<u
     match flat {
         Some(c) => {
             let color = fb.color(&crate::raster::Paint { rgb: c, id: 0 });
-            fill_polygon(poly, SUB, FillRule::NonZero, &clip, &mut edges, &mut active, color, &mut fb)
-                .unwrap();
+            fill_polygon(
+                poly,
+                SUB,
+                FillRule::NonZero,
+                &clip,
+                &mut edges,
+                &mut active,
+                color,
+                &mut fb,
+            )
+            .unwrap();
         }
         None => {
             let (k, _) = widest(poly).unwrap();
             let s = Smooth::new(k.map(|i| poly[i]), rgb, SUB);
             let mut sink = SmoothSink::new(&s, 0, &mut fb);
-            fill_polygon(poly, SUB, FillRule::NonZero, &clip, &mut edges, &mut active, (), &mut sink)
-                .unwrap();
+            fill_polygon(
+                poly,
+                SUB,
+                FillRule::NonZero,
+                &clip,
+                &mut edges,
+                &mut active,
+                (),
+                &mut sink,
+            )
+            .unwrap();
         }
     }
     buf
@@ -53,7 +71,11 @@ fn equal_corner_colours_draw_the_flat_fill() {
         // A sliver.
         pts(&[(10, 10), (620, 300), (11, 12)]),
     ];
-    for c in [Rgb888::new(200, 100, 7), Rgb888::new(0, 0, 0), Rgb888::new(255, 255, 255)] {
+    for c in [
+        Rgb888::new(200, 100, 7),
+        Rgb888::new(0, 0, 0),
+        Rgb888::new(255, 255, 255),
+    ] {
         for p in &polys {
             assert_eq!(draw(p, None, [c; 3]), draw(p, Some(c), [c; 3]), "{p:?}");
         }
@@ -98,8 +120,16 @@ fn the_widest_fan_triangle_is_chosen() {
     assert_eq!(area, 1000);
     assert_eq!(widest(&quad[..2]), None);
     // A degenerate plane draws the mean colour.
-    let line = [ScreenPt { x: 0, y: 0 }, ScreenPt { x: 16, y: 16 }, ScreenPt { x: 32, y: 32 }];
-    let c = [Rgb888::new(0, 0, 0), Rgb888::new(90, 90, 90), Rgb888::new(30, 30, 30)];
+    let line = [
+        ScreenPt { x: 0, y: 0 },
+        ScreenPt { x: 16, y: 16 },
+        ScreenPt { x: 32, y: 32 },
+    ];
+    let c = [
+        Rgb888::new(0, 0, 0),
+        Rgb888::new(90, 90, 90),
+        Rgb888::new(30, 30, 30),
+    ];
     let s = Smooth::new(line, c, SUB);
     assert_eq!(s.gx, [0; 3]);
     assert_eq!(s.c[0] >> 16, 40);
