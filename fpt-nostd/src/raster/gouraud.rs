@@ -40,9 +40,10 @@
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
+use super::edge::Edge;
 use super::precision::Precision;
 use super::renderer::{Face, Ready, Renderer, Scratch};
-use super::scan::{Paint, SpanBounds, SpanSink};
+use super::scan::{fill_polygon_in, Bbox, FillError, FillRule, Paint, SpanBounds, SpanSink};
 use super::shade::{shade_color, DepthCue, Light, ShadeMode};
 use super::transform::ScreenPt;
 use crate::effects::{Compiled, Effects};
@@ -72,7 +73,9 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// The colour plane of polygon `p` of `tree`, prepared for the fill
     /// (`ready`, its points in `scratch`) as `face`: its widest triangle's
     /// corners lit by their stored normals (see the module docs). `None`
-    /// for a clipped polygon, which is drawn flat.
+    /// for a clipped polygon, which is drawn flat. Out of line, to keep the
+    /// walk's loop small (see the README on what the flat path still pays).
+    #[inline(never)]
     pub(crate) fn smooth_plane<const N: usize>(
         &self,
         scratch: &Scratch<P, N>,
@@ -225,6 +228,24 @@ impl Smooth {
             + i64::from(self.gx[k]) * i64::from(x.wrapping_sub(self.px))
             + i64::from(self.gy[k]) * i64::from(y.wrapping_sub(self.py))
     }
+}
+
+/// The flat fill of `pts` into `sink` (a [`SmoothSink`]): out of line, so
+/// that the walk, where the flat fill is inlined, does not get a second
+/// copy.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+pub(crate) fn fill_smooth<K: SpanSink>(
+    pts: &[ScreenPt],
+    bbox: Option<&Bbox>,
+    sub: u32,
+    rule: FillRule,
+    clip: &SpanBounds,
+    edges: &mut [Edge],
+    active: &mut [u16],
+    sink: &mut SmoothSink<'_, K>,
+) -> Result<usize, FillError> {
+    fill_polygon_in(pts, bbox, sub, rule, clip, edges, active, (), sink)
 }
 
 /// A span sink that paints the spans of one polygon in its interpolated

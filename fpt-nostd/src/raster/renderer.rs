@@ -35,7 +35,7 @@ use embedded_graphics::pixelcolor::Rgb888;
 use super::camera::{Camera, Orbit};
 use super::clip::{clip_polygon, ClipNum, ClipVert};
 use super::edge::{Dda32, Edge};
-use super::gouraud::{Smooth, SmoothSink};
+use super::gouraud::{fill_smooth, Smooth, SmoothSink};
 use super::outline::draw_outline;
 use super::precision::Precision;
 use super::scan::{fill_polygon_in, Bbox, FillRule, Paint, SpanBounds, SpanSink};
@@ -223,6 +223,10 @@ pub struct Renderer<P: Precision, E: Compiled = AllEffects> {
     active: Effects,
     cue: DepthCue,
     outline: Rgb888,
+    /// The colour plane of the polygon the walk hands to the fill next
+    /// (`smooth` effect, [`super::gouraud`]): kept here, not in [`Ready`],
+    /// so that the flat path's per-polygon data stays as small as before.
+    smooth: Option<Smooth>,
     pipeline: PhantomData<E>,
 }
 
@@ -244,6 +248,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             active: Effects::defaults(true),
             cue: DepthCue::default(),
             outline: Rgb888::new(0, 0, 0),
+            smooth: None,
             pipeline: PhantomData,
         })
     }
@@ -271,6 +276,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             active: Effects::defaults(true),
             cue: DepthCue::DEFAULT,
             outline: Rgb888::new(0, 0, 0),
+            smooth: None,
             pipeline: PhantomData,
         })
     }
@@ -295,6 +301,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// declared effects; returns the effects in use for the frame.
     pub fn begin_tree(&mut self, declared: Effects) -> Effects {
         self.active = self.forced.unwrap_or(declared);
+        self.smooth = None;
         self.effects()
     }
 
@@ -329,6 +336,13 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Sets the light.
     pub fn set_light(&mut self, light: Light) {
         self.light = light;
+    }
+
+    /// Sets the colour plane the next [`Renderer::fill_ready`] paints with
+    /// (`None`: flat); only a walk with smooth shading sets it.
+    #[inline]
+    pub(crate) fn set_smooth(&mut self, plane: Option<Smooth>) {
+        self.smooth = plane;
     }
 
     /// The light, shading mode and depth cueing parameters (for the
@@ -677,7 +691,6 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             rgb,
             clipped,
             depth,
-            smooth: None,
         })
     }
 
@@ -699,12 +712,17 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         let sub = self.viewport.sub_bits();
         let vp = self.viewport_bounds();
         let (edges, active) = (&mut scratch.edges, &mut scratch.active);
-        let filled = match ready.smooth.as_ref() {
+        let plane = if E::SET.contains(Effects::SMOOTH) {
+            self.smooth.as_ref()
+        } else {
+            None
+        };
+        let filled = match plane {
             // Gouraud: the same fill, its spans painted by the colour plane.
-            Some(s) if E::SET.contains(Effects::SMOOTH) => {
+            Some(s) => {
                 let mut smooth = SmoothSink::new(s, id, sink);
                 let (bbox, rule) = (ready.bbox.as_ref(), self.rule);
-                fill_polygon_in(pts, bbox, sub, rule, &vp, edges, active, (), &mut smooth)
+                fill_smooth(pts, bbox, sub, rule, &vp, edges, active, &mut smooth)
             }
             _ => {
                 let color = sink.color(&Paint { rgb: ready.rgb, id });
@@ -751,9 +769,6 @@ pub(crate) struct Ready {
     pub(crate) clipped: bool,
     /// Mean eye depth (with depth cueing; else 0).
     pub(crate) depth: f32,
-    /// Its colour plane with the `smooth` effect ([`super::gouraud`]);
-    /// `None`: the flat `rgb`.
-    pub(crate) smooth: Option<Smooth>,
 }
 
 #[cfg(test)]

@@ -240,13 +240,18 @@ impl Walk<'_, '_, '_> {
                     let step = match ready {
                         // Every vertex cached: the polygon's index stands
                         // for its points.
-                        Ok(mut ready) => {
+                        Ok(ready) => {
                             if E::SET.contains(Effects::SMOOTH) && fx.smooth {
-                                ready.smooth =
-                                    r.smooth_plane(scratch, &ready, self.tree, &p, &face);
+                                let plane = r.smooth_plane(scratch, &ready, self.tree, &p, &face);
+                                r.set_smooth(plane);
                             }
                             let poly = by_index.then(|| p.id());
-                            f(r, scratch, &ready, poly, &face, self.cache)
+                            let step = f(r, scratch, &ready, poly, &face, self.cache);
+                            if E::SET.contains(Effects::SMOOTH) && fx.smooth {
+                                // No plane outlives its polygon.
+                                r.set_smooth(None);
+                            }
+                            step
                         }
                         Err(_) => Step::Next,
                     };
@@ -477,8 +482,6 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
             rgb: e.rgb,
             clipped: e.clipped,
             depth: 0.0,
-            // Not recorded: bands with smooth shading fill as they walk.
-            smooth: None,
         };
         if let Outcome::Drawn { spans: s } = r.fill_ready(scratch, &ready, e.id, e.hidden, sink) {
             spans += s as u64;
