@@ -86,6 +86,7 @@ fn bare(
     const CUE: u32 = bare_pipeline(Effects::DEPTH_CUE);
     const DITHER: u32 = bare_pipeline(Effects::DITHER);
     const OUTLINE: u32 = bare_pipeline(Effects::OUTLINE);
+    const SMOOTH: u32 = bare_pipeline(Effects::SMOOTH);
     match i {
         0 => run::<Pipeline<CULL>>(clock, r, tree, fx, buf, mono),
         1 => run::<Pipeline<TWO>>(clock, r, tree, fx, buf, mono),
@@ -93,7 +94,8 @@ fn bare(
         3 => run::<Pipeline<LIGHT>>(clock, r, tree, fx, buf, mono),
         4 => run::<Pipeline<CUE>>(clock, r, tree, fx, buf, mono),
         5 => run::<Pipeline<DITHER>>(clock, r, tree, fx, buf, mono),
-        _ => run::<Pipeline<OUTLINE>>(clock, r, tree, fx, buf, mono),
+        6 => run::<Pipeline<OUTLINE>>(clock, r, tree, fx, buf, mono),
+        _ => run::<Pipeline<SMOOTH>>(clock, r, tree, fx, buf, mono),
     }
 }
 

@@ -48,6 +48,7 @@ pub mod build;
 pub mod edges;
 pub mod geom;
 pub mod mesh;
+pub mod normals;
 pub mod scenes;
 pub mod seams;
 pub mod serialize;

@@ -35,11 +35,12 @@ use fpt_nostd::format::{
     crc32, header as h, polygon as pg, Counts, Sections, UpAxis, FLAG_CLOSED, HEADER_LEN, MAGIC,
     MAX_SHIFT, NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION,
 };
-use fpt_nostd::format::{EDGE_LEN, FLAG_EDGES};
+use fpt_nostd::format::{EDGE_LEN, FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 use glam::DVec3;
 
 use crate::edges::{edge_kinds, hidden_edges, FaceKey, DEFAULT_CREASE_DEG};
 use crate::geom::Plane;
+use crate::normals::corner_normals;
 use crate::tree::{Connecting, FpTree};
 
 /// Choices made when writing a file.
@@ -450,19 +451,22 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         .effects
         .unwrap_or(fpt_nostd::effects::Effects::defaults(tree.closed).bits());
     let outline = effects & fpt_nostd::effects::Effects::OUTLINE.bits() != 0;
+    let smooth = effects & fpt_nostd::effects::Effects::SMOOTH.bits() != 0;
+    // Every file polygon's vertex ids, and its stored plane's normal.
+    let ends = first_index
+        .iter()
+        .skip(1)
+        .map(|&f| f as usize)
+        .chain([indices.len()]);
+    let loops: Vec<&[u32]> = first_index
+        .iter()
+        .zip(ends)
+        .map(|(&f, e)| &indices[f as usize..e])
+        .collect();
+    let plane_normals: Vec<[f32; 3]> = planes.iter().map(|p| [p[0], p[1], p[2]]).collect();
     // Outline masks, and the edge section's kinds with outlines (see
     // `crate::edges`).
     let (hidden, kinds) = {
-        let ends = first_index
-            .iter()
-            .skip(1)
-            .map(|&f| f as usize)
-            .chain([indices.len()]);
-        let loops: Vec<&[u32]> = first_index
-            .iter()
-            .zip(ends)
-            .map(|(&f, e)| &indices[f as usize..e])
-            .collect();
         let keys: Vec<FaceKey> = order
             .iter()
             .zip(&planes)
@@ -476,8 +480,7 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
             })
             .collect();
         let kinds = if outline {
-            let normals: Vec<[f32; 3]> = planes.iter().map(|p| [p[0], p[1], p[2]]).collect();
-            edge_kinds(&loops, &keys, &normals, opts.crease_deg)
+            edge_kinds(&loops, &keys, &plane_normals, opts.crease_deg)
         } else {
             vec![]
         };
@@ -494,6 +497,7 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         switches: count(switch_planes.len())?,
         runs: count(runs.len())?,
         edges: if outline { count(indices.len())? } else { 0 },
+        normals: if smooth { count(indices.len())? } else { 0 },
     };
     let s =
         Sections::new(&counts, opts.vertex_format, index_size).ok_or(SerializeError::TooLarge)?;
@@ -504,9 +508,10 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     out.extend_from_slice(&(HEADER_LEN as u16).to_le_bytes());
     put_u32(&mut out, s.file_len as u32);
     let edge_flag = if outline { FLAG_EDGES } else { 0 };
+    let normal_flag = if smooth { FLAG_NORMALS } else { 0 };
     put_u32(
         &mut out,
-        edge_flag | if tree.closed { FLAG_CLOSED } else { 0 },
+        edge_flag | normal_flag | if tree.closed { FLAG_CLOSED } else { 0 },
     );
     put_u32(&mut out, effects);
     out.extend_from_slice(&[
@@ -570,6 +575,18 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         out.extend_from_slice(&[n[0] as u8, n[1] as u8, n[2] as u8, kind]);
     }
     debug_assert_eq!(out.len(), s.edges + counts.edges as usize * EDGE_LEN);
+    out.resize(s.normals, 0);
+    if smooth {
+        // The stored positions: the normals match what is drawn.
+        let positions: Vec<DVec3> = vertex_bytes
+            .chunks_exact(opts.vertex_format.vertex_len())
+            .map(|b| enc.decode(b))
+            .collect();
+        for n in corner_normals(&loops, &plane_normals, &positions, opts.crease_deg) {
+            out.extend_from_slice(&n.map(|c| c as u8));
+        }
+    }
+    debug_assert_eq!(out.len(), s.normals + counts.normals as usize * NORMAL_LEN);
     out.resize(s.runs, 0);
     for &(plane, end) in &runs {
         put_plane(&mut out, plane);
@@ -807,6 +824,7 @@ mod tests {
                 switches: b.switch_count(),
                 runs: b.run_count(),
                 edges: b.index_count(),
+                normals: 0,
             },
             b.vertex_format(),
             usize::from(b.index_size()),

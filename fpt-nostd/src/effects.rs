@@ -15,6 +15,7 @@
 //! | `depth-cue` | 4 | faces fade toward the fog colour with eye depth | a few multiplications per drawn face |
 //! | `dither` | 5 | 4×4 ordered (Bayer) dithering to a `Gray8` panel's levels or to `BinaryColor` | per pixel: it is a sink ([`crate::raster::Dither`]), chosen by the caller |
 //! | `outline` | 6 | the visible edges of each face drawn after its fill (hidden-line look); declared at build time, the tree marks every edge (feature edge, inner, or smooth: drawn as a silhouette only; see [`crate::format`]) | a line per outline edge of each drawn face, and its mask worked out per drawn face |
+//! | `smooth` | 7 | Gouraud shading: a lit colour per polygon corner from its vertex normal (the tree's corner normal section, declared at build time, see [`crate::format`]), interpolated across the polygon ([`crate::raster::gouraud`]); needs `lighting`; a tree without normals is drawn flat | three corner colours and a colour step per pixel of each drawn face; bands walk the tree once per band |
 //!
 //! **Free when absent**, two ways:
 //! * **Decided once per polygon or frame**: every stage tests a bit of the
@@ -53,11 +54,13 @@ impl Effects {
     pub const DITHER: Effects = Effects(1 << 5);
     /// Hidden-line outlines.
     pub const OUTLINE: Effects = Effects(1 << 6);
+    /// Gouraud (smooth) shading.
+    pub const SMOOTH: Effects = Effects(1 << 7);
     /// Every effect.
-    pub const ALL: Effects = Effects(0x7f);
+    pub const ALL: Effects = Effects(0xff);
 
     /// Every effect with its name, in bit order.
-    pub const NAMED: [(&'static str, Effects); 7] = [
+    pub const NAMED: [(&'static str, Effects); 8] = [
         ("culling", Effects::CULLING),
         ("two-sided", Effects::TWO_SIDED),
         ("clipping", Effects::CLIPPING),
@@ -65,6 +68,7 @@ impl Effects {
         ("depth-cue", Effects::DEPTH_CUE),
         ("dither", Effects::DITHER),
         ("outline", Effects::OUTLINE),
+        ("smooth", Effects::SMOOTH),
     ];
 
     /// The set with these bits (unknown bits dropped).
@@ -194,7 +198,7 @@ impl<const BITS: u32> Compiled for Pipeline<BITS> {
 }
 
 /// Every stage compiled in: the default pipeline.
-pub type AllEffects = Pipeline<0x7f>;
+pub type AllEffects = Pipeline<0xff>;
 
 #[cfg(test)]
 mod tests {
@@ -208,7 +212,7 @@ mod tests {
             assert_eq!(Effects::parse(n), Ok(e));
             assert_eq!(e.to_string(), n);
         }
-        let all = "culling,two-sided,clipping,lighting,depth-cue,dither,outline";
+        let all = "culling,two-sided,clipping,lighting,depth-cue,dither,outline,smooth";
         assert_eq!(Effects::parse(all), Ok(Effects::ALL));
         assert_eq!(Effects::ALL.to_string(), all);
         assert_eq!(

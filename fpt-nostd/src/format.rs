@@ -8,10 +8,10 @@
 //!
 //! # Layout
 //!
-//! `header · vertices · polygons · indices · [edges] · runs · bunches · nodes · switches · crc`
+//! `header · vertices · polygons · indices · [edges] · [normals] · runs · bunches · nodes · switches · crc`
 //!
-//! The bracketed section is optional: present only when the header's flags
-//! say so (version 3, see below); a version 2 file never has it.
+//! The bracketed sections are optional: present only when the header's
+//! flags say so (version 3, see below); a version 2 file never has them.
 //!
 //! Each section starts right after the previous one, padded with zero bytes
 //! to a multiple of 4 (so a copy to aligned RAM could use them directly); its
@@ -28,7 +28,7 @@
 //! | 4 | `u16` | version | [`VERSION`] (3; version 2 had no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (112) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
-//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; other bits must be 0 |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; other bits must be 0 |
 //! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
@@ -111,6 +111,16 @@
 //!   neighbour faces the other way from the viewer than the polygon does
 //!   (the neighbour's facing taken at the edge's first vertex, with the
 //!   stored normal).
+//!
+//! ## Corner normals (optional: `index_count` entries of [`NORMAL_LEN`] = 3 bytes)
+//!
+//! Present when flag [`FLAG_NORMALS`] is set (the serializer writes it when
+//! the scene declares the `smooth` effect). Entry `j` is the vertex normal
+//! of index entry `j`, a polygon's corner: `i8 × 3`, the unit normal times
+//! 127 and rounded, on the polygon's front side. A vertex shared by faces
+//! that meet at a crease has a different normal in each face's corner, so
+//! feature edges stay sharp. Each component is in `−127..=127` and the
+//! vector is not zero; anything else is rejected.
 //!
 //! ## Runs (`run_count` entries of [`RUN_LEN`] = 20 bytes)
 //!
@@ -195,6 +205,10 @@ pub const FLAG_CLOSED: u32 = 1;
 pub const FLAG_EDGES: u32 = 1 << 1;
 /// Length of one edge record.
 pub const EDGE_LEN: usize = 4;
+/// Header flag: the corner normal section is present.
+pub const FLAG_NORMALS: u32 = 1 << 2;
+/// Length of one corner normal record.
+pub const NORMAL_LEN: usize = 3;
 /// Edge kind: an outline (feature edge, colour or mesh boundary).
 pub const EDGE_DRAWN: u8 = 0;
 /// Edge kind: inside a face, never drawn.
@@ -456,6 +470,8 @@ pub enum FormatError {
     SectionSizes,
     /// An edge record's kind is not one of the known kinds.
     BadEdge(u32),
+    /// A corner normal record is zero or has a component of −128.
+    BadNormal(u32),
     /// A float that must be finite is not; names the section.
     NonFinite(&'static str),
     /// A vertex index is not below the vertex count.
@@ -487,6 +503,7 @@ impl fmt::Display for FormatError {
                 f.write_str("section sizes do not add up to the file length")
             }
             FormatError::BadEdge(j) => write!(f, "invalid kind of edge record {j}"),
+            FormatError::BadNormal(j) => write!(f, "invalid corner normal record {j}"),
             FormatError::NonFinite(what) => write!(f, "non-finite number in {what}"),
             FormatError::IndexOutOfRange => f.write_str("vertex index out of range"),
             FormatError::BadPolygon(p) => write!(f, "invalid vertex range of polygon {p}"),
@@ -524,6 +541,9 @@ pub struct Counts {
     pub runs: u32,
     /// Edge records: 0 without the edge section, else the index count.
     pub edges: u32,
+    /// Corner normal records: 0 without the normal section, else the
+    /// index count.
+    pub normals: u32,
 }
 
 /// Byte offsets of the sections of a file, computed from its counts.
@@ -535,8 +555,12 @@ pub struct Sections {
     pub polygons: usize,
     /// Start of the index list.
     pub indices: usize,
-    /// Start of the edge section (where the runs start when it is absent).
+    /// Start of the edge section (where the next section starts when it
+    /// is absent).
     pub edges: usize,
+    /// Start of the corner normal section (where the runs start when it is
+    /// absent).
+    pub normals: usize,
     /// Start of the runs.
     pub runs: usize,
     /// Start of the bunch offsets.
@@ -565,7 +589,8 @@ impl Sections {
         let p = next(v, counts.vertices, format.vertex_len());
         let i = next(p, counts.polygons, POLYGON_LEN);
         let e = next(i, counts.indices, index_size);
-        let r = next(e, counts.edges, EDGE_LEN);
+        let nm = next(e, counts.edges, EDGE_LEN);
+        let r = next(nm, counts.normals, NORMAL_LEN);
         let b = next(r, counts.runs, RUN_LEN);
         let n = next(b, counts.bunches.checked_add(1)?, 4);
         let s = next(n, counts.nodes, NODE_LEN);
@@ -582,6 +607,7 @@ impl Sections {
             polygons: cv(p)?,
             indices: cv(i)?,
             edges: cv(e)?,
+            normals: cv(nm)?,
             runs: cv(r)?,
             bunches: cv(b)?,
             nodes: cv(n)?,
@@ -720,6 +746,7 @@ mod tests {
             switches: 0,
             runs: 1,
             edges: 0,
+            normals: 0,
         };
         let s = Sections::new(&c, VertexFormat::Q16, 2).unwrap();
         assert_eq!(s.vertices, HEADER_LEN);
@@ -731,6 +758,14 @@ mod tests {
         assert_eq!(with_edges.edges, s.edges);
         assert_eq!(with_edges.runs, s.runs + 3 * EDGE_LEN);
         assert_eq!(with_edges.file_len, s.file_len + 3 * EDGE_LEN);
+        let both = Counts {
+            edges: 3,
+            normals: 3,
+            ..c
+        };
+        let both = Sections::new(&both, VertexFormat::Q16, 2).unwrap();
+        assert_eq!(both.normals, with_edges.runs);
+        assert_eq!(both.runs, both.normals + 12); // 9 bytes padded to 12
         assert_eq!(s.bunches, s.runs + RUN_LEN);
         assert_eq!(s.nodes, s.bunches + 8);
         assert_eq!(s.switches, s.nodes + NODE_LEN);

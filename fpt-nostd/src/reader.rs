@@ -14,7 +14,8 @@
 //!   extent, radius, `f32` vertices, run and switch planes);
 //! - every vertex index is below the vertex count, every polygon has at least
 //!   3 vertices and the polygons tile the index list; every edge record
-//!   (optional section) has a known kind;
+//!   (optional section) has a known kind; every corner normal (optional
+//!   section) is non-zero with components in `−127..=127`;
 //! - the runs tile the polygons (non-empty, in order) and every polygon's
 //!   `run` field names the run that holds it;
 //! - the bunch offsets tile the runs (each run, hence each polygon, is in
@@ -86,7 +87,7 @@ use crate::format::{
     VertexFormat, CRC_LEN, FLAG_CLOSED, HEADER_LEN, MAGIC, MAX_SHIFT, NODE_LEN, POLYGON_LEN,
     Q16_MAX, RUN_LEN, SWITCH_LEN, VERSION,
 };
-use crate::format::{EDGE_LEN, FLAG_EDGES};
+use crate::format::{EDGE_LEN, FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 
 /// A plane `normal · (x − origin) + d = 0`, relative to the tree's origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -419,6 +420,9 @@ pub struct Tree<'a> {
     radius: f32,
     up: UpAxis,
     capacities: Capacities,
+    /// The corner normal section (`index_count` records of
+    /// [`NORMAL_LEN`] bytes), empty without it.
+    normals: &'a [u8],
 }
 
 /// What a renderer needs to draw a tree, from its header (see
@@ -677,7 +681,7 @@ impl<'a> Tree<'a> {
         }
 
         let flags = rd_u32(bytes, h::FLAGS);
-        if flags & !(FLAG_CLOSED | FLAG_EDGES) != 0 {
+        if flags & !(FLAG_CLOSED | FLAG_EDGES | FLAG_NORMALS) != 0 {
             return Err(FormatError::BadHeader("flags"));
         }
         let format = VertexFormat::from_code(rd_u8(bytes, h::VERTEX_FORMAT))
@@ -705,13 +709,12 @@ impl<'a> Tree<'a> {
             switches: rd_u32(bytes, h::SWITCH_COUNT),
             runs: rd_u32(bytes, h::RUN_COUNT),
             edges: 0,
+            normals: 0,
         };
+        let optional = |flag: u32| if flags & flag != 0 { counts.indices } else { 0 };
         let counts = Counts {
-            edges: if flags & FLAG_EDGES != 0 {
-                counts.indices
-            } else {
-                0
-            },
+            edges: optional(FLAG_EDGES),
+            normals: optional(FLAG_NORMALS),
             ..counts
         };
         let s = Sections::new(&counts, format, usize::from(index_size))
@@ -786,6 +789,7 @@ impl<'a> Tree<'a> {
                 polygon_vertices: rd_u32(bytes, h::POLYGON_VERTICES),
                 memory_words: rd_u32(bytes, h::MEMORY_WORDS),
             },
+            normals: section(s.normals, counts.normals, NORMAL_LEN)?,
         };
         if rd_u32(bytes, h::RESERVED32) != 0 {
             return Err(FormatError::BadHeader("reserved"));
@@ -799,6 +803,7 @@ impl<'a> Tree<'a> {
             return Err(FormatError::BadHeader("scratch_vertices"));
         }
         tree.check_edges()?;
+        tree.check_normals()?;
         tree.check_runs()?;
         tree.check_bunches()?;
         tree.level_count = tree.check_nodes()?;
@@ -998,6 +1003,7 @@ impl<'a> Tree<'a> {
     }
 }
 
+mod normals;
 mod validate;
 mod vertices;
 pub use vertices::{VertexDecoder, VertexIndices, Vertices};

@@ -635,6 +635,10 @@ pub(crate) struct WalkFx {
     pub(crate) lit: bool,
     /// Outlines are on: the face needs its outline mask.
     pub(crate) outline: bool,
+    /// Gouraud shading is on (with lighting, and the tree has corner
+    /// normals): each polygon gets its colour plane
+    /// ([`crate::raster::gouraud`]).
+    pub(crate) smooth: bool,
 }
 
 /// Settles the renderer's effects for `tree` ([`Renderer::begin_tree`])
@@ -653,6 +657,11 @@ pub(crate) fn walk_effects<P: Precision, E: Compiled>(
         two_sided: fx.contains(Effects::TWO_SIDED),
         lit: fx.contains(Effects::LIGHTING),
         outline: fx.contains(Effects::OUTLINE),
+        // Without corner normals every corner has the flat colour: nothing
+        // to interpolate.
+        smooth: fx.contains(Effects::SMOOTH)
+            && fx.contains(Effects::LIGHTING)
+            && tree.has_normals(),
     }
 }
 

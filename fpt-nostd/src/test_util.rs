@@ -105,6 +105,7 @@ impl Raw {
             switches: self.switches.len() as u32,
             runs: self.runs.len() as u32,
             edges: 0,
+            normals: 0,
         };
         let isz = usize::from(self.index_size).max(2);
         let s = Sections::new(&counts, self.format, isz).unwrap();

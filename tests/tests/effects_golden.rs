@@ -12,7 +12,10 @@
 //!   function (its normal flipped when two-sided lighting shows its back),
 //!   faded by a depth weight computed in `f64` from the exact eye depths,
 //!   and, for monochrome pictures, thresholded or dithered by the Bayer
-//!   formula written out here pixel by pixel. Pixels the reference is not
+//!   formula written out here pixel by pixel; with smooth shading, the
+//!   corner colours (each corner lit by the tree's corner normal) blended
+//!   by the pixel centre's barycentric weights in the exact projected
+//!   triangle, rounded. Pixels the reference is not
 //!   sure of (near an outline, depth ties, and with outlines on, within
 //!   1.5 px of a visible polygon's edge) are magenta;
 //! * **the product**: the no_std pipeline with that effect set
@@ -23,7 +26,9 @@
 //! pictures; the test recomputes the reference picture and requires it to
 //! equal the golden file exactly (so a change to the reference shows as a
 //! changed file), and requires the product to equal it on every pixel that
-//! is not magenta. With outlines on, every outline pixel the product draws
+//! is not magenta (with smooth shading within 2 levels a channel: the
+//! product interpolates from vertices snapped to 1/16 px, in 8.16 fixed
+//! point). With outlines on, every outline pixel the product draws
 //! must also lie within 1.5 px of an edge of a visible polygon. Regenerate
 //! the goldens with `FPT_BLESS=1 cargo test -p fpt-tests --test effects_golden`.
 
@@ -33,7 +38,7 @@ use std::path::PathBuf;
 
 use embedded_graphics::pixelcolor::{BinaryColor, Gray8, GrayColor, Rgb888, RgbColor};
 use fpt_nostd::effects::Effects;
-use fpt_nostd::raster::shade::shade;
+use fpt_nostd::raster::shade::{shade, shade_color};
 use fpt_nostd::raster::{
     BinaryFramebuffer, DefaultPrecision, DepthCue, Dither, Light, Paint, Rgb888Framebuffer,
     ShadeMode, SpanSink,
@@ -69,7 +74,7 @@ struct Case {
     mono: bool,
 }
 
-const CASES: [Case; 7] = [
+const CASES: [Case; 8] = [
     Case {
         effect: "culling",
         scene: host_sim::scenes::vise,
@@ -112,9 +117,60 @@ const CASES: [Case; 7] = [
         orbit: (2.2, 35.0, 25.0),
         mono: false,
     },
+    Case {
+        effect: "smooth",
+        scene: ball,
+        orbit: (2.6, 30.0, 20.0),
+        mono: false,
+    },
 ];
 
-fn tree_bytes(scene: fn() -> Scene) -> Vec<u8> {
+/// A closed ball of 160 triangles (UV sphere, 8 bands of 10), coloured in
+/// two hues by band: curved, convex, so the tree needs no splits and every
+/// polygon is a triangle.
+fn ball() -> Scene {
+    let (bands, around) = (8usize, 10usize);
+    let tau = std::f64::consts::TAU;
+    let at = |i: usize, j: usize| {
+        let th = std::f64::consts::PI * i as f64 / bands as f64;
+        let ph = tau * j as f64 / around as f64;
+        DVec3::new(th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos())
+    };
+    let mut polygons = Vec::new();
+    let mut tri = |a: DVec3, b: DVec3, c: DVec3, band: usize| {
+        let colour = if band & 1 == 0 {
+            [230, 180, 90]
+        } else {
+            [120, 170, 240]
+        };
+        let id = polygons.len() as u32;
+        polygons.push(Polygon::new(vec![a, b, c], id, colour).expect("triangle"));
+    };
+    for i in 0..bands {
+        for j in 0..around {
+            let (a, b) = (at(i, j), at(i, j + 1));
+            let (c, d) = (at(i + 1, j + 1), at(i + 1, j));
+            // Outward and counter-clockwise; the poles' rings are triangles.
+            if i > 0 {
+                tri(a, d, b, i);
+            }
+            if i + 1 < bands {
+                tri(b, d, c, i);
+            }
+        }
+    }
+    let n = polygons.len();
+    Scene {
+        name: "ball".into(),
+        polygons,
+        closed: true,
+        parts: std::iter::once(0..n).collect(),
+    }
+}
+
+/// The scene's tree; a scene drawn with smooth shading declares it, so
+/// that the tree carries corner normals.
+fn tree_bytes(scene: fn() -> Scene, smooth: bool) -> Vec<u8> {
     let s = scene();
     let t = build(
         s.polygons,
@@ -123,7 +179,12 @@ fn tree_bytes(scene: fn() -> Scene) -> Vec<u8> {
         DEFAULT_SEED,
         &mut NoProgress,
     );
-    serialize(&t, &SerializeOptions::default()).expect("serialize")
+    let effects = smooth.then(|| Effects::defaults(s.closed).with(Effects::SMOOTH).bits());
+    let opts = SerializeOptions {
+        effects,
+        ..SerializeOptions::default()
+    };
+    serialize(&t, &opts).expect("serialize")
 }
 
 /// The orbit camera (z up) around the bounding-sphere centre.
@@ -297,7 +358,8 @@ fn reference(tree: &Tree<'_>, cam: &Camera, fx: Effects, mono: bool) -> Referenc
     let centre = DVec3::from(tree.origin());
     let w_c = row_w.truncate().dot(centre) + row_w.w;
     let rho = f64::from(tree.bounding_radius()) * row_w.truncate().length();
-    let colour = |id: usize| -> Rgb888 {
+    let smooth = fx.contains(Effects::SMOOTH) && fx.contains(Effects::LIGHTING);
+    let colour = |id: usize, px: usize| -> Rgb888 {
         let p = &all[id];
         let stored = tree.polygon(id as u32).expect("polygon").plane();
         let mut n = stored.normal;
@@ -305,7 +367,9 @@ fn reference(tree: &Tree<'_>, cam: &Camera, fx: Effects, mono: bool) -> Referenc
             n = n.map(|c| -c);
         }
         let c = tree.polygon(id as u32).expect("polygon").color();
-        let mut rgb = if fx.contains(Effects::LIGHTING) {
+        let mut rgb = if smooth {
+            smooth_colour(tree, cam, &light, id as u32, px)
+        } else if fx.contains(Effects::LIGHTING) {
             shade(ShadeMode::Lambert, &light, n, c)
         } else {
             Rgb888::new(c[0], c[1], c[2])
@@ -337,7 +401,7 @@ fn reference(tree: &Tree<'_>, cam: &Camera, fx: Effects, mono: bool) -> Referenc
             }
             let rgb = match ids[i] {
                 0 => BG,
-                id => colour(id as usize - 1),
+                id => colour(id as usize - 1, i),
             };
             if mono {
                 let on = if fx.contains(Effects::DITHER) {
@@ -356,6 +420,30 @@ fn reference(tree: &Tree<'_>, cam: &Camera, fx: Effects, mono: bool) -> Referenc
         near_edges,
         face_pixels: (faces, sure_faces),
     }
+}
+
+/// The smooth-shaded colour of pixel `px` on triangle `id`: its corners
+/// lit by their stored normals (the shared shading functions), blended by
+/// the pixel centre's barycentric weights in the exact projection, rounded.
+fn smooth_colour(tree: &Tree<'_>, cam: &Camera, light: &Light, id: u32, px: usize) -> Rgb888 {
+    let p = tree.polygon(id).expect("polygon");
+    assert_eq!(p.vertex_count(), 3, "the smooth case draws triangles");
+    let corner = |k: usize| {
+        let n = tree.corner_normal(id, k).expect("corner normal");
+        let c = shade_color(ShadeMode::Lambert, p.color(), light.intensity_i8(n));
+        let xy = to_pixel(cam, DVec3::from(p.vertex_model(k))).expect("in front");
+        (xy, [c.r(), c.g(), c.b()].map(f64::from))
+    };
+    let [(a, ca), (b, cb), (c, cc)] = [corner(0), corner(1), corner(2)];
+    let (x, y) = ((px % W) as f64 + 0.5, (px / W) as f64 + 0.5);
+    let area = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
+    let wb = ((x - a.0) * (c.1 - a.1) - (c.0 - a.0) * (y - a.1)) / area;
+    let wc = ((b.0 - a.0) * (y - a.1) - (x - a.0) * (b.1 - a.1)) / area;
+    let ch = |k: usize| {
+        let v = ca[k] + wb * (cb[k] - ca[k]) + wc * (cc[k] - ca[k]);
+        (v + 0.5).floor().clamp(0.0, 255.0) as u8
+    };
+    Rgb888::new(ch(0), ch(1), ch(2))
 }
 
 fn golden_path(name: &str) -> PathBuf {
@@ -396,7 +484,7 @@ fn every_effect_on_and_off_matches_its_reference_golden() {
     let bless = std::env::var_os("FPT_BLESS").is_some();
     let mut failures = Vec::new();
     for case in &CASES {
-        let bytes = tree_bytes(case.scene);
+        let bytes = tree_bytes(case.scene, case.effect == "smooth");
         let tree = Tree::from_bytes(&bytes).expect("valid tree");
         let cam = camera(&tree, case.orbit);
         let e = Effects::parse(case.effect).expect("effect name");
@@ -422,8 +510,10 @@ fn every_effect_on_and_off_matches_its_reference_golden() {
             }
             let got = product(&tree, &cam, fx, case.mono);
             let sure = want.iter().filter(|&&p| p != UNSURE).count();
+            let tol = if fx.contains(Effects::SMOOTH) { 2 } else { 0 };
+            let differs = |a: [u8; 3], b: [u8; 3]| (0..3).any(|k| a[k].abs_diff(b[k]) > tol);
             let wrong: Vec<usize> = (0..W * H)
-                .filter(|&i| want[i] != UNSURE && got[i] != want[i])
+                .filter(|&i| want[i] != UNSURE && differs(got[i], want[i]))
                 .collect();
             if let Some(&i) = wrong.first() {
                 failures.push(format!(

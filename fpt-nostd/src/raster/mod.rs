@@ -13,6 +13,7 @@
 //! | edge setup | [`edge`] | screen polygon → exact stepped edges |
 //! | scan conversion | [`scan`] | edges → spans to a [`SpanSink`] |
 //! | shading | [`shade`] | normal + colour (+ depth cue) → `Rgb888` |
+//! | smooth shading | [`gouraud`] | corner normals → colour plane → spans in runs of equal colour |
 //! | outlines | [`outline`] | screen polygon → one-pixel edge lines |
 //! | dithering | [`dither`] | spans → ordered-dithered grey or mono pixels |
 //! | targets | [`framebuffer`], [`sink`], [`band`] | spans → pixels |
@@ -54,6 +55,7 @@ pub mod clip;
 pub mod dither;
 pub mod edge;
 pub mod framebuffer;
+pub mod gouraud;
 pub mod int_path;
 pub mod list;
 pub mod outline;

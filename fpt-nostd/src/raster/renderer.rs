@@ -35,6 +35,7 @@ use embedded_graphics::pixelcolor::Rgb888;
 use super::camera::{Camera, Orbit};
 use super::clip::{clip_polygon, ClipNum, ClipVert};
 use super::edge::{Dda32, Edge};
+use super::gouraud::{fill_smooth, Smooth, SmoothSink};
 use super::outline::draw_outline;
 use super::precision::Precision;
 use super::scan::{fill_polygon_in, Bbox, FillRule, Paint, SpanBounds, SpanSink};
@@ -230,6 +231,10 @@ pub struct Renderer<P: Precision, E: Compiled = AllEffects> {
     active: Effects,
     cue: DepthCue,
     outline: Rgb888,
+    /// The colour plane of the polygon the walk hands to the fill next
+    /// (`smooth` effect, [`super::gouraud`]): kept here, not in [`Ready`],
+    /// so that the flat path's per-polygon data stays as small as before.
+    smooth: Option<Smooth>,
     pipeline: PhantomData<E>,
 }
 
@@ -252,6 +257,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             active: Effects::defaults(true),
             cue: DepthCue::default(),
             outline: Rgb888::new(0, 0, 0),
+            smooth: None,
             pipeline: PhantomData,
         })
     }
@@ -280,6 +286,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             active: Effects::defaults(true),
             cue: DepthCue::DEFAULT,
             outline: Rgb888::new(0, 0, 0),
+            smooth: None,
             pipeline: PhantomData,
         })
     }
@@ -326,6 +333,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// declared effects; returns the effects in use for the frame.
     pub fn begin_tree(&mut self, declared: Effects) -> Effects {
         self.active = self.forced.unwrap_or(declared);
+        self.smooth = None;
         self.effects()
     }
 
@@ -360,6 +368,20 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Sets the light.
     pub fn set_light(&mut self, light: Light) {
         self.light = light;
+    }
+
+    /// Sets the colour plane the next [`Renderer::fill_ready`] paints with
+    /// (`None`: flat); only a walk with smooth shading sets it.
+    #[inline]
+    pub(crate) fn set_smooth(&mut self, plane: Option<Smooth>) {
+        self.smooth = plane;
+    }
+
+    /// The light, shading mode and depth cueing parameters (for the
+    /// `smooth` effect's corner colours, [`super::gouraud`]).
+    #[inline]
+    pub(crate) fn lighting(&self) -> (&Light, ShadeMode, &DepthCue) {
+        (&self.light, self.mode, &self.cue)
     }
 
     /// Sets the shading mode.
@@ -700,6 +722,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             end,
             rgb,
             clipped,
+            depth,
         })
     }
 
@@ -720,18 +743,26 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         };
         let sub = self.viewport.sub_bits();
         let vp = self.viewport_bounds();
-        let color = sink.color(&Paint { rgb: ready.rgb, id });
-        let spans = match fill_polygon_in(
-            pts,
-            ready.bbox.as_ref(),
-            sub,
-            self.rule,
-            &vp,
-            &mut scratch.edges,
-            &mut scratch.active,
-            color,
-            sink,
-        ) {
+        let (edges, active) = (&mut scratch.edges, &mut scratch.active);
+        let plane = if E::SET.contains(Effects::SMOOTH) {
+            self.smooth.as_ref()
+        } else {
+            None
+        };
+        let filled = match plane {
+            // Gouraud: the same fill, its spans painted by the colour plane.
+            Some(s) => {
+                let mut smooth = SmoothSink::new(s, id, sink);
+                let (bbox, rule) = (ready.bbox.as_ref(), self.rule);
+                fill_smooth(pts, bbox, sub, rule, &vp, edges, active, &mut smooth)
+            }
+            _ => {
+                let color = sink.color(&Paint { rgb: ready.rgb, id });
+                let (bbox, rule) = (ready.bbox.as_ref(), self.rule);
+                fill_polygon_in(pts, bbox, sub, rule, &vp, edges, active, color, sink)
+            }
+        };
+        let spans = match filled {
             Ok(spans) => spans,
             Err(_) => return Outcome::Skipped(SkipReason::ClipCapacity),
         };
@@ -768,6 +799,8 @@ pub(crate) struct Ready {
     pub(crate) rgb: Rgb888,
     /// Whether clipping changed the polygon.
     pub(crate) clipped: bool,
+    /// Mean eye depth (with depth cueing; else 0).
+    pub(crate) depth: f32,
 }
 
 #[cfg(test)]

@@ -97,8 +97,9 @@ pub struct Paint {
 /// and `bounds().x0 ≤ x0 < x1 ≤ bounds().x1`. Implementations should still
 /// clip defensively (cheap, and keeps a buggy caller from panicking them).
 pub trait SpanSink {
-    /// The sink's native colour, converted once per polygon.
-    type Color: Copy;
+    /// The sink's native colour, converted once per polygon (compared by
+    /// smooth shading, [`super::gouraud`], to paint runs of equal colour).
+    type Color: Copy + PartialEq;
     /// Whether [`SpanSink::color`] reads [`Paint::id`]. Band rendering's
     /// display list stores each polygon's id only for sinks that do
     /// (2 bytes a polygon less for a plain framebuffer).

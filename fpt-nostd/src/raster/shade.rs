@@ -252,6 +252,27 @@ impl Light {
         self.intensity_unit(unit_from_f32(normal))
     }
 
+    /// Like [`Light::intensity`] for a unit normal stored as `i8` times
+    /// 127 (the corner normals of [`crate::format`]): converted to Q14 and
+    /// used as unit length, without the square root and divisions of
+    /// normalising again (a few integer operations per corner).
+    ///
+    /// ```
+    /// use fpt_nostd::raster::Light;
+    /// let l = Light::new([0.0, 0.0, 1.0], 0.25, 0.75);
+    /// assert_eq!(l.intensity_i8([0, 0, 127]), l.intensity([0.0, 0.0, 1.0]));
+    /// assert_eq!(l.intensity_i8([0, 0, -127]), l.intensity([0.0, 0.0, -1.0]));
+    /// ```
+    pub fn intensity_i8(&self, normal: [i8; 3]) -> Fx14 {
+        // 127ths to Q14, rounded half away from zero: |c| ≤ 127 gives at
+        // most 2^14, so the dot product stays in i32.
+        let q = normal.map(|c| {
+            let n = i32::from(c) * (1 << 14);
+            Fx14::from_raw((n + n.signum() * 63) / 127)
+        });
+        self.intensity_unit(Some(q))
+    }
+
     /// Like [`Light::intensity`] for an integer normal (any scale).
     pub fn intensity_q(&self, normal: [i32; 3]) -> Fx14 {
         self.intensity_unit(unit_from_ints(normal.map(|c| c as i64)))

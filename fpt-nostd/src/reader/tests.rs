@@ -161,7 +161,7 @@ fn rejects_bad_headers() {
     bad[hd::RADIUS] ^= 1;
     assert_eq!(Tree::from_bytes(&bad).unwrap_err(), FormatError::Checksum);
     assert_eq!(
-        parse_edited(&r, |b| b[hd::FLAGS] = 4),
+        parse_edited(&r, |b| b[hd::FLAGS] = 8),
         Err(FormatError::BadHeader("flags"))
     );
     assert_eq!(

@@ -369,8 +369,18 @@ impl Walk<'_, '_, '_> {
                 // Every vertex cached: the polygon's index stands for its
                 // points.
                 Ok(ready) => {
+                    let smooth = E::SET.contains(Effects::SMOOTH) && self.fx.smooth;
+                    if smooth {
+                        let plane = r.smooth_plane(scratch, &ready, self.tree, p, face);
+                        r.set_smooth(plane);
+                    }
                     let poly = by_index.then(|| p.id());
-                    f(r, scratch, &ready, poly, face, self.cache)
+                    let step = f(r, scratch, &ready, poly, face, self.cache);
+                    if smooth {
+                        // No plane outlives its polygon.
+                        r.set_smooth(None);
+                    }
+                    step
                 }
                 Err(_) => Step::Next,
             };
@@ -622,6 +632,7 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
             end: e.end,
             rgb: e.rgb,
             clipped: e.clipped,
+            depth: 0.0,
         };
         if let Outcome::Drawn { spans: s } = r.fill_ready(scratch, &ready, e.id, e.hidden, sink) {
             spans += s as u64;
@@ -813,10 +824,13 @@ where
     while y < h {
         walks += 1;
         list.clear();
-        let cut = Cell::new(h);
+        // The list does not keep colour planes: with smooth shading every
+        // band is filled as its walk goes (one walk per band).
+        let smooth = E::SET.contains(Effects::SMOOTH) && fx.smooth;
+        let cut = Cell::new(if smooth { y + rows } else { h });
         // The list overflowed for band `y` alone: the rest of this walk
         // fills it directly.
-        let mut direct = false;
+        let mut direct = smooth;
         probe.enter(Phase::Fill);
         let Some(buf) = store.take() else {
             probe.stop();

@@ -112,7 +112,7 @@ pub struct BuildArgs {
     #[arg(long = "vertex-format", default_value = "f32", value_parser = ["f32", "q16", "q32"])]
     pub vertex_format: String,
     /// The scene's effects, stored in the file: comma-separated culling,
-    /// two-sided, clipping, lighting, depth-cue, dither, outline; or none.
+    /// two-sided, clipping, lighting, depth-cue, dither, outline, smooth; or none.
     /// Default: culling (closed) or two-sided (open), clipping, lighting.
     #[arg(long)]
     pub effects: Option<String>,
@@ -137,7 +137,8 @@ pub struct BuildArgs {
     pub color: Option<String>,
     /// The crease angle in degrees, 0 to 180: with the outline effect, an
     /// edge between faces meeting at a sharper angle is drawn, a smoother
-    /// one only where it is a silhouette.
+    /// one only where it is a silhouette; with the smooth effect, vertex
+    /// normals are averaged only over faces within this angle.
     #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
     pub crease: f32,
 }

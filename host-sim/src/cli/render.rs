@@ -32,7 +32,7 @@
 //!   ([`PRECISIONS`], or a short name of [`ALIASES`]), for accuracy studies.
 //! * `--effects`: overrides the effects the tree declares
 //!   ([`fpt_nostd::effects`]): a comma-separated list of `culling,
-//!   two-sided, clipping, lighting, depth-cue, dither, outline`, or `none`.
+//!   two-sided, clipping, lighting, depth-cue, dither, outline, smooth`, or `none`.
 //!   `dither` only changes `gray8` and `mono` pictures.
 //! * `--gray-levels`, `--display`: display simulation, see [`super::display`].
 //!
@@ -189,7 +189,7 @@ pub struct RenderArgs {
     #[arg(long, default_value = "lambert", value_parser = ["lambert", "flat", "grey"])]
     pub shade: String,
     /// Effects instead of the tree's: comma-separated culling, two-sided,
-    /// clipping, lighting, depth-cue, dither, outline; or none.
+    /// clipping, lighting, depth-cue, dither, outline, smooth; or none.
     #[arg(long)]
     pub effects: Option<String>,
     /// Grey levels of a gray8 panel (2..=256; default 256, or 16 when
