@@ -239,10 +239,43 @@ impl Walk<'_, '_, '_> {
         let view = order.view();
         // Slivers first (see `render::slivers`): culled polygons that the
         // snap winds toward the viewer, under everything the walk draws.
-        // Out of line: the walk's own loop keeps its registers and stack
-        // frame when the pass is off (the default).
         if self.turn != 0 {
-            self.slivers(order, r, scratch, probe, count, &reach, &mut f);
+            let mut culled = order.culled(self.tree);
+            while let Some(range) = culled.next_range() {
+                for id in range {
+                    let Some(p) = self.tree.polygon_at(id) else {
+                        continue;
+                    };
+                    let sure = match self.screen_points(r, scratch, &p) {
+                        Some(n) => {
+                            let pts = scratch.screen().get(..n).unwrap_or(&[]);
+                            if !turns_toward(pts, self.turn) {
+                                continue;
+                            }
+                            true
+                        }
+                        // Needs clipping: tested on its clipped points.
+                        None => false,
+                    };
+                    if let Some(p) = self.tree.polygon(id) {
+                        probe.polygon(&p);
+                    }
+                    let fx = WalkFx {
+                        two_sided: true,
+                        outline: false,
+                        ..self.fx
+                    };
+                    let mut face = face_of(self.tree, &p, &view, fx, self.id_of(&p));
+                    face.hidden_edges = u64::MAX;
+                    let pass = if sure {
+                        Pass::Sliver
+                    } else {
+                        Pass::Unsure(self.turn)
+                    };
+                    self.draw(r, scratch, (&p, &face, pass), probe, count, &reach, &mut f);
+                    probe.enter(Phase::Post);
+                }
+            }
         }
         while let Some(range) = order.next_range() {
             for id in range {
@@ -265,65 +298,6 @@ impl Walk<'_, '_, '_> {
                     &reach,
                     &mut f,
                 );
-                probe.enter(Phase::Post);
-            }
-        }
-    }
-
-    /// The sliver pass of [`Walk::run`] (see `render::slivers`).
-    #[allow(clippy::too_many_arguments)]
-    #[inline(never)]
-    fn slivers<P: Precision, E: Compiled, Pr: Probe, const N: usize, const V: usize>(
-        &mut self,
-        order: &Order<'_, N>,
-        r: &mut Renderer<P, E>,
-        scratch: &mut Scratch<P, V>,
-        probe: &Pr,
-        count: bool,
-        reach: &impl Fn() -> SpanBounds,
-        f: &mut impl FnMut(
-            &mut Renderer<P, E>,
-            &mut Scratch<P, V>,
-            &Ready,
-            Option<u32>,
-            &Face,
-            &VertexCache<'_>,
-        ) -> Step,
-    ) {
-        let view = order.view();
-        let mut culled = order.culled(self.tree);
-        while let Some(range) = culled.next_range() {
-            for id in range {
-                let Some(p) = self.tree.polygon_at(id) else {
-                    continue;
-                };
-                let sure = match self.screen_points(r, scratch, &p) {
-                    Some(n) => {
-                        let pts = scratch.screen().get(..n).unwrap_or(&[]);
-                        if !turns_toward(pts, self.turn) {
-                            continue;
-                        }
-                        true
-                    }
-                    // Needs clipping: tested on its clipped points.
-                    None => false,
-                };
-                if let Some(p) = self.tree.polygon(id) {
-                    probe.polygon(&p);
-                }
-                let fx = WalkFx {
-                    two_sided: true,
-                    outline: false,
-                    ..self.fx
-                };
-                let mut face = face_of(self.tree, &p, &view, fx, self.id_of(&p));
-                face.hidden_edges = u64::MAX;
-                let pass = if sure {
-                    Pass::Sliver
-                } else {
-                    Pass::Unsure(self.turn)
-                };
-                self.draw(r, scratch, (&p, &face, pass), probe, count, reach, f);
                 probe.enter(Phase::Post);
             }
         }
