@@ -42,7 +42,7 @@ use super::slivers::{self, turns_toward};
 use super::{face_of, walk_effects, BandBuffer, FaceIds, Frame, RenderError, WalkFx};
 use crate::effects::{Compiled, Effects};
 use crate::format::VertexFormat;
-use crate::order::{memo_words, Order, OrderError, MEMO};
+use crate::order::{memo_words, Class, Order, OrderError, MEMO};
 use crate::raster::clip::ClipVert;
 use crate::raster::int_path::q16_camera;
 use crate::raster::list::{DisplayList, Entry, Kind, Points};
@@ -239,13 +239,30 @@ impl Walk<'_, '_, '_> {
         let view = order.view();
         // Slivers first (see `render::slivers`): culled polygons that the
         // snap winds toward the viewer, under everything the walk draws.
-        if self.turn != 0 {
-            let mut culled = order.culled(self.tree);
-            while let Some(range) = culled.next_range() {
-                for id in range {
-                    let Some(p) = self.tree.polygon_at(id) else {
-                        continue;
-                    };
+        // One loop over both passes' ranges, so that the walk-and-fill
+        // function holds one copy of `draw` (the prepare and the fill
+        // inlined into it), not one per pass.
+        let mut slivers = (self.turn != 0).then(|| order.culled(self.tree));
+        loop {
+            let (range, sliver) = match slivers.as_mut().map(Class::next_range) {
+                Some(Some(range)) => (range, true),
+                Some(None) => {
+                    slivers = None;
+                    continue;
+                }
+                None => match order.next_range() {
+                    Some(range) => (range, false),
+                    None => break,
+                },
+            };
+            for id in range {
+                // The polygon borrowing the tree: a `PolygonRef` (a copy
+                // of the tree's geometry) only for the probe, which
+                // `NoProbe` leaves unused.
+                let Some(p) = self.tree.polygon_at(id) else {
+                    continue;
+                };
+                let (fx, pass) = if sliver {
                     let sure = match self.screen_points(r, scratch, &p) {
                         Some(n) => {
                             let pts = scratch.screen().get(..n).unwrap_or(&[]);
@@ -257,42 +274,31 @@ impl Walk<'_, '_, '_> {
                         // Needs clipping: tested on its clipped points.
                         None => false,
                     };
-                    if let Some(p) = self.tree.polygon(id) {
-                        probe.polygon(&p);
-                    }
                     let fx = WalkFx {
                         two_sided: true,
                         outline: false,
                         ..self.fx
                     };
-                    let mut face = face_of(self.tree, &p, &view, fx, self.id_of(&p));
-                    face.hidden_edges = u64::MAX;
                     let pass = if sure {
                         Pass::Sliver
                     } else {
                         Pass::Unsure(self.turn)
                     };
-                    self.draw(r, scratch, (&p, &face, pass), probe, count, &reach, &mut f);
-                    probe.enter(Phase::Post);
-                }
-            }
-        }
-        while let Some(range) = order.next_range() {
-            for id in range {
-                // The polygon borrowing the tree: a `PolygonRef` (a copy
-                // of the tree's geometry) only for the probe, which
-                // `NoProbe` leaves unused.
-                let Some(p) = self.tree.polygon_at(id) else {
-                    continue;
+                    (fx, pass)
+                } else {
+                    (self.fx, Pass::Walk)
                 };
                 if let Some(p) = self.tree.polygon(id) {
                     probe.polygon(&p);
                 }
-                let face = face_of(self.tree, &p, &view, self.fx, self.id_of(&p));
+                let mut face = face_of(self.tree, &p, &view, fx, self.id_of(&p));
+                if sliver {
+                    face.hidden_edges = u64::MAX;
+                }
                 self.draw(
                     r,
                     scratch,
-                    (&p, &face, Pass::Walk),
+                    (&p, &face, pass),
                     probe,
                     count,
                     &reach,
