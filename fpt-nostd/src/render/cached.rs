@@ -295,15 +295,7 @@ impl Walk<'_, '_, '_> {
                 if sliver {
                     face.hidden_edges = u64::MAX;
                 }
-                self.draw(
-                    r,
-                    scratch,
-                    (&p, &face, pass),
-                    probe,
-                    count,
-                    &reach,
-                    &mut f,
-                );
+                self.draw(r, scratch, (&p, &face, pass), probe, count, &reach, &mut f);
                 probe.enter(Phase::Post);
             }
         }
