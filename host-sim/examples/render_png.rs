@@ -6,6 +6,11 @@
 //! cargo run --release -p host-sim --example render_png -- firmware/trees/vise.fpt vise.png
 //! ```
 //!
+//! Slivers are drawn (`Renderer::set_slivers`): a closed model shows no
+//! background pixel inside its silhouette where the sub-pixel snap turns a
+//! face seen almost edge-on toward the viewer. `--no-slivers` leaves that
+//! pass out, as a firmware does unless it turns it on.
+//!
 //! The renderer draws through [`DrawTargetSink`], which turns every span
 //! into an `embedded-graphics` `fill_solid` on any `DrawTarget`: here the
 //! simulator's display, on a microcontroller a display driver's.
@@ -25,7 +30,7 @@ const H: u32 = 240;
 const VERTS: usize = 64;
 const DEPTH: usize = 1024;
 
-fn run(tree_path: &str, out: &str) -> Result<(), String> {
+fn run(tree_path: &str, out: &str, slivers: bool) -> Result<(), String> {
     let bytes = std::fs::read(tree_path).map_err(|e| format!("reading {tree_path}: {e}"))?;
     let tree = Tree::from_bytes(&bytes).map_err(|e| format!("{tree_path}: {e}"))?;
     let mut r = Box::new(TreeRenderer::<FloatLibm<4>, VERTS>::new(W, H).ok_or("display size")?);
@@ -41,6 +46,7 @@ fn run(tree_path: &str, out: &str) -> Result<(), String> {
     let frame = Frame::relative(&tree, &orbit.camera::<Libm>(W as f32 / H as f32));
     r.renderer
         .set_light(Light::new(frame.key_light(), 0.25, 0.75));
+    r.renderer.set_slivers(slivers);
 
     let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(W, H));
     let mut sink = DrawTargetSink::new(&mut display);
@@ -64,16 +70,19 @@ fn run(tree_path: &str, out: &str) -> Result<(), String> {
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let before = args.len();
+    args.retain(|a| a != "--no-slivers");
+    let slivers = args.len() == before;
     let (tree, out) = match args.as_slice() {
-        [t] => (t.as_str(), "render.png"),
-        [t, o] => (t.as_str(), o.as_str()),
+        [t] if !t.starts_with('-') => (t.as_str(), "render.png"),
+        [t, o] if !t.starts_with('-') && !o.starts_with('-') => (t.as_str(), o.as_str()),
         _ => {
-            eprintln!("error: usage: render_png TREE.fpt [OUT.png]");
+            eprintln!("error: usage: render_png TREE.fpt [OUT.png] [--no-slivers]");
             return ExitCode::from(2);
         }
     };
-    match run(tree, out) {
+    match run(tree, out, slivers) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");

@@ -86,6 +86,9 @@ fn cli_ids(
         },
         "--ids".into(),
         s(&ids),
+        // The study measures the plain pipeline; `fpt render` draws
+        // slivers unless told not to.
+        "--no-slivers".into(),
     ];
     if config.orbit_trig {
         args.push(format!("--yaw={}", view.yaw));

@@ -39,6 +39,9 @@ pub struct DemoArgs {
     /// Output folder (created if missing).
     #[arg(long, default_value = "out/demo")]
     pub out: PathBuf,
+    /// Leave out the sliver pass (see `fpt render --help`).
+    #[arg(long = "no-slivers")]
+    pub no_slivers: bool,
 }
 
 /// Picture size of the demo (a common small TFT).
@@ -124,7 +127,7 @@ fn build_z_up(
 }
 
 /// Builds, checks, renders and reports one scene.
-fn demo_scene(show: &Show, out: &Path) -> CliResult {
+fn demo_scene(show: &Show, out: &Path, slivers: bool) -> CliResult {
     let s = &show.scene;
     let (tree, bytes, tree_path) = build_z_up(&s.name, s.polygons.clone(), s.closed, out)?;
     let t = Tree::from_bytes(&bytes)
@@ -165,6 +168,7 @@ fn demo_scene(show: &Show, out: &Path) -> CliResult {
             ids: false,
             effects: None,
             gray_levels: None,
+            slivers,
         };
         let r = render_job(&t, &job, PRECISION)?;
         let png = out.join(format!("{}_{}.png", s.name, k + 1));
@@ -193,7 +197,7 @@ type Shot = (
 
 /// The vise again with the optional stages a scene can declare (see
 /// `fpt_nostd::effects`), and on simulated small panels.
-fn demo_effects(out: &Path) -> CliResult {
+fn demo_effects(out: &Path, slivers: bool) -> CliResult {
     let path = out.join("vise.fpt");
     let bytes = std::fs::read(&path).map_err(|e| cli_err!("{}: {e}", path.display()))?;
     let t = Tree::from_bytes(&bytes).map_err(|e| cli_err!("{}: {e}", path.display()))?;
@@ -251,6 +255,7 @@ fn demo_effects(out: &Path) -> CliResult {
             ids: false,
             effects: Some(effects),
             gray_levels,
+            slivers,
         };
         let r = render_job(&t, &job, PRECISION)?;
         let png = out.join(format!("vise_{name}.png"));
@@ -262,7 +267,7 @@ fn demo_effects(out: &Path) -> CliResult {
 
 /// The coloured model: written as OBJ + MTL, imported, built, rendered
 /// and spun.
-fn demo_coloured(out: &Path) -> CliResult {
+fn demo_coloured(out: &Path, slivers: bool) -> CliResult {
     let scene = crate::scenes::robot();
     let (obj, mtl) = crate::mesh::write_obj_mtl(&scene.polygons, "robot.mtl");
     let obj_path = out.join("robot.obj");
@@ -307,6 +312,7 @@ fn demo_coloured(out: &Path) -> CliResult {
         ids: false,
         effects: None,
         gray_levels: None,
+        slivers,
     };
     let r = render_job(&t, &job, PRECISION)?;
     let png = out.join("robot_1.png");
@@ -325,6 +331,7 @@ fn demo_coloured(out: &Path) -> CliResult {
         camera: camera(35.0, 20.0),
         shade: ShadeMode::Lambert,
         background,
+        slivers,
     };
     let gif = encode(&t, &spin, PRECISION)?;
     let gif_path = out.join("robot_spin.gif");
@@ -349,10 +356,10 @@ pub fn run(a: &DemoArgs) -> CliResult {
         a.out.display()
     );
     for show in shows() {
-        demo_scene(&show, &a.out)?;
+        demo_scene(&show, &a.out, !a.no_slivers)?;
     }
-    demo_effects(&a.out)?;
-    demo_coloured(&a.out)?;
+    demo_effects(&a.out, !a.no_slivers)?;
+    demo_coloured(&a.out, !a.no_slivers)?;
     println!(
         "render a tree yourself: fpt render {} -o view.png [--yaw 30 --pitch 20]; \
          spin it: fpt turntable {} -o spin.gif",

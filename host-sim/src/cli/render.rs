@@ -200,6 +200,13 @@ pub struct RenderArgs {
     /// oled-white, lcd-green, lcd-white, lcd-blue).
     #[arg(long, default_value = "plain", value_parser = PANELS)]
     pub display: String,
+    /// Leave out the sliver pass: without it, a face seen almost edge-on
+    /// that the sub-pixel snap winds toward the viewer is culled, and a
+    /// closed model can show single background pixels along its
+    /// silhouette edges (the firmware's default; it saves about a sixth of
+    /// a frame).
+    #[arg(long = "no-slivers")]
+    pub no_slivers: bool,
 }
 
 /// Pixel format of the framebuffer.
@@ -253,6 +260,11 @@ pub struct Job {
     pub effects: Option<Effects>,
     /// Grey levels of a `Gray8` panel (`None`: 256, or 16 when dithering).
     pub gray_levels: Option<u16>,
+    /// Whether the renderer draws slivers (`Renderer::set_slivers`): on
+    /// for the pictures of the host commands, so that a closed model shows
+    /// no background pixel inside its silhouette; off for the accuracy
+    /// study, which measures the plain pipeline a firmware runs by default.
+    pub slivers: bool,
 }
 
 /// A finished picture: the framebuffer storage of its format.
@@ -328,6 +340,7 @@ fn render_with<P: Precision>(tree: &Tree<'_>, job: &Job) -> Result<Rendered, Cli
     tr.renderer
         .set_light(Light::new(frame.key_light(), 0.25, 0.75));
     tr.renderer.set_effects(job.effects);
+    tr.renderer.set_slivers(job.slivers);
     let (near, far) = frame.depth_range(tree);
     tr.renderer.set_depth_cue(DepthCue {
         near,
@@ -649,6 +662,7 @@ pub fn run(a: &RenderArgs) -> CliResult {
         ids: a.ids.is_some(),
         effects,
         gray_levels: a.gray_levels,
+        slivers: !a.no_slivers,
     };
     let r = render_job(&tree, &job, &a.precision)?;
     if let Some(path) = &a.ids {

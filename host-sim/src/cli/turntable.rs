@@ -68,6 +68,9 @@ pub struct TurntableArgs {
     /// Arithmetic configuration (see `fpt render --help`).
     #[arg(long, default_value = "fixed-subpx-4", value_parser = PRECISION_NAMES)]
     pub precision: String,
+    /// Leave out the sliver pass (see `fpt render --help`).
+    #[arg(long = "no-slivers")]
+    pub no_slivers: bool,
 }
 
 /// The GIF delay of one frame at `fps`, in hundredths of a second.
@@ -94,6 +97,8 @@ pub struct Spin {
     pub shade: ShadeMode,
     /// Background colour.
     pub background: Rgb888,
+    /// Whether slivers are drawn ([`Job::slivers`]).
+    pub slivers: bool,
 }
 
 /// `fpt turntable`.
@@ -130,6 +135,7 @@ pub fn run(a: &TurntableArgs) -> CliResult {
         camera: orbit_camera(&a.orbit, &tree, w, h)?,
         shade,
         background: Rgb888::new(r, g, b),
+        slivers: !a.no_slivers,
     };
     let gif = encode(&tree, &spin, &a.precision)?;
     write_atomic(&a.output, &gif).map_err(|e| cli_err!("{}: {e}", a.output.display()))?;
@@ -186,6 +192,7 @@ pub fn encode(tree: &Tree<'_>, spin: &Spin, precision: &str) -> Result<Vec<u8>, 
                 ids: false,
                 effects: None,
                 gray_levels: None,
+                slivers: spin.slivers,
             };
             let Image::Rgb888(rgb) = render_job(tree, &job, precision)?.image else {
                 return Err(cli_err!("the renderer returned no 24-bit picture"));

@@ -363,7 +363,8 @@ pub fn camera_spec(config: &Config, tree: &Tree<'_>, view: ViewSpec, w: u32, h: 
 }
 
 /// The job of a measurement: rgb565, lambert shading, black background,
-/// full-frame path, optionally with ids.
+/// full-frame path, optionally with ids, no sliver pass (the study measures
+/// the plain pipeline, which is what a firmware runs by default).
 pub fn job(camera: CameraSpec, w: u32, h: u32, ids: bool) -> Job {
     Job {
         w,
@@ -376,6 +377,7 @@ pub fn job(camera: CameraSpec, w: u32, h: u32, ids: bool) -> Job {
         ids,
         effects: None,
         gray_levels: None,
+        slivers: false,
     }
 }
 
