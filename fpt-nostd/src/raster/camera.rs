@@ -16,7 +16,8 @@
 //!   view sees at the target), so switching projection keeps the model about
 //!   the same size on screen.
 //!
-//! With a parallel camera `w` is always 1, so nothing is near-clipped:
+//! With a parallel camera `w` is constant (1 for any ordinary distance,
+//! see [`Orbit::camera`]) and above `near_w`, so nothing is near-clipped:
 //! geometry behind the eye is drawn like the rest (the orbit eye is normally
 //! outside the model).
 
@@ -289,7 +290,41 @@ impl Orbit {
 
     /// The camera (matrix and near clip) for a viewport of aspect ratio
     /// `aspect = width / height`.
+    ///
+    /// Finite at any finite positive distance (and target within about
+    /// 2^100 distances of the origin). Composed in model units, the
+    /// projection's `2·far·near` (twice the distance squared) overflows
+    /// `f32` beyond a distance of about 1e19, and underflows below 1e-19,
+    /// and nothing is drawn. So the orbit is composed in model space
+    /// normalised by a power of two `u = 2^e` near the distance (where the
+    /// distance is in [1, 2)), then scaled back to model units, and the
+    /// whole matrix and `near_w` with it by a power of two `2^c` (a
+    /// homogeneous factor moves no projected point) that keeps every entry
+    /// near 1: `M = 2^c · M_u · S(2^−e)`. For a distance within `2^±32`
+    /// (every ordinary scene) `c` is `e` for a perspective orbit and 0 for
+    /// a parallel one, which is the composition in model units bit for bit
+    /// (scaling by powers of two commutes with rounding): `w` is the eye
+    /// distance (1 for parallel) as the module docs say. Beyond, `c` is
+    /// `e / 2` and `w` is the eye distance times `2^(c − e)`.
     pub fn camera<M: MathFns>(&self, aspect: f32) -> Camera {
+        let e = exponent(self.distance);
+        if (-ORDINARY..=ORDINARY).contains(&e) {
+            return self.compose::<M>(aspect, 1.0);
+        }
+        let mut cam = self.compose::<M>(aspect, pow2(-e));
+        let c = e / 2;
+        let (sx, st) = (pow2(c - e), pow2(c));
+        for row in cam.matrix.0.iter_mut() {
+            *row = [row[0] * sx, row[1] * sx, row[2] * sx, row[3] * st];
+        }
+        cam.near_w *= st;
+        cam
+    }
+
+    /// The orbit's camera composed in model units times `unit` (a power of
+    /// two): target, distance, near and far multiplied by it; the matrix
+    /// takes such coordinates.
+    fn compose<M: MathFns>(&self, aspect: f32, unit: f32) -> Camera {
         let (sy, cy) = (M::sin(self.yaw), M::cos(self.yaw));
         let (sp, cp) = (M::sin(self.pitch), M::cos(self.pitch));
         // Basis derived from the angles directly rather than by
@@ -297,10 +332,12 @@ impl Orbit {
         let right = [cy, 0.0, -sy];
         let up = [-sy * sp, cp, -cy * sp];
         let fwd = [-cp * sy, -sp, -cp * cy]; // eye → target
+        let distance = self.distance * unit;
+        let target = self.target.map(|v| v * unit);
         let eye = [
-            self.target[0] - self.distance * fwd[0],
-            self.target[1] - self.distance * fwd[1],
-            self.target[2] - self.distance * fwd[2],
+            target[0] - distance * fwd[0],
+            target[1] - distance * fwd[1],
+            target[2] - distance * fwd[2],
         ];
         let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         // Rows of the view transform: (axis, -axis·eye).
@@ -311,10 +348,10 @@ impl Orbit {
         } else {
             1.0
         };
-        let (near, far) = (self.near, self.far);
+        let (near, far) = (self.near * unit, self.far * unit);
         let zscale = |k: f32, r: [f32; 4], c: f32| [k * r[0], k * r[1], k * r[2], k * r[3] + c];
         let m = if self.is_parallel() {
-            let h = 0.5 * self.distance;
+            let h = 0.5 * distance;
             let span = far - near;
             // ndc.z = 2(d - near)/(far - near) - 1
             let z = zscale(2.0 / span, dr, -2.0 * near / span - 1.0);
@@ -326,8 +363,16 @@ impl Orbit {
             ])
         } else {
             let focal = M::recip(M::tan(0.5 * self.fov));
-            let a = (far + near) / (far - near);
-            let b = -2.0 * far * near / (far - near);
+            // A far plane beyond `f32` (`Orbit::new` at a distance above
+            // 3e35) is the limit of an infinitely far one.
+            let (a, b) = if far.is_finite() {
+                (
+                    (far + near) / (far - near),
+                    -2.0 * far * near / (far - near),
+                )
+            } else {
+                (1.0, -2.0 * near)
+            };
             Mat4([
                 zscale(focal / aspect, xr, 0.0),
                 zscale(focal, yr, 0.0),
@@ -335,9 +380,29 @@ impl Orbit {
                 dr,
             ])
         };
-        let near_w = if self.is_parallel() { 0.5 } else { self.near };
+        let near_w = if self.is_parallel() { 0.5 } else { near };
         Camera { matrix: m, near_w }
     }
+}
+
+/// Distances within `2^±ORDINARY` are composed in model units as they are
+/// ([`Orbit::camera`]): `2·far·near` stays far inside `f32` there.
+const ORDINARY: i32 = 32;
+
+/// `floor(log2(x))` for a finite `x > 0`, within ±126 (so that `2^±e` are
+/// normal `f32` numbers); 0 otherwise.
+fn exponent(x: f32) -> i32 {
+    if !(x.is_finite() && x > 0.0) {
+        return 0;
+    }
+    let biased = ((x.to_bits() >> 23) & 0xff) as i32;
+    // A subnormal distance: as small as an exponent can say.
+    (biased - 127).clamp(-126, 126)
+}
+
+/// `2^e` as `f32`, exactly (`e` within ±126).
+fn pow2(e: i32) -> f32 {
+    f32::from_bits(((e.clamp(-126, 126) + 127) as u32) << 23)
 }
 
 /// A camera as the renderer uses it: the full model→clip matrix and the
@@ -512,6 +577,90 @@ mod tests {
                 assert!(q[0].abs() < 1.0 && q[1].abs() < 1.0, "{fov} {aspect} {q:?}");
             }
         }
+    }
+
+    /// Clip-space points of `probe` scaled by `s`, through the orbit of
+    /// `base` with target and distance scaled by `s`: `(ndc.x, ndc.y,
+    /// w / near_w)` each, which is what the renderer reads.
+    fn seen(base: Orbit, s: f32, aspect: f32) -> [[f32; 3]; 4] {
+        let o = Orbit::new(
+            base.target.map(|v| v * s),
+            base.yaw,
+            base.pitch,
+            base.distance * s,
+            base.fov,
+        );
+        let cam = o.camera::<Libm>(aspect);
+        assert!(cam.matrix.is_finite(), "{s:e}: {cam:?}");
+        assert!(cam.near_w.is_finite() && cam.near_w > 0.0, "{s:e}: {cam:?}");
+        let probe = [
+            [0.0, 0.0, 0.0],
+            [1.5, -0.5, 2.0],
+            [-2.0, 1.0, 0.25],
+            [0.3, 2.5, -1.75],
+        ];
+        probe.map(|p| {
+            let c = cam.matrix.transform_point(p.map(|v| v * s));
+            [c[0] / c[3], c[1] / c[3], c[3] / cam.near_w]
+        })
+    }
+
+    #[test]
+    fn orbits_at_power_of_two_scales_see_the_same_picture_bit_for_bit() {
+        // Scaling target, distance, near, far and the model by 2^k is
+        // exact, and so is the composition in normalised space: the
+        // projected points are the unit orbit's bit for bit, at every
+        // scale f32 holds (the distance 5·2^k up to 5·2^125 ≈ 2.1e38, down
+        // to 5·2^-110 ≈ 3.9e-33, where `Orbit::new`'s near plane, a
+        // thousandth of that, is still a normal f32), perspective and
+        // parallel.
+        for fov in [1.0, 0.0] {
+            let base = Orbit::new([1.0, -2.0, 0.5], 0.7, 0.3, 5.0, fov);
+            let want = seen(base, 1.0, 1.5);
+            for k in (-110..=125).step_by(5) {
+                let got = seen(base, pow2(k), 1.5);
+                assert_eq!(got, want, "fov {fov} scale 2^{k}");
+            }
+        }
+    }
+
+    #[test]
+    fn orbits_at_any_scale_are_finite_and_see_the_unit_picture() {
+        for fov in [0.8, 0.0] {
+            let base = Orbit::new([0.5, 0.5, 0.5], -1.1, 0.6, 4.0, fov);
+            let want = seen(base, 1.0, 0.75);
+            for k in -36..=37 {
+                let s = libm::powf(10.0, k as f32);
+                for (g, w) in seen(base, s, 0.75).iter().zip(&want) {
+                    for i in 0..3 {
+                        assert!(
+                            (g[i] - w[i]).abs() <= 1e-4 * (1.0 + w[i].abs()),
+                            "fov {fov} 1e{k}: {g:?} {w:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn ordinary_orbits_keep_w_the_eye_distance() {
+        // The documented convention (w = eye distance, near_w = near; 1 for
+        // parallel) holds up to the normalised range, 2^±32.
+        for d in [3e-9f32, 1.0, 4e9] {
+            let o = Orbit::new([0.0; 3], 0.2, 0.1, d, 1.0);
+            let cam = o.camera::<Libm>(1.0);
+            let w = cam.matrix.transform_point([0.0; 3])[3];
+            assert!((w / d - 1.0).abs() < 1e-6, "{d:e}: {w:e}");
+            assert_eq!(cam.near_w, o.near);
+            let par = Orbit::new([0.0; 3], 0.2, 0.1, d, 0.0).camera::<Libm>(1.0);
+            assert_eq!(par.matrix.transform_point([0.0; 3])[3], 1.0);
+        }
+        // A far plane beyond f32 (distance above 3e35): the limit of an
+        // infinitely far plane, not NaN.
+        let o = Orbit::new([0.0; 3], 0.2, 0.1, 1e37, 1.0);
+        assert!(o.far.is_infinite());
+        assert!(o.camera::<Libm>(1.0).matrix.is_finite());
     }
 
     #[test]
