@@ -149,12 +149,27 @@ pub enum Up {
     Y,
     /// `+z` up (most CAD and STL files).
     Z,
+    /// `+x` up.
+    X,
+}
+
+impl From<crate::format::UpAxis> for Up {
+    /// The up axis a tree file records ([`crate::reader::Tree::up_axis`]).
+    fn from(axis: crate::format::UpAxis) -> Up {
+        match axis {
+            crate::format::UpAxis::Y => Up::Y,
+            crate::format::UpAxis::Z => Up::Z,
+            crate::format::UpAxis::X => Up::X,
+        }
+    }
 }
 
 impl Up {
     /// The model rotation that brings this axis to `+y`, to apply before
     /// an orbit's camera ([`Camera::with_model`], [`Orbit::camera_up`]):
-    /// the identity for [`Up::Y`], `(x, y, z) → (x, z, −y)` for [`Up::Z`].
+    /// the identity for [`Up::Y`], `(x, y, z) → (x, z, −y)` for [`Up::Z`],
+    /// `(x, y, z) → (−y, x, z)` for [`Up::X`] (each a permutation of the
+    /// columns with a sign: applying it to a camera rounds nothing).
     /// A rotation about the origin, so a tree-relative camera
     /// ([`crate::render::Frame::relative`]) keeps the model centred.
     pub const fn model(self) -> Mat4 {
@@ -164,6 +179,12 @@ impl Up {
                 [1.0, 0.0, 0.0, 0.0],
                 [0.0, 0.0, 1.0, 0.0],
                 [0.0, -1.0, 0.0, 0.0],
+                [0.0, 0.0, 0.0, 1.0],
+            ]),
+            Up::X => Mat4([
+                [0.0, -1.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0, 0.0],
                 [0.0, 0.0, 0.0, 1.0],
             ]),
         }
@@ -348,7 +369,15 @@ impl Orbit {
         } else {
             1.0
         };
-        let (near, far) = (self.near * unit, self.far * unit);
+        let near = self.near * unit;
+        // A far plane beyond `f32` (`Orbit::new` at a distance above
+        // 3e35): `Orbit::new`'s, a thousand distances, in these units. An
+        // infinite one would leave ndc.z constant, and the walk's view
+        // takes the sign of a parallel direction from it.
+        let far = match self.far * unit {
+            f if f.is_finite() => f,
+            _ => 1e3 * distance,
+        };
         let zscale = |k: f32, r: [f32; 4], c: f32| [k * r[0], k * r[1], k * r[2], k * r[3] + c];
         let m = if self.is_parallel() {
             let h = 0.5 * distance;
@@ -363,16 +392,8 @@ impl Orbit {
             ])
         } else {
             let focal = M::recip(M::tan(0.5 * self.fov));
-            // A far plane beyond `f32` (`Orbit::new` at a distance above
-            // 3e35) is the limit of an infinitely far one.
-            let (a, b) = if far.is_finite() {
-                (
-                    (far + near) / (far - near),
-                    -2.0 * far * near / (far - near),
-                )
-            } else {
-                (1.0, -2.0 * near)
-            };
+            let a = (far + near) / (far - near);
+            let b = -2.0 * far * near / (far - near);
             Mat4([
                 zscale(focal / aspect, xr, 0.0),
                 zscale(focal, yr, 0.0),
@@ -656,11 +677,18 @@ mod tests {
             let par = Orbit::new([0.0; 3], 0.2, 0.1, d, 0.0).camera::<Libm>(1.0);
             assert_eq!(par.matrix.transform_point([0.0; 3])[3], 1.0);
         }
-        // A far plane beyond f32 (distance above 3e35): the limit of an
-        // infinitely far plane, not NaN.
-        let o = Orbit::new([0.0; 3], 0.2, 0.1, 1e37, 1.0);
-        assert!(o.far.is_infinite());
-        assert!(o.camera::<Libm>(1.0).matrix.is_finite());
+        // A far plane beyond f32 (distance above 3e35): a thousand
+        // distances in normalised units, so that ndc.z still grows with
+        // depth (a parallel view's direction is signed by it).
+        for fov in [1.0, 0.0] {
+            let o = Orbit::new([0.0; 3], 0.2, 0.1, 1e37, fov);
+            assert!(o.far.is_infinite());
+            let m = o.camera::<Libm>(1.0).matrix;
+            assert!(m.is_finite());
+            let behind = o.eye_direction::<Libm>().map(|v| -v * 1e36);
+            let (centre, back) = (ndc(&m, [0.0; 3]), ndc(&m, behind));
+            assert!(centre[2] < back[2], "{fov}: {centre:?} {back:?}");
+        }
     }
 
     #[test]
@@ -670,6 +698,10 @@ mod tests {
         let top = ndc(&m, [0.0, 0.0, 1.0]);
         assert!(top[1] > 0.1 && top[0].abs() < 1e-6);
         assert_eq!(Up::Y.model(), Mat4::IDENTITY);
+        let m = o.camera_up::<Libm>(1.0, Up::X).matrix;
+        let top = ndc(&m, [1.0, 0.0, 0.0]);
+        assert!(top[1] > 0.1 && top[0].abs() < 1e-6);
+        assert_eq!(Up::from(crate::format::UpAxis::X), Up::X);
     }
 
     #[test]

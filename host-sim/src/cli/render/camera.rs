@@ -1,22 +1,23 @@
 //! The camera of `fpt render`: `--mvp` or an orbit, turned into the
 //! renderer's [`Frame`] for a model of any size the builder accepts.
 //!
-//! Why this is more than `Frame::relative(tree, &orbit.camera())`: composed
-//! in model units, an orbit around a model of radius 1e20 overflows `f32`
-//! inside the projection (2·far·near is 2·distance²) and one of radius
-//! 1e-20 underflows. The orbit is composed in units of a power of two near
-//! the bounding radius, where the model has radius about 1, and scaled
-//! back exactly. An `--mvp` matrix goes to the library as it is:
+//! An orbit is the library's: [`Orbit::camera_up`] around the
+//! bounding-sphere centre, in model units, given to [`Frame::relative`],
+//! which also derives the walk's view from the matrix
+//! ([`fpt_nostd::render::MatrixView`]). `Orbit::camera` composes in model
+//! space normalised by the distance, so a model of any size the builder
+//! accepts (radius 1e-30 … 1e38) is drawn as the unit model; the one
+//! limit is that the eye's distance be an `f32` ([`orbit_camera`] refuses
+//! more). An `--mvp` matrix goes to the library as it is:
 //! [`Frame::from_f64`] reads any model scale and offset itself.
 
 use super::{parse_mvp, CliError};
 use crate::cli_err;
 use clap::Args;
 use fpt_nostd::format::UpAxis;
-use fpt_nostd::order::View;
 use fpt_nostd::raster::{MathFns, Orbit};
 use fpt_nostd::reader::Tree;
-use fpt_nostd::render::{near_w_for, rows_f64, Frame, MatrixView};
+use fpt_nostd::render::{near_w_for, Frame};
 
 /// The camera of a render.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -54,61 +55,26 @@ impl CameraSpec {
                 fov,
                 up,
             } => {
-                let r = f64::from(tree.bounding_radius());
-                let r = if r.is_finite() && r > 0.0 { r } else { 1.0 };
-                // The orbit is composed in units of `u = 2^e ≤ r` (so the
-                // model's radius is in [1, 2)) and scaled back to model
-                // units after: composed in model units, a model of radius
-                // 1e20 or more overflows `f32` inside the projection
-                // (2·far·near is 2·distance²) and one below 1e-20
-                // underflows, and nothing is drawn. Scaling by powers of
-                // two is exact, so for any radius whose matrix is
-                // representable the frame is bit for bit the one composed
-                // in model units.
-                let e = log2_floor(r);
-                let d = (distance.unwrap_or(3.0) * r) * pow2(-e);
                 let o = Orbit::new(
                     [0.0; 3],
                     yaw.to_radians() as f32,
                     pitch.to_radians() as f32,
-                    d as f32,
+                    (distance.unwrap_or(3.0) * radius(tree)) as f32,
                     fov.to_radians() as f32,
                 );
-                let mut cam = o.camera::<M>(w as f32 / h as f32);
-                // M · R with R a rotation taking the model's up axis to
-                // orbit space's y: an exact column permutation. z up:
-                // (x, y, z) → (x, z, −y); x up: (x, y, z) → (−y, x, z).
-                for row in cam.matrix.0.iter_mut() {
-                    *row = match up {
-                        UpAxis::Y => *row,
-                        UpAxis::Z => [row[0], -row[2], row[1], row[3]],
-                        UpAxis::X => [row[1], -row[0], row[2], row[3]],
-                    };
-                }
-                let unit_view = MatrixView::of(&rows_f64(&cam.matrix), [0.0; 3]);
-                // Model units: M · S(2^−e). The renderer normalises the
-                // matrix's scale itself (a homogeneous factor changes no
-                // projected point), so it is multiplied by 2^(e/2) too,
-                // which keeps every entry far inside the `f32` range:
-                // the x, y, z columns get 2^(e/2 − e), the translation
-                // column and the near threshold 2^(e/2).
-                let half = e / 2;
-                let (sx, st) = (pow2(half - e) as f32, pow2(half) as f32);
-                for row in cam.matrix.0.iter_mut() {
-                    *row = [row[0] * sx, row[1] * sx, row[2] * sx, row[3] * st];
-                }
-                cam.near_w *= st;
-                let mut frame = Frame::relative(tree, &cam);
-                // The walk's view from the matrix in units of `u`, where its
-                // columns are balanced; for a model
-                // of ordinary size this is bit for bit the view derived
-                // from the matrix in model units.
-                if let Some(view) = scaled_view(unit_view, pow2(e)) {
-                    frame.view = view;
-                }
-                frame
+                Frame::relative(tree, &o.camera_up::<M>(w as f32 / h as f32, up.into()))
             }
         }
+    }
+}
+
+/// The tree's bounding radius, 1 for a degenerate one (a single point).
+fn radius(tree: &Tree<'_>) -> f64 {
+    let r = f64::from(tree.bounding_radius());
+    if r.is_finite() && r > 0.0 {
+        r
+    } else {
+        1.0
     }
 }
 
@@ -178,24 +144,27 @@ pub fn orbit_camera(
     if !(o.fov.is_finite() && (0.0..180.0).contains(&o.fov)) {
         return Err(cli_err!("--fov must be in [0, 180) degrees, got {}", o.fov));
     }
-    let r = f64::from(tree.bounding_radius());
+    let r = radius(tree);
     let distance = match o.distance {
         None => framing_distance(o.fov, w, h),
         Some(d) => {
             if !(d.is_finite() && d > 0.0) {
                 return Err(cli_err!("--distance must be a positive number, got {d}"));
             }
-            if o.distance_units == "model" && r > 0.0 {
+            if o.distance_units == "model" {
                 d / r
             } else {
                 d
             }
         }
     };
-    // The eye, in units of about the radius, must be an `f32`.
-    if !(distance.is_finite() && distance < 0.25 * f64::from(f32::MAX)) {
+    // The library's orbit takes the eye's distance as an `f32` in model
+    // units (any such distance composes: `Orbit::camera`).
+    let model = distance * r;
+    if !(model.is_finite() && model < f64::from(f32::MAX)) {
         return Err(cli_err!(
-            "--distance is too large: {distance:e} bounding radii"
+            "--distance is too large: {distance:e} bounding radii puts the eye {model:e} model units away, more than {:e}",
+            f32::MAX
         ));
     }
     let up = match o.up.as_str() {
@@ -224,41 +193,6 @@ pub fn camera_of(
         Some(m) => Ok(CameraSpec::Mvp(parse_mvp(m)?)),
         None => orbit_camera(o, tree, w, h),
     }
-}
-
-/// The walk's view for a view found in origin-relative coordinates in
-/// units of `u` (a power of two): the eye scaled back to model units, a
-/// direction as it is; `None` for a degenerate view.
-fn scaled_view(view: MatrixView, u: f64) -> Option<View> {
-    match view {
-        MatrixView::Perspective { eye } => Some(View::PerspectiveRelative {
-            eye: eye.map(|v| (v * u) as f32),
-        }),
-        MatrixView::Parallel { dir } => Some(View::Parallel {
-            dir: dir.map(|v| v as f32),
-        }),
-        MatrixView::Degenerate => None,
-    }
-}
-
-/// `floor(log2(x))` for a finite `x > 0` (0 otherwise), within ±126 so
-/// that `2^e` and `2^−e` are normal `f32` numbers.
-fn log2_floor(x: f64) -> i32 {
-    if !(x.is_finite() && x > 0.0) {
-        return 0;
-    }
-    let mut e = ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    // A subnormal `f64` is far below any `f32` radius; `log2` is exact
-    // enough for it.
-    if e == -1023 {
-        e = x.log2().floor() as i32;
-    }
-    e.clamp(-126, 126)
-}
-
-/// `2^e` as `f64`, exactly (`e` within ±1000).
-fn pow2(e: i32) -> f64 {
-    f64::from_bits(((e.clamp(-1000, 1000) + 1023) as u64) << 52)
 }
 
 #[cfg(test)]
