@@ -3,12 +3,16 @@
 //! matrix, `Frame::new` for the `f32` camera when its matrix fits `f32`)
 //! for a unit cube scaled by 1e-30 … 1e38 and moved by up to 1e10 of its
 //! size gets the unit cube's picture: the same source id at every pixel
-//! off the outlines. (`host-sim/tests/cli_scale.rs` checks the same
-//! through `fpt render`.)
+//! off the outlines; and so does the library's orbit
+//! (`Orbit::camera`/`camera_up` around the bounding-sphere centre through
+//! `Frame::relative`, and around the centre in model coordinates through
+//! `Frame::new`), which composes in model space normalised by the
+//! distance. (`host-sim/tests/cli_scale.rs` checks the same through
+//! `fpt render`.)
 
 mod render_common;
 
-use fpt_nostd::raster::{Camera as RasterCamera, DefaultPrecision, Mat4};
+use fpt_nostd::raster::{Camera as RasterCamera, DefaultPrecision, Libm, Mat4, Orbit, Up};
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{near_w_for, Frame};
 use glam::DVec3;
@@ -128,4 +132,87 @@ fn every_scale_and_offset_draws_like_the_unit_cube_through_the_library() {
         }
     }
     assert!(checked >= 40, "{checked} renders compared");
+}
+
+/// The library's orbit of `tree` (distance in bounding radii), around its
+/// bounding-sphere centre: `Frame::relative`.
+fn orbit_frame(tree: &Tree<'_>, (yaw, pitch, fov, up): (f32, f32, f32, Up), radii: f32) -> Frame {
+    let o = Orbit::new([0.0; 3], yaw, pitch, radii * tree.bounding_radius(), fov);
+    Frame::relative(tree, &o.camera_up::<Libm>(W as f32 / H as f32, up))
+}
+
+#[test]
+fn every_scale_and_offset_draws_like_the_unit_cube_through_the_library_orbit() {
+    // Yaw, pitch, fov (0: parallel), up axis.
+    let views = [
+        (0.5, 0.35, 0.7, Up::Y),
+        (-1.05, 0.6, 0.0, Up::Y),
+        (2.3, -0.4, 1.2, Up::Z),
+        (0.9, 0.2, 0.5, Up::X),
+    ];
+    let unit = cube(1.0, DVec3::ZERO);
+    let unit_tree = Tree::from_bytes(&unit).expect("tree");
+    let offset_dir = DVec3::new(1.0, -0.7, 0.3);
+    let mut checked = 0;
+    for view in views {
+        let want =
+            render_ids::<DefaultPrecision>(&unit_tree, &orbit_frame(&unit_tree, view, 3.0), W, H);
+        let faces: std::collections::HashSet<u32> = want.iter().copied().collect();
+        assert!(
+            faces.len() >= 3,
+            "{view:?}: background and two or three faces"
+        );
+        for scale in [1e-30, 1e-20, 1e-10, 1.0, 1e10, 1e20, 1e30, 1e38] {
+            for ratio in [0.0, 1.0, 1e5, 1e10] {
+                let offset = ratio * scale * offset_dir;
+                if !offset.is_finite() || offset.abs().max_element() > 1e30 {
+                    continue;
+                }
+                let bytes = cube(scale, offset);
+                let tree = Tree::from_bytes(&bytes).expect("tree");
+                // 3 and 3.9 radii: at 1e38 the eye is then 3.4e38 model
+                // units away, next to f32's largest number.
+                for radii in [3.0, 3.9] {
+                    let unit_want = if radii == 3.0 {
+                        want.clone()
+                    } else {
+                        render_ids::<DefaultPrecision>(
+                            &unit_tree,
+                            &orbit_frame(&unit_tree, view, radii),
+                            W,
+                            H,
+                        )
+                    };
+                    let got = render_ids::<DefaultPrecision>(
+                        &tree,
+                        &orbit_frame(&tree, view, radii),
+                        W,
+                        H,
+                    );
+                    let wrong = differences_off_outlines(&unit_want, &got, W);
+                    assert_eq!(
+                        wrong, 0,
+                        "orbit {view:?} {radii} radii, {scale:e} {ratio:e}: {wrong} pixels differ"
+                    );
+                    checked += 1;
+                }
+                // In model coordinates, around the centre (`Frame::new`),
+                // y up: where the centre is an exact enough `f32`.
+                let (yaw, pitch, fov, up) = view;
+                if ratio == 0.0 && up == Up::Y {
+                    let c = tree.origin().map(|v| v as f32);
+                    let o = Orbit::new(c, yaw, pitch, 3.0 * tree.bounding_radius(), fov);
+                    let cam = o.camera::<Libm>(W as f32 / H as f32);
+                    let got = render_ids::<DefaultPrecision>(&tree, &Frame::new(&tree, &cam), W, H);
+                    let wrong = differences_off_outlines(&want, &got, W);
+                    assert_eq!(
+                        wrong, 0,
+                        "Frame::new orbit {view:?} {scale:e}: {wrong} pixels differ"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked >= 100, "{checked} renders compared");
 }
