@@ -1,9 +1,12 @@
 //! Any scale the builder accepts renders: a unit cube scaled by 1e-30 …
 //! 1e38 and moved by up to 1e30 is built and drawn through every camera
 //! form (`--yaw/--pitch`, with `--distance`, parallel, `--mvp`, the `f32`
-//! vertex path), and each picture's id buffer is the unit cube's. A model
-//! the `f64` input cannot hold (a unit cube 1e30 from the origin) is
-//! refused at build time.
+//! vertex path, every up axis, an eye next to `f32`'s largest number),
+//! and each picture's id buffer is the unit cube's: the orbit forms are
+//! the library's `Orbit::camera_up` (composed in model space normalised
+//! by the distance). A model the `f64` input cannot hold (a unit cube
+//! 1e30 from the origin) is refused at build time, an eye whose distance
+//! is beyond `f32` at render time.
 
 mod common;
 
@@ -124,6 +127,22 @@ fn cameras(scale: f64, offset: DVec3) -> Vec<(&'static str, Vec<String>)> {
             "up-z",
             args(&["--yaw", "30", "--pitch", "20", "--up", "z", "--band", "16"]),
         ),
+        ("up-x", args(&["--yaw", "30", "--pitch", "20", "--up", "x"])),
+        (
+            // Eye 3.9 radii away: 3.4e38 model units for the 1e38 cube,
+            // next to f32's largest number.
+            "far",
+            args(&[
+                "--yaw",
+                "-60",
+                "--pitch",
+                "35",
+                "--distance",
+                "3.9",
+                "--fov",
+                "0",
+            ]),
+        ),
         ("mvp", vec!["--mvp".to_string(), mvp(scale, offset)]),
     ]
 }
@@ -188,6 +207,27 @@ fn an_orbit_proof_does_not_depend_on_the_scale() {
             assert!(text.contains(says), "{scale:e} {orbit}: {text}");
         }
     }
+}
+
+#[test]
+fn an_eye_beyond_f32_is_refused_with_one_line() {
+    let tree = build("far-eye", 1e38, DVec3::ZERO).unwrap();
+    let png = tmp("far-eye.png");
+    for distance in ["4", "1e30"] {
+        let out = fpt(&["render", s(&tree), "-o", s(&png), "--distance", distance]);
+        assert_eq!(out.status.code(), Some(2), "{distance}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.starts_with("error: --distance is too large"), "{err}");
+    }
+    // The same distance in radii is fine for an ordinary model.
+    let unit = build("far-eye-unit", 1.0, DVec3::ZERO).unwrap();
+    let out = fpt(&["render", s(&unit), "-o", s(&png), "--distance", "1e30"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
