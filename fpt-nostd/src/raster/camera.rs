@@ -329,23 +329,22 @@ impl Orbit {
     /// `e / 2` and `w` is the eye distance times `2^(c − e)`.
     pub fn camera<M: MathFns>(&self, aspect: f32) -> Camera {
         let e = exponent(self.distance);
-        if (-ORDINARY..=ORDINARY).contains(&e) {
-            return self.compose::<M>(aspect, 1.0);
-        }
-        let mut cam = self.compose::<M>(aspect, pow2(-e));
-        let c = e / 2;
-        let (sx, st) = (pow2(c - e), pow2(c));
-        for row in cam.matrix.0.iter_mut() {
-            *row = [row[0] * sx, row[1] * sx, row[2] * sx, row[3] * st];
-        }
-        cam.near_w *= st;
-        cam
+        let (unit, scale) = if (-ORDINARY..=ORDINARY).contains(&e) {
+            (1.0, [1.0; 2])
+        } else {
+            let c = e / 2;
+            (pow2(-e), [pow2(c - e), pow2(c)])
+        };
+        self.compose::<M>(aspect, unit, scale)
     }
 
     /// The orbit's camera composed in model units times `unit` (a power of
-    /// two): target, distance, near and far multiplied by it; the matrix
-    /// takes such coordinates.
-    fn compose<M: MathFns>(&self, aspect: f32, unit: f32) -> Camera {
+    /// two): target, distance, near and far multiplied by it, so the
+    /// matrix takes such coordinates; then its x, y and z columns
+    /// multiplied by `scale[0]`, its translation column and `near_w` by
+    /// `scale[1]` (powers of two; 1 changes no bit). One call in tail
+    /// position keeps a firmware's stack as it was.
+    fn compose<M: MathFns>(&self, aspect: f32, unit: f32, scale: [f32; 2]) -> Camera {
         let (sy, cy) = (M::sin(self.yaw), M::cos(self.yaw));
         let (sp, cp) = (M::sin(self.pitch), M::cos(self.pitch));
         // Basis derived from the angles directly rather than by
@@ -379,7 +378,7 @@ impl Orbit {
             _ => 1e3 * distance,
         };
         let zscale = |k: f32, r: [f32; 4], c: f32| [k * r[0], k * r[1], k * r[2], k * r[3] + c];
-        let m = if self.is_parallel() {
+        let mut m = if self.is_parallel() {
             let h = 0.5 * distance;
             let span = far - near;
             // ndc.z = 2(d - near)/(far - near) - 1
@@ -402,7 +401,18 @@ impl Orbit {
             ])
         };
         let near_w = if self.is_parallel() { 0.5 } else { near };
-        Camera { matrix: m, near_w }
+        let [sx, st] = scale;
+        // In place: a second matrix would cost a firmware's stack peak.
+        for row in m.0.iter_mut() {
+            row[0] *= sx;
+            row[1] *= sx;
+            row[2] *= sx;
+            row[3] *= st;
+        }
+        Camera {
+            matrix: m,
+            near_w: near_w * st,
+        }
     }
 }
 
