@@ -195,3 +195,45 @@ fn bad_input_exits_with_status_2() {
     assert!(!Path::new(&o).exists());
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn slivers_are_drawn_unless_no_slivers_is_given() {
+    // Whole-pixel snapping (0 sub-pixel bits) winds many faces seen almost
+    // edge-on toward the viewer: the culling walk leaves them out, and the
+    // sliver pass, on by default, draws them.
+    let d = scratch("slivers");
+    let tree = house_tree(&d);
+    let t = tree.to_string_lossy().into_owned();
+    let o = d.join("o.png").to_string_lossy().into_owned();
+    let ids = d.join("ids.bin");
+    let i = ids.to_string_lossy().into_owned();
+    let render = |yaw: &str, extra: &[&str]| {
+        let mut args = vec![
+            t.as_str(),
+            "-o",
+            o.as_str(),
+            "--size",
+            "64x48",
+            "--precision",
+            "fixed-subpx-0",
+            "--pitch",
+            "17",
+            "--yaw",
+            yaw,
+            "--ids",
+            i.as_str(),
+        ];
+        args.extend_from_slice(extra);
+        assert_eq!(fpt(&args), 0, "{args:?}");
+        read(&ids)
+    };
+    let background = |raw: &[u8]| raw.chunks_exact(4).filter(|c| c == &[0; 4]).count();
+    let mut differ = 0;
+    for k in 0..36 {
+        let yaw = (k * 10 + 3).to_string();
+        let (on, off) = (render(&yaw, &[]), render(&yaw, &["--no-slivers"]));
+        assert!(background(&on) <= background(&off), "yaw {yaw}");
+        differ += usize::from(on != off);
+    }
+    assert!(differ > 0, "the sliver pass never changed a picture");
+}
