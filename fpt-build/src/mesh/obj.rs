@@ -475,6 +475,34 @@ mod tests {
     }
 
     #[test]
+    fn faces_get_normals_only_when_every_corner_names_a_valid_one() {
+        // Face 0: all corners name normals (the 2nd by a negative index);
+        // face 1: one corner has none; face 2: one names a missing normal;
+        // face 3: uses the malformed `vn` (a zero vector, no error).
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0.6 0.8\nvn 1 2\n\
+                    f 1//1 2//-2 3/5/2\nf 1//1 2 3//2\nf 1//1 2//9 3//2\nf 1//1 2//3 3//3\n";
+        let raw = parse(text.as_bytes()).unwrap();
+        assert_eq!(raw.faces.len(), 4);
+        assert_eq!(
+            raw.normals[0],
+            Some(vec![[0.0, 0.0, 1.0], [0.0, 0.6, 0.8], [0.0, 0.6, 0.8]])
+        );
+        assert_eq!(raw.normals[1], None);
+        assert_eq!(raw.normals[2], None);
+        assert_eq!(raw.normals[3].as_ref().map(|n| n[1]), Some([0.0; 3]));
+        // The zero normal leaves face 3 without normals after the import;
+        // face 0 keeps its own.
+        let m = load_bytes(MeshFormat::Obj, text.as_bytes()).unwrap();
+        let normals: Vec<bool> = m.polygons.iter().map(|p| p.normals.is_some()).collect();
+        assert_eq!(normals, [true, false, false, false]);
+        // A file without `vn` gives no normal list at all.
+        assert!(parse(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+            .unwrap()
+            .normals
+            .is_empty());
+    }
+
+    #[test]
     fn negative_indices_are_relative_to_vertices_so_far() {
         let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 5 5 5\nv 6 5 5\nv 5 6 5\nf -3 -2 -1\n";
         let raw = parse(text.as_bytes()).unwrap();
