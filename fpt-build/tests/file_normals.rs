@@ -247,12 +247,15 @@ fn ply_normals_are_stored_as_the_file_gives_them() {
     }
 }
 
+/// A vertex of a test file: position and normal.
+type Corner = ([f64; 3], [f64; 3]);
+
 /// Two squares crossing at right angles (planes x = 0, facing +x, and
 /// y = 0, facing −y; both spanning z in [−1, 1]), open, each corner with
 /// its own normal from the PLY file (on the side its face faces): no order draws them without cutting one by the
 /// other's plane, whose new vertices lie halfway along its edges.
-fn cross_ply() -> (String, Vec<([f64; 3], [f64; 3])>) {
-    let verts: Vec<([f64; 3], [f64; 3])> = vec![
+fn cross_ply() -> (String, Vec<Corner>) {
+    let verts: Vec<Corner> = vec![
         ([0.0, -1.0, -1.0], [1.0, -0.6, -0.3]),
         ([0.0, 1.0, -1.0], [1.0, 0.5, -0.2]),
         ([0.0, 1.0, 1.0], [1.0, 0.4, 0.6]),

@@ -21,6 +21,10 @@
 //!   tolerance of its plane, so the builder sees them as coplanar, and they
 //!   are the welded input vertices, never moved: faces that share a vertex
 //!   in the file share it bit for bit, so neighbouring faces conform.
+//! - Vertex normals in the file (OBJ `vn`, PLY `nx ny nz`) become each
+//!   polygon's [`crate::geom::Polygon::normals`] (one per vertex, unit, on
+//!   its plane's side; see [`from_faces_normals`]); faces without them get
+//!   `None`.
 
 mod obj;
 mod off;
