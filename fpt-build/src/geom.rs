@@ -182,6 +182,12 @@ pub struct Polygon {
     pub source: u32,
     /// Colour of the face.
     pub color: Rgb,
+    /// Vertex normals from the mesh file (OBJ `vn`, PLY `nx ny nz`), one
+    /// per vertex of `verts` (unit, on the front side); `None` when the
+    /// file gave the face none, and the serializer computes them with the
+    /// crease angle (`crate::normals`). Pieces of a split and vertices
+    /// the seam repair inserts get theirs from [`Polygon::normals_at`].
+    pub normals: Option<Vec<DVec3>>,
 }
 
 impl Polygon {
@@ -193,7 +199,61 @@ impl Polygon {
             plane,
             source,
             color,
+            normals: None,
         })
+    }
+
+    /// The file normals at points `at` of this polygon (its vertices, or
+    /// points on its edges such as a split's crossings), from its own
+    /// [`Polygon::normals`]; `None` when it has none.
+    ///
+    /// A point equal to a vertex (bit for bit) takes that vertex's normal;
+    /// any other point takes the normalized linear interpolation of the
+    /// normals at the ends of the edge nearest to it, at its projection on
+    /// that edge (clamped to the edge): the normal Gouraud shading of the
+    /// unsplit polygon would show along that edge. A point moved by the
+    /// seam weld (a tolerance away from a vertex) so keeps about that
+    /// vertex's normal.
+    pub fn normals_at(&self, at: &[DVec3]) -> Option<Vec<DVec3>> {
+        let normals = self.normals.as_ref()?;
+        let n = self.verts.len().min(normals.len());
+        if n == 0 {
+            return None;
+        }
+        let key = |v: DVec3| v.to_array().map(f64::to_bits);
+        let exact: std::collections::HashMap<[u64; 3], usize> = self.verts[..n]
+            .iter()
+            .enumerate()
+            .rev()
+            .map(|(i, &v)| (key(v), i))
+            .collect();
+        let along = |q: DVec3| -> DVec3 {
+            let mut best = (f64::INFINITY, normals[0]);
+            for k in 0..n {
+                let (a, b) = (self.verts[k], self.verts[(k + 1) % n]);
+                let ab = b - a;
+                let len2 = ab.length_squared();
+                let t = if len2 > 0.0 {
+                    ((q - a).dot(ab) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let d = (a + ab * t).distance_squared(q);
+                if d < best.0 {
+                    let (na, nb) = (normals[k], normals[(k + 1) % n]);
+                    best = (d, (na + (nb - na) * t).try_normalize().unwrap_or(na));
+                }
+            }
+            best.1
+        };
+        Some(
+            at.iter()
+                .map(|&q| match exact.get(&key(q)) {
+                    Some(&i) => normals[i],
+                    None => along(q),
+                })
+                .collect(),
+        )
     }
 }
 

@@ -13,9 +13,11 @@
 //! corners on either side: feature edges stay sharp, while a tessellated
 //! curved surface gets one normal per vertex.
 //!
-//! Normals written in the mesh file (OBJ `vn`, PLY `nx ny nz`) are not used
-//! yet: the polygons that reach the serializer no longer know their input
-//! vertices (see the README's status).
+//! Normals written in the mesh file (OBJ `vn`, PLY `nx ny nz`) take the
+//! place of the computed ones where a polygon carries them
+//! ([`crate::geom::Polygon::normals`], interpolated at the vertices that
+//! splitting added): [`stored_corner_normals`]. The crease angle then
+//! plays no part for those corners: the file's author chose them.
 
 use glam::DVec3;
 
@@ -92,6 +94,31 @@ pub fn corner_normals(
     out
 }
 
+/// What the serializer stores: [`corner_normals`], except that the
+/// corners of polygon `p` with `file[p]` (one normal per corner, from the
+/// mesh file) store those, quantized the same way (a zero or non-finite
+/// one gives the plane's normal).
+pub fn stored_corner_normals(
+    loops: &[&[u32]],
+    plane_normals: &[[f32; 3]],
+    positions: &[DVec3],
+    crease_deg: f32,
+    file: &[Option<&[DVec3]>],
+) -> Vec<[i8; 3]> {
+    let mut out = corner_normals(loops, plane_normals, positions, crease_deg);
+    let mut first = 0;
+    for (p, l) in loops.iter().enumerate() {
+        if let Some(given) = file.get(p).copied().flatten() {
+            let fallback = plane_normals.get(p).copied().unwrap_or([0.0, 0.0, 1.0]);
+            for (slot, &n) in out.iter_mut().skip(first).take(l.len()).zip(given) {
+                *slot = quantize(n, fallback);
+            }
+        }
+        first += l.len();
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -130,6 +157,29 @@ mod tests {
             let v = pos[loops[k / 4][k % 4] as usize] - DVec3::splat(0.5);
             let want = v.normalize().to_array().map(|c| (c * 127.0).round() as i8);
             assert_eq!(*n, want, "corner {k}");
+        }
+    }
+
+    #[test]
+    fn file_normals_replace_the_computed_ones_of_their_polygons() {
+        let (pos, loops, normals) = cube();
+        let refs: Vec<&[u32]> = loops.iter().map(|l| l.as_slice()).collect();
+        let given: Vec<DVec3> = loops[1]
+            .iter()
+            .map(|&v| pos[v as usize] - DVec3::splat(0.5))
+            .collect();
+        let mut file: Vec<Option<&[DVec3]>> = vec![None; 6];
+        file[1] = Some(&given);
+        let n = stored_corner_normals(&refs, &normals, &pos, 30.0, &file);
+        let computed = corner_normals(&refs, &normals, &pos, 30.0);
+        for (k, (a, b)) in n.iter().zip(&computed).enumerate() {
+            if k / 4 == 1 {
+                let want = given[k % 4].normalize().to_array();
+                assert_eq!(*a, want.map(|c| (c * 127.0).round() as i8), "corner {k}");
+                assert_ne!(a, b, "corner {k}");
+            } else {
+                assert_eq!(a, b, "corner {k}");
+            }
         }
     }
 

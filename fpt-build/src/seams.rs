@@ -98,7 +98,9 @@ pub fn repair_seams(polys: &mut [Polygon]) -> usize {
         // keeps its place in the tree with its welded vertices, repeats
         // and all: it covers nothing, and its edges are its neighbours'
         // (kept unwelded, its stray copies were open edges).
-        p.verts = if w.len() >= 3 { w } else { welded };
+        let verts = if w.len() >= 3 { w } else { welded };
+        p.normals = p.normals_at(&verts);
+        p.verts = verts;
     }
     // 2. T-junctions, against the welded vertices.
     for p in polys.iter_mut() {
@@ -134,6 +136,7 @@ pub fn repair_seams(polys: &mut [Polygon]) -> usize {
             changed += on.len();
             out.extend(on.into_iter().map(|(_, v)| v));
         }
+        p.normals = p.normals_at(&out);
         p.verts = out;
     }
     changed

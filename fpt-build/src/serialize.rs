@@ -40,7 +40,7 @@ use glam::DVec3;
 
 use crate::edges::{edge_kinds, hidden_edges, FaceKey, DEFAULT_CREASE_DEG};
 use crate::geom::Plane;
-use crate::normals::corner_normals;
+use crate::normals::stored_corner_normals;
 use crate::tree::{Connecting, FpTree};
 
 /// Choices made when writing a file.
@@ -582,7 +582,13 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
             .chunks_exact(opts.vertex_format.vertex_len())
             .map(|b| enc.decode(b))
             .collect();
-        for n in corner_normals(&loops, &plane_normals, &positions, opts.crease_deg) {
+        // The mesh file's normals where the polygons carry them.
+        let file: Vec<Option<&[DVec3]>> = order
+            .iter()
+            .map(|&id| tree.polygons[id as usize].normals.as_deref())
+            .collect();
+        let crease = opts.crease_deg;
+        for n in stored_corner_normals(&loops, &plane_normals, &positions, crease, &file) {
             out.extend_from_slice(&n.map(|c| c as u8));
         }
     }

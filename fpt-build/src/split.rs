@@ -300,6 +300,7 @@ fn finish_piece(mut verts: Vec<DVec3>, parent: &Polygon, tol: Tolerance) -> Opti
         return None;
     }
     Some(Polygon {
+        normals: parent.normals_at(&verts),
         verts,
         plane: parent.plane,
         source: parent.source,

@@ -2,7 +2,8 @@
 //! mesh file (OBJ materials, PLY face and vertex colours) or `--color`,
 //! `--background`, the default camera of `fpt render`, the up axis a build
 //! records, distances in bounding radii, negative angles, `fpt turntable`'s
-//! GIF, and `error: ...` with exit status 2 for every bad value.
+//! GIF, `fpt view` without its cargo feature, and `error: ...` with exit
+//! status 2 for every bad value.
 
 mod common;
 
@@ -443,4 +444,33 @@ fn turntable_writes_a_looping_gif_of_n_frames() {
         let c = p.get_pixel(Point::new((i % 40) as i32, (i / 40) as i32));
         assert_eq!(&px[..3], &[c.r(), c.g(), c.b()], "pixel {i}");
     }
+}
+
+/// Without the `view` cargo feature (the default build), `fpt view` is an
+/// error naming the feature, exit status 2, and opens nothing.
+#[cfg(not(feature = "view"))]
+#[test]
+fn view_without_the_feature_names_it() {
+    let obj = write("view.obj", CUBE_OBJ);
+    let tree = tmp("view.fpt");
+    ok(&build(&obj, &tree, &[]), "build");
+    let out = fpt(&["view", s(&tree)]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let e = error_line(&out, "view");
+    assert!(
+        e.contains("`view` cargo feature") && e.contains("--features view"),
+        "{e}"
+    );
+    // The options are those of `fpt render`'s orbit: they parse.
+    let out = fpt(&[
+        "view",
+        s(&tree),
+        "--yaw=-30",
+        "--size",
+        "64x48",
+        "--frames",
+        "2",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(error_line(&out, "view").contains("`view` cargo feature"));
 }

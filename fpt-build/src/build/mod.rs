@@ -142,6 +142,8 @@ pub fn build(
             },
             source: p.source,
             color: p.color,
+            // Normals are directions: the same after a uniform scale.
+            normals: p.normals.clone(),
         })
         .collect();
     let diag = if input_polygons == 0 {
@@ -229,6 +231,7 @@ pub fn build(
                         plane: denormalize(&p.plane, center, scale),
                         source: p.source,
                         color: p.color,
+                        normals: p.normals.clone(),
                     }
                 }
             }

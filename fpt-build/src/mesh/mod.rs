@@ -21,6 +21,10 @@
 //!   tolerance of its plane, so the builder sees them as coplanar, and they
 //!   are the welded input vertices, never moved: faces that share a vertex
 //!   in the file share it bit for bit, so neighbouring faces conform.
+//! - Vertex normals in the file (OBJ `vn`, PLY `nx ny nz`) become each
+//!   polygon's [`crate::geom::Polygon::normals`] (one per vertex, unit, on
+//!   its plane's side; see [`from_faces_normals`]); faces without them get
+//!   `None`.
 
 mod obj;
 mod off;
@@ -40,7 +44,9 @@ use std::fmt;
 use std::path::Path;
 
 pub use obj::write_obj_mtl;
-pub use prepare::{from_faces, from_faces_with, is_closed, is_closed_faces};
+pub use prepare::{
+    from_faces, from_faces_normals, from_faces_with, is_closed, is_closed_faces, FaceNormals,
+};
 
 /// A mesh ready for the tree builders.
 #[derive(Clone, Debug)]
@@ -494,6 +500,10 @@ pub(crate) struct RawMesh {
     pub vertices: Vec<[f64; 3]>,
     pub faces: Vec<Vec<u32>>,
     pub colors: Option<Vec<[u8; 3]>>,
+    /// The vertex normals of the faces (OBJ `vn`, PLY `nx ny nz`): empty
+    /// when the file has none, else one entry per face (see
+    /// [`FaceNormals`]).
+    pub normals: Vec<Option<Vec<[f64; 3]>>>,
     /// An OBJ file's `mtllib` files and faces' `usemtl` materials.
     pub obj_materials: obj::ObjMaterials,
     /// Lines the parser skipped without knowing what they were (only the
@@ -509,7 +519,14 @@ impl RawMesh {
                 unknown_lines: self.unknown_lines,
             });
         }
-        from_faces_with(&self.vertices, &self.faces, self.colors.as_deref(), options)
+        let normals = (!self.normals.is_empty()).then_some(&self.normals[..]);
+        from_faces_normals(
+            &self.vertices,
+            &self.faces,
+            self.colors.as_deref(),
+            normals,
+            options,
+        )
     }
 }
 

@@ -1,12 +1,22 @@
-//! Wavefront OBJ reader: `v` and `f` records, through `tobj`.
+//! Wavefront OBJ reader: `v`, `vn` and `f` records, through `tobj`.
 //!
 //! A first pass over the text does what `tobj` does not: it joins lines
 //! ending in `\` with the next one, accepts CRLF, strips `#` comments, keeps
-//! only `v` and `f` records (so `g`, `o`, `s`, `vt`, `vn`, `l`, ... are
+//! only `v`, `vn` and `f` records (so `g`, `o`, `s`, `vt`, `l`, ... are
 //! ignored whatever their content), reduces `v/t/n` and `v//n` face corners
-//! to the position index, and checks every number and index with the line
-//! it is on, so errors name their line. `tobj` then reads the cleaned text
-//! with `triangulate: false` so n-gons stay whole.
+//! to `v//n` (absolute indices) or to the position index, and checks every
+//! position number and index with the line it is on, so errors name their
+//! line. `tobj` then reads the cleaned text with `triangulate: false` so
+//! n-gons stay whole, and `single_index: false`, which keeps each corner's
+//! own normal index (`Mesh::normal_indices`).
+//!
+//! Vertex normals (for the `smooth` effect): a face whose every corner
+//! names a `vn` record that exists gets those normals, one per corner
+//! (see [`super::from_faces_normals`]); a face with a corner without one
+//! (`v`, `v/t`) or naming a missing one gets none, and its normals are
+//! computed with the crease angle. Normals are optional data, so a
+//! malformed `vn` record is no error: it stands as a zero normal, which
+//! leaves the faces that use it without normals.
 //!
 //! Materials: the first pass also notes the `mtllib` file names and the
 //! `usemtl` material of every face ([`ObjMaterials`]). Parsing bytes alone
@@ -149,7 +159,8 @@ fn channel(x: f64) -> u8 {
 /// Parses an OBJ file.
 pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
     let text = String::from_utf8_lossy(bytes);
-    let (clean, unknown_lines, obj_materials) = preprocess(&text)?;
+    let (clean, unknown_lines, obj_materials, face_normals) = preprocess(&text)?;
+    let any_normals = face_normals.iter().any(|&f| f);
     let options = tobj::LoadOptions {
         triangulate: false,
         single_index: false,
@@ -188,6 +199,13 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
                 .indices
                 .get(start..start + arity)
                 .ok_or_else(|| MeshError::parse(FORMAT, "inconsistent face data"))?;
+            if any_normals {
+                let has = face_normals.get(raw.faces.len()).copied().unwrap_or(false);
+                raw.normals.push(
+                    has.then(|| corner_normals(mesh, start..start + arity))
+                        .flatten(),
+                );
+            }
             raw.faces.push(
                 corners
                     .iter()
@@ -200,11 +218,30 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
     Ok(raw)
 }
 
+/// The normals of the corners `range` of `mesh` (one per corner, through
+/// `tobj`'s `normal_indices`), when every one is there.
+fn corner_normals(mesh: &tobj::Mesh, range: std::ops::Range<usize>) -> Option<Vec<[f64; 3]>> {
+    mesh.normal_indices
+        .get(range)?
+        .iter()
+        .map(|&n| {
+            let n = n as usize;
+            mesh.normals
+                .get(3 * n..3 * n + 3)
+                .map(|c| [c[0], c[1], c[2]])
+        })
+        .collect()
+}
+
 /// What the first pass has seen so far.
 #[derive(Default)]
 struct Pass {
     /// `v` records so far, to resolve and check indices.
     vertices: u64,
+    /// `vn` records so far, to resolve normal indices.
+    normals: u64,
+    /// For every face so far: whether each of its corners names a normal.
+    face_normals: Vec<bool>,
     /// The current `usemtl` material (index into `materials.names`).
     current: Option<u32>,
     /// Where each name is in `materials.names`.
@@ -212,11 +249,16 @@ struct Pass {
     materials: ObjMaterials,
 }
 
-/// Joins continuation lines and keeps only checked, simplified `v` and `f`
-/// records, one per line; also returns the number of logical lines that are
-/// no OBJ statement at all ([`KEYWORDS`]), which tells a file of another
-/// kind from an OBJ file without faces, and the materials named.
-fn preprocess(text: &str) -> Result<(String, usize, ObjMaterials), MeshError> {
+/// What [`preprocess`] returns: the cleaned text, the number of lines not
+/// understood, the materials named and, per face, whether it has normals.
+type Preprocessed = (String, usize, ObjMaterials, Vec<bool>);
+
+/// Joins continuation lines and keeps only checked, simplified `v`, `vn`
+/// and `f` records, one per line; also returns the number of logical lines
+/// that are no OBJ statement at all ([`KEYWORDS`]), which tells a file of
+/// another kind from an OBJ file without faces, the materials named, and
+/// for every face whether all its corners name a normal.
+fn preprocess(text: &str) -> Result<Preprocessed, MeshError> {
     let mut out = String::with_capacity(text.len().min(1 << 26));
     let mut logical = String::new();
     let mut first_line = 1usize;
@@ -239,7 +281,7 @@ fn preprocess(text: &str) -> Result<(String, usize, ObjMaterials), MeshError> {
     if !logical.is_empty() {
         unknown += usize::from(!record(&logical, first_line, &mut pass, &mut out)?);
     }
-    Ok((out, unknown, pass.materials))
+    Ok((out, unknown, pass.materials, pass.face_normals))
 }
 
 /// The statements of the OBJ format (geometry, grouping, display and
@@ -281,8 +323,20 @@ const KEYWORDS: [&str; 34] = [
     "call",
 ];
 
+/// The 0-based index of OBJ index `i` (1-based, or negative counting back
+/// from the last of the `n` records so far), when it names one of them.
+fn resolve(i: i64, n: u64) -> Option<u64> {
+    let n = i128::from(n);
+    let r = if i < 0 {
+        n + i128::from(i)
+    } else {
+        i128::from(i) - 1
+    };
+    u64::try_from(r).ok().filter(|&r| i128::from(r) < n)
+}
+
 /// Checks one logical line and appends its simplified form to `out` when it
-/// is a `v` or `f` record; notes `mtllib` and `usemtl` in `pass`. Returns
+/// is a `v`, `vn` or `f` record; notes `mtllib` and `usemtl` in `pass`. Returns
 /// whether the line is understood: blank, a comment or an OBJ statement
 /// ([`KEYWORDS`]).
 fn record(line: &str, at: usize, pass: &mut Pass, out: &mut String) -> Result<bool, MeshError> {
@@ -340,34 +394,52 @@ fn record(line: &str, at: usize, pass: &mut Pass, out: &mut String) -> Result<bo
             out.push('\n');
             *vertices += 1;
         }
+        Some("vn") => {
+            let coords: Vec<&str> = words.collect();
+            let ok = coords.len() == 3 && coords.iter().all(|c| c.parse::<f64>().is_ok());
+            // A malformed normal keeps its place (later indices count it)
+            // as a zero vector, which no face's normals may contain.
+            out.push_str("vn ");
+            out.push_str(&if ok { coords.join(" ") } else { "0 0 0".into() });
+            out.push('\n');
+            pass.normals += 1;
+        }
         Some("f") => {
             pass.materials
                 .face
                 .push(pass.current.unwrap_or(NO_MATERIAL));
-            out.push('f');
+            // The corners as `p//n` when every one names an existing
+            // normal, else as `p` alone; absolute 1-based indices, so that
+            // tobj need not resolve anything.
+            let (mut plain, mut with_normals) = (String::from("f"), String::from("f"));
+            let mut all_normals = true;
             for corner in words {
-                let v = corner.split('/').next().unwrap_or("");
+                let mut parts = corner.split('/');
+                let v = parts.next().unwrap_or("");
                 let i: i64 = v.parse().map_err(|_| {
                     MeshError::parse_at(FORMAT, at, format!("bad face corner {corner:?}"))
                 })?;
-                let n = i128::from(*vertices);
-                let resolved = if i < 0 {
-                    n + i128::from(i)
-                } else {
-                    i128::from(i) - 1
-                };
-                if !(0..n).contains(&resolved) {
-                    return Err(MeshError::parse_at(
+                let resolved = resolve(i, *vertices).ok_or_else(|| {
+                    let n = *vertices;
+                    MeshError::parse_at(
                         FORMAT,
                         at,
                         format!("face uses vertex {i}, but only {n} vertices are defined so far"),
-                    ));
+                    )
+                })?;
+                plain.push_str(&format!(" {}", resolved + 1));
+                let normal = parts
+                    .nth(1)
+                    .and_then(|n| n.parse::<i64>().ok())
+                    .and_then(|n| resolve(n, pass.normals));
+                match normal {
+                    Some(n) => with_normals.push_str(&format!(" {}//{}", resolved + 1, n + 1)),
+                    None => all_normals = false,
                 }
-                // Absolute 1-based index: tobj then need not resolve anything.
-                out.push(' ');
-                out.push_str(&(resolved + 1).to_string());
             }
+            out.push_str(if all_normals { &with_normals } else { &plain });
             out.push('\n');
+            pass.face_normals.push(all_normals);
         }
         Some(k) => return Ok(KEYWORDS.contains(&k)),
         None => {}
@@ -400,6 +472,34 @@ mod tests {
         assert_eq!(f[1], vec![c(0., 0.), c(1., 1.), c(0., 1.)]);
         assert_eq!(f[2], vec![c(0., 0.), c(1., 1.), c(0., 1.)]);
         assert_eq!(f[3], vec![c(0., 0.), c(1., 0.), c(0., 1.)]);
+    }
+
+    #[test]
+    fn faces_get_normals_only_when_every_corner_names_a_valid_one() {
+        // Face 0: all corners name normals (the 2nd by a negative index);
+        // face 1: one corner has none; face 2: one names a missing normal;
+        // face 3: uses the malformed `vn` (a zero vector, no error).
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0.6 0.8\nvn 1 2\n\
+                    f 1//1 2//-2 3/5/2\nf 1//1 2 3//2\nf 1//1 2//9 3//2\nf 1//1 2//3 3//3\n";
+        let raw = parse(text.as_bytes()).unwrap();
+        assert_eq!(raw.faces.len(), 4);
+        assert_eq!(
+            raw.normals[0],
+            Some(vec![[0.0, 0.0, 1.0], [0.0, 0.6, 0.8], [0.0, 0.6, 0.8]])
+        );
+        assert_eq!(raw.normals[1], None);
+        assert_eq!(raw.normals[2], None);
+        assert_eq!(raw.normals[3].as_ref().map(|n| n[1]), Some([0.0; 3]));
+        // The zero normal leaves face 3 without normals after the import;
+        // face 0 keeps its own.
+        let m = load_bytes(MeshFormat::Obj, text.as_bytes()).unwrap();
+        let normals: Vec<bool> = m.polygons.iter().map(|p| p.normals.is_some()).collect();
+        assert_eq!(normals, [true, false, false, false]);
+        // A file without `vn` gives no normal list at all.
+        assert!(parse(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+            .unwrap()
+            .normals
+            .is_empty());
     }
 
     #[test]

@@ -122,6 +122,9 @@ fn kept(pts: &[DVec3], plane: Plane, source: u32, color: Rgb, tol: f64) -> Optio
         plane,
         source,
         color,
+        // The file's normals are attached by the caller (`prepare`), by
+        // position: every vertex here is one of the face's own.
+        normals: None,
     })
 }
 

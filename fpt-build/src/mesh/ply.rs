@@ -5,8 +5,11 @@
 //! own `red green blue` when the face element has them, else the mean of
 //! its vertices' `red green blue` when every one of its vertices has them
 //! (smooth vertex colours become flat face colours), else the default grey;
-//! integer channels are 0–255, float channels 0–1. Other elements and
-//! properties are ignored. Faces are numbered in file order.
+//! integer channels are 0–255, float channels 0–1. Vertex normals: the
+//! `vertex` element's `nx ny nz` (any numeric type) become every corner's
+//! normal at that vertex, for the `smooth` effect (see
+//! [`super::from_faces_normals`]). Other elements and properties are
+//! ignored. Faces are numbered in file order.
 //!
 //! `ply-rs` trusts its input more than we may: a number in the header too
 //! large for u64 makes it panic, and an element count far beyond the data
@@ -35,6 +38,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
     let vertices = ply.payload.get("vertex").map_or(&[][..], |v| &v[..]);
     raw.vertices.reserve(vertices.len());
     let mut vertex_colors = Vec::with_capacity(vertices.len());
+    let mut vertex_normals = Vec::with_capacity(vertices.len());
     for (k, v) in vertices.iter().enumerate() {
         let coord = |name: &str| {
             v.get(name).and_then(scalar).ok_or_else(|| {
@@ -43,6 +47,8 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
         };
         raw.vertices.push([coord("x")?, coord("y")?, coord("z")?]);
         vertex_colors.push(rgb_of(v));
+        let [nx, ny, nz] = ["nx", "ny", "nz"].map(|c| v.get(c).and_then(scalar));
+        vertex_normals.push(nx.zip(ny).zip(nz).map(|((x, y), z)| [x, y, z]));
     }
     let faces = ply.payload.get("face").map_or(&[][..], |f| &f[..]);
     raw.faces.reserve(faces.len());
@@ -67,6 +73,19 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<RawMesh, MeshError> {
         raw.faces.push(indices);
     }
     raw.colors = any_color.then_some(colors);
+    if vertex_normals.iter().any(Option::is_some) {
+        // A face has normals when each of its vertices has one (an index
+        // out of range has none: the import reports it).
+        raw.normals = raw
+            .faces
+            .iter()
+            .map(|f| {
+                f.iter()
+                    .map(|&i| vertex_normals.get(i as usize).copied().flatten())
+                    .collect()
+            })
+            .collect();
+    }
     Ok(raw)
 }
 

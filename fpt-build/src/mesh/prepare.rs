@@ -70,6 +70,31 @@ pub fn from_faces_with(
     colors: Option<&[[u8; 3]]>,
     options: &ImportOptions,
 ) -> Result<Model, MeshError> {
+    from_faces_normals(vertices, faces, colors, None, options)
+}
+
+/// The vertex normals a mesh file gives its faces: entry `i`, when
+/// `Some`, holds one normal per corner of face `i` (in its corner order);
+/// a face without normals (or a list too short) gets `None`.
+pub type FaceNormals = [Option<Vec<[f64; 3]>>];
+
+/// [`from_faces_with`] with the file's vertex normals (see
+/// [`FaceNormals`]), for the `smooth` effect: every polygon of a face with
+/// normals gets [`Polygon::normals`], one per vertex, the normal of the
+/// face's corner at that vertex (after welding, the first corner of the
+/// face at a welded vertex). A face whose normals are not all finite and
+/// non-zero gets none (the serializer then computes its corners' with the
+/// crease angle). Normals are made unit, and a polygon whose normals point
+/// mostly against its plane (their sum behind it: a file whose normals
+/// follow the other winding, or a part turned outward here) gets them
+/// negated, so that they are on the side its plane faces.
+pub fn from_faces_normals(
+    vertices: &[[f64; 3]],
+    faces: &[Vec<u32>],
+    colors: Option<&[[u8; 3]]>,
+    normals: Option<&FaceNormals>,
+    options: &ImportOptions,
+) -> Result<Model, MeshError> {
     let mut used = vec![false; vertices.len()];
     for (fi, f) in faces.iter().enumerate() {
         for &i in f {
@@ -142,6 +167,10 @@ pub fn from_faces_with(
                 polygons.extend(pieces);
             }
         }
+        if let Some(corners) = normals.and_then(|n| n.get(fi)).and_then(Option::as_ref) {
+            let at = |i: u32| reps[map[i as usize] as usize];
+            attach_normals(&mut polygons[start..], face, corners, at);
+        }
         kept_loops.push(ids);
         first_polygon.push(start);
     }
@@ -172,6 +201,7 @@ pub fn from_faces_with(
             }
         }
     }
+    polygons.iter_mut().for_each(orient_normals);
     Ok(Model {
         polygons,
         closed: is_closed_faces(&kept_loops),
@@ -179,10 +209,51 @@ pub fn from_faces_with(
     })
 }
 
+/// Gives `polygons` (the pieces of face `face`, whose vertices are the
+/// face's welded vertices, at `at(index)`) the normals `corners` of the
+/// face's corners, matched by position; leaves them without when a normal
+/// is not finite and non-zero or a vertex is not the face's.
+fn attach_normals(
+    polygons: &mut [Polygon],
+    face: &[u32],
+    corners: &[[f64; 3]],
+    at: impl Fn(u32) -> DVec3,
+) {
+    if corners.len() != face.len() {
+        return;
+    }
+    let key = |v: DVec3| v.to_array().map(f64::to_bits);
+    let mut of: HashMap<[u64; 3], DVec3> = HashMap::with_capacity(face.len());
+    for (&i, &n) in face.iter().zip(corners) {
+        let Some(unit) = DVec3::from(n).try_normalize() else {
+            return;
+        };
+        // The first corner at a (welded) vertex wins.
+        of.entry(key(at(i))).or_insert(unit);
+    }
+    for p in polygons {
+        p.normals = p.verts.iter().map(|&v| of.get(&key(v)).copied()).collect();
+    }
+}
+
+/// Negates `p`'s normals when their sum points behind its plane (see
+/// [`from_faces_normals`]).
+fn orient_normals(p: &mut Polygon) {
+    let normal = p.plane.normal;
+    if let Some(n) = &mut p.normals {
+        if n.iter().map(|&v| v.dot(normal)).sum::<f64>() < 0.0 {
+            n.iter_mut().for_each(|v| *v = -*v);
+        }
+    }
+}
+
 /// Turns a polygon to face the other way: the same vertices in reverse
 /// order, the plane's normal and offset negated (exactly).
 fn flip(p: &mut Polygon) {
     p.verts.reverse();
+    if let Some(n) = &mut p.normals {
+        n.reverse();
+    }
     p.plane = p.plane.flipped();
 }
 

@@ -18,6 +18,7 @@ mod inspect;
 pub mod mcu_bench;
 mod render;
 pub mod turntable;
+pub mod view;
 
 /// A failure reported to the user as `error: MESSAGE`, exit status 2.
 #[derive(Debug)]
@@ -69,6 +70,9 @@ enum Command {
     Render(render::RenderArgs),
     /// Render the model spinning once about its up axis as an animated GIF.
     Turntable(turntable::TurntableArgs),
+    /// Open a window that orbits the model: arrow keys turn, +/- zoom, Esc
+    /// quits (needs the `view` cargo feature, SDL2).
+    View(view::ViewArgs),
     /// Build, render and save the demo scenes (vise, house, city) as PNG.
     Demo(demo::DemoArgs),
     /// Measure error against time of every arithmetic configuration.
@@ -264,6 +268,7 @@ where
         Command::Frames(a) => frames::run(&a),
         Command::Render(a) => render::run(&a),
         Command::Turntable(a) => turntable::run(&a),
+        Command::View(a) => view::run(&a),
         Command::Demo(a) => demo::run(&a),
         Command::BenchAccuracy(a) => accuracy::run(&a),
         Command::McuBench(a) => mcu_bench::run(&a),
