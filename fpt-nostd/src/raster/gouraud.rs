@@ -20,7 +20,7 @@
 //!   and then along each span. A polygon with more corners uses the three
 //!   of its widest fan triangle from corner 0 (its other corners' colours
 //!   are not matched exactly). The fill is the flat one ([`super::scan`]),
-//!   so coverage is identical; this module's [`SmoothSink`] receives its
+//!   so coverage is identical; this module's `SmoothSink` receives its
 //!   spans and paints each as runs of equal native colour through the
 //!   target's own sink ([`SpanSink::color`] when the 8-bit colour changes,
 //!   [`SpanSink::span`] when the native one does: an RGB565 target takes a

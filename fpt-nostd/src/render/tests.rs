@@ -8,12 +8,15 @@ use std::vec::Vec;
 
 use embedded_graphics::pixelcolor::{GrayColor, Rgb565, Rgb888};
 
+use super::frame::{dot3, eval_row};
 use super::*;
 use crate::order::OrderError;
+use crate::raster::{Camera, FramebufferError, Mat4, Precision};
 use crate::raster::{
     DefaultPrecision, FixedPrecision, FloatLibm, Gray8Framebuffer, IdBuffer, Libm, Light, Orbit,
     Rgb888Framebuffer, ShadeMode,
 };
+use crate::reader::Tree;
 use crate::test_util::{two_floors, Raw};
 
 /// Two unit squares facing +z at z = 1 (source 10) and z = 0 (source 20),
