@@ -45,6 +45,14 @@ pub struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
     leaf_of: Vec<u32>,
+    /// The members' vertices, copied in `order`: member `order[k]` has
+    /// `verts[vstart[k]..vstart[k + 1]]`. Counting a row classifies the
+    /// members of every leaf the plane passes through; reading them from one
+    /// array in leaf order, instead of through each polygon's own vertex
+    /// allocation, is most of a count's time saved (cache misses). Linear
+    /// memory: one copy of each member's vertices per group.
+    verts: Vec<DVec3>,
+    vstart: Vec<u32>,
 }
 
 /// The range of `n · x + d` over the box `lo..hi`.
@@ -71,6 +79,8 @@ impl Bvh {
             nodes: Vec::with_capacity(2 * n.div_ceil(LEAF) + 1),
             order: (0..n as u32).collect(),
             leaf_of: vec![0; n],
+            verts: Vec::new(),
+            vstart: Vec::new(),
         };
         if n == 0 {
             return bvh;
@@ -138,6 +148,13 @@ impl Bvh {
             stack.push(left);
             stack.push(left + 1);
         }
+        bvh.vstart.reserve(n + 1);
+        bvh.vstart.push(0);
+        for &i in &bvh.order {
+            bvh.verts
+                .extend_from_slice(&polys[ids[i as usize] as usize].verts);
+            bvh.vstart.push(bvh.verts.len() as u32);
+        }
         bvh
     }
 
@@ -153,13 +170,14 @@ impl Bvh {
 
     /// Visits the alive members whose boxes `plane` may not decide whole:
     /// calls `whole(side)` with `alive` count for boxes wholly in front
-    /// (`true`) or behind, and `each(i)` for the members of the other leaves.
+    /// (`true`) or behind, and `each(i, verts)` for the members of the
+    /// other leaves, with their vertices.
     fn visit(
         &self,
         plane: &Plane,
         tol: Tolerance,
         mut whole: impl FnMut(bool, u32),
-        mut each: impl FnMut(usize),
+        mut each: impl FnMut(usize, &[DVec3]),
     ) {
         if self.nodes.is_empty() {
             return;
@@ -182,8 +200,9 @@ impl Bvh {
                 stack.push(node.first + 1);
             } else {
                 let f = node.first as usize;
-                for &i in &self.order[f..f + node.count as usize] {
-                    each(i as usize);
+                for k in f..f + node.count as usize {
+                    let v = &self.verts[self.vstart[k] as usize..self.vstart[k + 1] as usize];
+                    each(self.order[k] as usize, v);
                 }
             }
         }
@@ -191,26 +210,18 @@ impl Bvh {
 
     /// Front, back and cut counts of the alive members other than `skip`
     /// against `plane` (coplanar ones count in none).
-    pub fn counts(
-        &self,
-        plane: &Plane,
-        skip: usize,
-        alive: &[bool],
-        ids: &[u32],
-        polys: &[Polygon],
-        tol: Tolerance,
-    ) -> [u32; 3] {
+    pub fn counts(&self, plane: &Plane, skip: usize, alive: &[bool], tol: Tolerance) -> [u32; 3] {
         let mut c = [0u32; 3];
         let mut leaf = [0u32; 3];
         self.visit(
             plane,
             tol,
             |front, n| c[usize::from(!front)] += n,
-            |i| {
+            |i, verts| {
                 if i == skip || !alive[i] {
                     return;
                 }
-                match plane.relation(&polys[ids[i] as usize].verts, tol) {
+                match plane.relation(verts, tol) {
                     Relation::Front => leaf[0] += 1,
                     Relation::Back => leaf[1] += 1,
                     Relation::Cut => leaf[2] += 1,
@@ -228,8 +239,6 @@ impl Bvh {
         plane: &Plane,
         skip: usize,
         alive: &[bool],
-        ids: &[u32],
-        polys: &[Polygon],
         tol: Tolerance,
     ) -> Vec<usize> {
         let mut v = Vec::new();
@@ -237,11 +246,8 @@ impl Bvh {
             plane,
             tol,
             |_, _| {},
-            |i| {
-                if i != skip
-                    && alive[i]
-                    && plane.relation(&polys[ids[i] as usize].verts, tol) == Relation::Coplanar
-                {
+            |i, verts| {
+                if i != skip && alive[i] && plane.relation(verts, tol) == Relation::Coplanar {
                     v.push(i);
                 }
             },

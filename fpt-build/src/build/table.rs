@@ -205,8 +205,7 @@ impl Table {
                 }
                 c
             } else {
-                self.bvh
-                    .counts(&plane, q, &self.alive, &self.ids, polys, tol)
+                self.bvh.counts(&plane, q, &self.alive, tol)
             }
         });
         for (q, c) in rows.into_iter().zip(counts) {
@@ -259,7 +258,7 @@ impl Table {
     pub fn coplanar(&self, q: usize, ctx: &Ctx) -> Vec<(usize, Rel)> {
         let plane = ctx.polys[self.ids[q] as usize].plane;
         self.bvh
-            .coplanar(&plane, q, &self.alive, &self.ids, &ctx.polys, ctx.tol)
+            .coplanar(&plane, q, &self.alive, ctx.tol)
             .into_iter()
             .map(|p| {
                 let n = ctx.polys[self.ids[p] as usize].plane.normal;
@@ -278,14 +277,7 @@ impl Table {
     /// Front, back and cut counts of the alive members against `plane`
     /// (any plane, not only a member's).
     pub fn plane_counts(&self, plane: &Plane, ctx: &Ctx) -> [u32; 3] {
-        self.bvh.counts(
-            plane,
-            usize::MAX,
-            &self.alive,
-            &self.ids,
-            &ctx.polys,
-            ctx.tol,
-        )
+        self.bvh.counts(plane, usize::MAX, &self.alive, ctx.tol)
     }
 
     /// Starts watching row `q` (alive, computed, exact counts).
@@ -369,8 +361,8 @@ impl Table {
                 let skip_gone = gone.binary_search(&o).unwrap_or(usize::MAX);
                 let skip_piece = q.checked_sub(n_members).unwrap_or(usize::MAX);
                 let c = self.counts[o];
-                let g = gone_bvh.counts(&plane, skip_gone, &all_gone, &gone_ids, polys, tol);
-                let p = piece_bvh.counts(&plane, skip_piece, &all_pieces, &piece_ids, polys, tol);
+                let g = gone_bvh.counts(&plane, skip_gone, &all_gone, tol);
+                let p = piece_bvh.counts(&plane, skip_piece, &all_pieces, tol);
                 [c[0] - g[0] + p[0], c[1] - g[1] + p[1], c[2] - g[2] + p[2]]
             });
             for (q, c) in exact.into_iter().zip(counts) {

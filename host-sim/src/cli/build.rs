@@ -396,6 +396,22 @@ pub fn growth_exponent(points: &[(f64, f64)]) -> Option<f64> {
     (pts.len() >= 2 && sxx > 1e-12).then(|| sxy / sxx)
 }
 
+/// CPU time of this process so far, all threads (the builder counts rows
+/// on several), in seconds; `None` where `/proc/self/stat` is not there.
+/// Unlike the wall-clock build time it does not grow with the load other
+/// programs put on a shared machine.
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the command name (which may hold spaces), from `state`:
+    // `utime` and `stime` are the 12th and 13th, in ticks of 1/100 s
+    // (USER_HZ, fixed at 100 for this interface).
+    let rest = stat.rsplit_once(')')?.1;
+    let mut fields = rest.split_whitespace().skip(11);
+    let utime: f64 = fields.next()?.parse().ok()?;
+    let stime: f64 = fields.next()?.parse().ok()?;
+    Some((utime + stime) / 100.0)
+}
+
 /// `fpt bench-build --scaling`: the static build against size, for the
 /// meshes given or for faceted tori.
 fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
@@ -419,13 +435,16 @@ fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
             inputs.push((name, model.polygons, model.closed));
         }
     }
-    println!("| input | polygons | output | out/in | build s | peak heap MiB | bytes/polygon |");
-    println!("|---|---|---|---|---|---|---|");
-    let (mut times, mut peaks) = (Vec::new(), Vec::new());
+    println!(
+        "| input | polygons | output | out/in | build s | CPU s | peak heap MiB | bytes/polygon |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    let (mut times, mut cpus, mut peaks) = (Vec::new(), Vec::new(), Vec::new());
     for (name, polygons, closed) in inputs {
         let n = polygons.len();
         crate::memory::reset_peak();
         let base = crate::memory::in_use();
+        let cpu0 = process_cpu_seconds();
         let t = build(
             polygons,
             closed,
@@ -433,6 +452,7 @@ fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
             crate::build::DEFAULT_SEED,
             &mut Bar::quiet(),
         );
+        let cpu = cpu0.zip(process_cpu_seconds()).map(|(a, b)| b - a);
         let peak =
             crate::memory::peak().map(|p| p.saturating_sub(base) as f64 / f64::from(1 << 20));
         let bytes =
@@ -440,21 +460,26 @@ fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
         let s = &t.stats;
         let secs = s.build_ms / 1e3;
         times.push((n as f64, secs));
+        if let Some(c) = cpu {
+            cpus.push((n as f64, c));
+        }
         if let Some(p) = peak {
             peaks.push((n as f64, p));
         }
         println!(
-            "| {name} | {n} | {} | {:.2} | {secs:.2} | {} | {:.1} |",
+            "| {name} | {n} | {} | {:.2} | {secs:.2} | {} | {} | {:.1} |",
             s.output_polygons,
             s.output_polygons as f64 / n.max(1) as f64,
+            cpu.map_or_else(|| "-".to_string(), |c| format!("{c:.2}")),
             peak.map_or_else(|| "-".to_string(), |p| format!("{p:.1}")),
             bytes.len() as f64 / s.output_polygons.max(1) as f64,
         );
     }
     let show = |e: Option<f64>| e.map_or_else(|| "-".to_string(), |e| format!("{e:.2}"));
     println!(
-        "fitted growth: build time ~ n^{}, peak heap ~ n^{}",
+        "fitted growth: build time ~ n^{}, CPU time ~ n^{}, peak heap ~ n^{}",
         show(growth_exponent(&times)),
+        show(growth_exponent(&cpus)),
         show(growth_exponent(&peaks))
     );
     Ok(())
