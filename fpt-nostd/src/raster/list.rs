@@ -459,13 +459,19 @@ impl<'m> DisplayList<'m> {
         }
         // The bands a record touches, clamped to the indexed ones (none
         // when it misses them all).
+        // A shift for the usual band heights (a power of two): a division
+        // is a library call of dozens of instructions on a Cortex-M0, two
+        // a record.
+        let shift = (rows as u32).is_power_of_two().then(|| rows.trailing_zeros());
+        let band_of = |row: i32| match shift {
+            Some(s) => (row >> s) as usize,
+            None => (row / rows) as usize,
+        };
         let span = |first: i32, end: i32| -> Option<(usize, usize)> {
             if end <= y || first >= cut || end <= first {
                 return None;
             }
-            let b0 = ((first.max(y) - y) / rows) as usize;
-            let b1 = ((end.min(cut) - 1 - y) / rows) as usize;
-            Some((b0, b1))
+            Some((band_of(first.max(y) - y), band_of(end.min(cut) - 1 - y)))
         };
         // Counting sort: counts in cursors 1..=bands, then their prefix
         // sums, then each record placed at its bands' cursors (which end
