@@ -462,7 +462,9 @@ impl<'m> DisplayList<'m> {
         // A shift for the usual band heights (a power of two): a division
         // is a library call of dozens of instructions on a Cortex-M0, two
         // a record.
-        let shift = (rows as u32).is_power_of_two().then(|| rows.trailing_zeros());
+        let shift = (rows as u32)
+            .is_power_of_two()
+            .then(|| rows.trailing_zeros());
         let band_of = |row: i32| match shift {
             Some(s) => (row >> s) as usize,
             None => (row / rows) as usize,
