@@ -260,6 +260,50 @@ impl<'m> DisplayList<'m> {
     /// end row outside `0..=2^14` or above it, more than 65 535 points). A clipped polygon must be
     /// stored inline (its points are not the tree's).
     pub fn push(&mut self, e: &Entry, pts: Points<'_>) -> bool {
+        // The common record first, written straight (a frame records every
+        // polygon it draws): by polygon, not clipped, fewer than 255 rows,
+        // no optional words. The same 4 words as the general path below.
+        if let Points::Polygon(i) = pts {
+            let rows = e.end.wrapping_sub(e.first);
+            if self.extra == 0
+                && !e.clipped
+                && (0..1 << 14).contains(&e.first)
+                && e.end <= 1 << 14
+                && (0..i32::from(LONG_ROWS)).contains(&rows)
+            {
+                return self.push_short(e, rows as u16, i);
+            }
+        }
+        self.push_general(e, pts)
+    }
+
+    /// [`DisplayList::push`] of a record by polygon `i` spanning `rows`
+    /// (below 255) rows, without optional words (checked by the caller).
+    #[inline(always)]
+    fn push_short(&mut self, e: &Entry, rows: u16, i: u16) -> bool {
+        let at = self.len;
+        let table = 4 * (self.groups + usize::from(self.in_group == 0));
+        if at + 4 + table > self.buf.len() {
+            return false;
+        }
+        let Some(out) = self.buf.get_mut(at..at + 4) else {
+            return false;
+        };
+        out.copy_from_slice(&[
+            e.first as u16 | BY_POLYGON << 14,
+            u16::from(e.rgb.r()) | u16::from(e.rgb.g()) << 8,
+            u16::from(e.rgb.b()) | rows << 8,
+            i,
+        ]);
+        self.index = None;
+        self.len = at + 4;
+        self.note(at, e.first as u16, e.end as u16, self.len);
+        self.peak = self.peak.max(self.len + 4 * self.groups);
+        true
+    }
+
+    /// [`DisplayList::push`] of any record.
+    fn push_general(&mut self, e: &Entry, pts: Points<'_>) -> bool {
         let (n, kind) = match pts {
             Points::Polygon(_) => (0, Kind::Polygon),
             Points::Indices(ix) => (ix.len(), Kind::Indices),
