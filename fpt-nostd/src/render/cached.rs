@@ -12,7 +12,11 @@
 //! * a **display list** ([`crate::raster::list`]) records each polygon,
 //!   ready to fill, during one walk, and every band replays the records
 //!   that touch its rows: the walk, transform and shading happen once a
-//!   frame, a band costs only its fill.
+//!   frame, a band costs only its fill. After a walk that covers several
+//!   bands, the words the list leaves hold, when they can, a band index
+//!   ([`DisplayList::index_bands`]): each band then reads only its own
+//!   records, in walk order; without room it scans the record groups
+//!   that overlap it (the same picture either way).
 //!
 //! # Less memory than a frame needs
 //!
