@@ -76,6 +76,12 @@ pub fn orbit(tree: &Tree<'_>, i: u32, n: u32) -> Orbit {
 
 /// What the renderer and the walk need for frame `i` of `n` of `tree` on a
 /// `width × height` display.
+///
+/// Out of line: its `f64` camera set-up (software floating point on a
+/// Cortex-M) has large temporaries, which inlined into
+/// [`draw_band_frame`] would stay on the stack below the whole band loop
+/// (on a 16 KiB Cortex-M0 the stack is what decides the working memory).
+#[inline(never)]
 pub fn frame(tree: &Tree<'_>, i: u32, n: u32, width: u32, height: u32) -> Frame {
     let aspect = width as f32 / height.max(1) as f32;
     let camera = orbit(tree, i, n).camera::<Libm>(aspect);

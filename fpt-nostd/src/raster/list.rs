@@ -120,6 +120,23 @@ pub struct DisplayList<'m> {
     groups: usize,
     /// Records in the last group.
     in_group: usize,
+    /// The band index, when built and still valid ([`DisplayList::index_bands`]).
+    index: Option<BandIndex>,
+}
+
+/// Where the band index sits in the free words between the records and
+/// the group table: `bands` cursors, then the entries (record offsets),
+/// band after band.
+#[derive(Clone, Copy, Debug)]
+struct BandIndex {
+    /// First row of band 0.
+    y: i32,
+    /// Rows a band.
+    rows: i32,
+    /// Bands indexed.
+    bands: usize,
+    /// Where the cursors start (the entries follow them).
+    at: usize,
 }
 
 /// Records per group. Every [`GROUP`] consecutive records share an entry
@@ -144,6 +161,7 @@ impl<'m> DisplayList<'m> {
             extra: MASK_WORDS * usize::from(outlines) + 2 * usize::from(ids),
             groups: 0,
             in_group: 0,
+            index: None,
         }
     }
 
@@ -152,6 +170,7 @@ impl<'m> DisplayList<'m> {
         self.len = 0;
         self.groups = 0;
         self.in_group = 0;
+        self.index = None;
     }
 
     /// Where group `g`'s entry starts.
@@ -241,6 +260,50 @@ impl<'m> DisplayList<'m> {
     /// end row outside `0..=2^14` or above it, more than 65 535 points). A clipped polygon must be
     /// stored inline (its points are not the tree's).
     pub fn push(&mut self, e: &Entry, pts: Points<'_>) -> bool {
+        // The common record first, written straight (a frame records every
+        // polygon it draws): by polygon, not clipped, fewer than 255 rows,
+        // no optional words. The same 4 words as the general path below.
+        if let Points::Polygon(i) = pts {
+            let rows = e.end.wrapping_sub(e.first);
+            if self.extra == 0
+                && !e.clipped
+                && (0..1 << 14).contains(&e.first)
+                && e.end <= 1 << 14
+                && (0..i32::from(LONG_ROWS)).contains(&rows)
+            {
+                return self.push_short(e, rows as u16, i);
+            }
+        }
+        self.push_general(e, pts)
+    }
+
+    /// [`DisplayList::push`] of a record by polygon `i` spanning `rows`
+    /// (below 255) rows, without optional words (checked by the caller).
+    #[inline(always)]
+    fn push_short(&mut self, e: &Entry, rows: u16, i: u16) -> bool {
+        let at = self.len;
+        let table = 4 * (self.groups + usize::from(self.in_group == 0));
+        if at + 4 + table > self.buf.len() {
+            return false;
+        }
+        let Some(out) = self.buf.get_mut(at..at + 4) else {
+            return false;
+        };
+        out.copy_from_slice(&[
+            e.first as u16 | BY_POLYGON << 14,
+            u16::from(e.rgb.r()) | u16::from(e.rgb.g()) << 8,
+            u16::from(e.rgb.b()) | rows << 8,
+            i,
+        ]);
+        self.index = None;
+        self.len = at + 4;
+        self.note(at, e.first as u16, e.end as u16, self.len);
+        self.peak = self.peak.max(self.len + 4 * self.groups);
+        true
+    }
+
+    /// [`DisplayList::push`] of any record.
+    fn push_general(&mut self, e: &Entry, pts: Points<'_>) -> bool {
         let (n, kind) = match pts {
             Points::Polygon(_) => (0, Kind::Polygon),
             Points::Indices(ix) => (ix.len(), Kind::Indices),
@@ -254,6 +317,8 @@ impl<'m> DisplayList<'m> {
         {
             return false;
         }
+        // The index would overlap the new record (and miss it).
+        self.index = None;
         let rows = e.end - e.first;
         let words = self.record_words(n, kind, rows);
         let table = 4 * (self.groups + usize::from(self.in_group == 0));
@@ -359,51 +424,7 @@ impl<'m> DisplayList<'m> {
     /// The header of the record at word `at`. `None` at the end.
     #[inline(always)]
     fn head(&self, at: usize) -> Option<Head> {
-        let h = self.buf.get(at..self.len)?;
-        let &[w0, w1, w2, ..] = h else {
-            return None;
-        };
-        let first = i32::from(w0 & 0x3fff);
-        let code = w0 >> 14;
-        let rows = w2 >> 8;
-        let mut k = 3;
-        let end = if rows == LONG_ROWS {
-            k += 1;
-            i32::from(*h.get(3)?)
-        } else {
-            first + i32::from(rows)
-        };
-        let (kind, n) = if code == BY_POLYGON {
-            (Kind::Polygon, 0)
-        } else {
-            k += 1;
-            let n = usize::from(*h.get(k - 1)?);
-            (
-                if code == BY_INDEX {
-                    Kind::Indices
-                } else {
-                    Kind::Inline
-                },
-                n,
-            )
-        };
-        let body = at + k + self.extra;
-        let next = body
-            + match kind {
-                Kind::Polygon => 1,
-                Kind::Indices => n,
-                Kind::Inline => 4 * n,
-            };
-        Some(Head {
-            first,
-            end,
-            colour: (w1, w2),
-            kind,
-            clipped: code == INLINE_CLIPPED,
-            n,
-            body,
-            next,
-        })
+        head_in(self.buf.get(..self.len)?, self.extra, at)
     }
 
     /// The rows `(first, end)` of the record at word `at` and where the
@@ -454,9 +475,124 @@ impl<'m> DisplayList<'m> {
         self.buf.get(r.body).map(|&i| u32::from(i))
     }
 
+    /// Builds the **band index** of the records, in the words the records
+    /// and the group table leave free: for each of the bands of `rows` rows
+    /// from row `y` up to row `cut`, the offsets of the records touching it,
+    /// in the order they were pushed (a record touching several bands is
+    /// listed in each). [`DisplayList::band`] then hands a band its own
+    /// records instead of a scan of every group that overlaps it (most of
+    /// whose records miss the band: records come in walk order, not row
+    /// order). `false`, and no index, when it does not fit (or the records
+    /// take 2^16 words or more, the entries being `u16`): the replay scans,
+    /// as without an index. Any push or retain drops the index.
+    ///
+    /// Out of line: it runs once a walk, and kept apart it adds nothing to
+    /// the stack frame of the band loop that calls it.
+    #[inline(never)]
+    pub fn index_bands(&mut self, y: i32, rows: i32, cut: i32) -> bool {
+        self.index = None;
+        if rows <= 0 || cut <= y || self.len > usize::from(u16::MAX) {
+            return false;
+        }
+        let bands = ((cut - y + rows - 1) / rows) as usize;
+        let at = self.len;
+        // The group table takes the top `4 * groups` words.
+        let free = self.buf.len().saturating_sub(4 * self.groups);
+        if at + bands + 1 > free {
+            return false;
+        }
+        // The bands a record touches, clamped to the indexed ones (none
+        // when it misses them all).
+        // A shift for the usual band heights (a power of two): a division
+        // is a library call of dozens of instructions on a Cortex-M0, two
+        // a record.
+        let shift = (rows as u32)
+            .is_power_of_two()
+            .then(|| rows.trailing_zeros());
+        let band_of = |row: i32| match shift {
+            Some(s) => (row >> s) as usize,
+            None => (row / rows) as usize,
+        };
+        let span = |first: i32, end: i32| -> Option<(usize, usize)> {
+            if end <= y || first >= cut || end <= first {
+                return None;
+            }
+            Some((band_of(first.max(y) - y), band_of(end.min(cut) - 1 - y)))
+        };
+        // Counting sort: counts in cursors 1..=bands, then their prefix
+        // sums, then each record placed at its bands' cursors (which end
+        // up at each band's end).
+        let extra = self.extra;
+        let rows_at =
+            |buf: &[u16], at: usize| head_in(buf, extra, at).map(|h| (h.first, h.end, h.next));
+        let (head, tail) = self.buf.split_at_mut(at);
+        let (cursors, entries) = tail.split_at_mut(bands + 1);
+        cursors.fill(0);
+        let mut r = 0;
+        let mut total = 0usize;
+        while let Some((first, end, next)) = rows_at(head, r) {
+            if let Some((b0, b1)) = span(first, end) {
+                for c in &mut cursors[b0 + 1..=b1 + 1] {
+                    *c += 1;
+                }
+                total += b1 + 1 - b0;
+            }
+            r = next;
+        }
+        if at + bands + 1 + total > free || total > usize::from(u16::MAX) {
+            return false;
+        }
+        for b in 1..=bands {
+            cursors[b] += cursors[b - 1];
+        }
+        let mut r = 0;
+        while let Some((first, end, next)) = rows_at(head, r) {
+            if let Some((b0, b1)) = span(first, end) {
+                for c in &mut cursors[b0..=b1] {
+                    if let Some(e) = entries.get_mut(usize::from(*c)) {
+                        *e = r as u16;
+                    }
+                    *c += 1;
+                }
+            }
+            r = next;
+        }
+        self.index = Some(BandIndex { y, rows, bands, at });
+        self.peak = self.peak.max(at + bands + 1 + total + 4 * self.groups);
+        true
+    }
+
+    /// The offsets of the records touching the band that starts at row
+    /// `y0`, in push order, when the band index covers it
+    /// ([`DisplayList::index_bands`]); `None` otherwise.
+    #[inline]
+    pub fn band(&self, y0: i32) -> Option<&[u16]> {
+        let ix = self.index?;
+        let k = y0 - ix.y;
+        if k < 0 || k % ix.rows != 0 {
+            return None;
+        }
+        let b = (k / ix.rows) as usize;
+        if b >= ix.bands {
+            return None;
+        }
+        // After the fill, cursor `b` is band `b`'s end and band `b - 1`'s
+        // cursor its start.
+        let cursors = self.buf.get(ix.at..ix.at + ix.bands + 1)?;
+        let start = if b == 0 {
+            0
+        } else {
+            usize::from(cursors[b - 1])
+        };
+        let stop = usize::from(cursors[b]);
+        let base = ix.at + ix.bands + 1;
+        self.buf.get(base + start..base + stop)
+    }
+
     /// Drops every record whose first row is at or below `cut`, keeping
     /// the others in order (compacting in place).
     pub fn retain_rows_below(&mut self, cut: i32) {
+        self.index = None;
         let (mut read, mut write) = (0, 0);
         while let Some((first, _, next)) = self.rows_at(read) {
             if first < cut {
@@ -476,6 +612,57 @@ impl<'m> DisplayList<'m> {
             at = next;
         }
     }
+}
+
+/// The header of the record at word `at` of `records` (the words in use;
+/// `extra`: the optional words of every record). `None` at the end.
+#[inline(always)]
+fn head_in(records: &[u16], extra: usize, at: usize) -> Option<Head> {
+    let h = records.get(at..)?;
+    let &[w0, w1, w2, ..] = h else {
+        return None;
+    };
+    let first = i32::from(w0 & 0x3fff);
+    let code = w0 >> 14;
+    let rows = w2 >> 8;
+    let mut k = 3;
+    let end = if rows == LONG_ROWS {
+        k += 1;
+        i32::from(*h.get(3)?)
+    } else {
+        first + i32::from(rows)
+    };
+    let (kind, n) = if code == BY_POLYGON {
+        (Kind::Polygon, 0)
+    } else {
+        k += 1;
+        let n = usize::from(*h.get(k - 1)?);
+        (
+            if code == BY_INDEX {
+                Kind::Indices
+            } else {
+                Kind::Inline
+            },
+            n,
+        )
+    };
+    let body = at + k + extra;
+    let next = body
+        + match kind {
+            Kind::Polygon => 1,
+            Kind::Indices => n,
+            Kind::Inline => 4 * n,
+        };
+    Some(Head {
+        first,
+        end,
+        colour: (w1, w2),
+        kind,
+        clipped: code == INLINE_CLIPPED,
+        n,
+        body,
+        next,
+    })
 }
 
 /// A record's header, decoded.
@@ -616,6 +803,67 @@ mod tests {
             l.group(1).map(|g| (g.0, g.1)),
             Some((GROUP as i32, GROUP as i32 + 3))
         );
+    }
+
+    /// The offsets of the records touching rows `[y0, y1)`, by a scan.
+    fn scan(l: &DisplayList<'_>, y0: i32, y1: i32) -> std::vec::Vec<u16> {
+        let mut at = 0;
+        let mut out = std::vec::Vec::new();
+        while let Some((first, end, next)) = l.rows_at(at) {
+            if end > y0 && first < y1 {
+                out.push(at as u16);
+            }
+            at = next;
+        }
+        out
+    }
+
+    #[test]
+    fn band_index_lists_each_bands_records_in_order() {
+        let mut buf = [0u16; 1024];
+        let mut l = DisplayList::new(&mut buf, false, false);
+        // Rows out of order, one empty, one above and one across the
+        // indexed rows, one long.
+        let rows = [
+            (20, 23),
+            (0, 40),
+            (5, 5),
+            (33, 34),
+            (2, 9),
+            (15, 17),
+            (60, 90),
+            (0, 300),
+        ];
+        for (i, &(first, end)) in rows.iter().enumerate() {
+            let pts = if i % 2 == 0 {
+                Points::Polygon(i as u16)
+            } else {
+                Points::Indices(&[1, 2, 3])
+            };
+            assert!(l.push(&entry(first, end), pts));
+        }
+        assert_eq!(l.band(8), None);
+        assert!(l.index_bands(8, 8, 48));
+        for y0 in (8..48).step_by(8) {
+            assert_eq!(l.band(y0).unwrap(), &scan(&l, y0, y0 + 8)[..], "band {y0}");
+        }
+        // Not a band start, or outside the indexed bands.
+        assert_eq!((l.band(0), l.band(12), l.band(48)), (None, None, None));
+        let peak = l.peak();
+        assert!(peak > l.len() + 4 * l.groups());
+        // A push drops the index.
+        assert!(l.push(&entry(9, 10), Points::Polygon(1)));
+        assert_eq!(l.band(8), None);
+        // An index that does not fit is not built: the list is unchanged.
+        let mut small = [0u16; 44];
+        let mut l = DisplayList::new(&mut small, false, false);
+        for i in 0..9 {
+            assert!(l.push(&entry(0, 240), Points::Polygon(i)));
+        }
+        let len = l.len();
+        assert!(!l.index_bands(0, 16, 240));
+        assert_eq!((l.band(0), l.len()), (None, len));
+        assert!(l.record(0).is_some());
     }
 
     #[test]

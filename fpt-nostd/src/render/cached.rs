@@ -12,7 +12,11 @@
 //! * a **display list** ([`crate::raster::list`]) records each polygon,
 //!   ready to fill, during one walk, and every band replays the records
 //!   that touch its rows: the walk, transform and shading happen once a
-//!   frame, a band costs only its fill.
+//!   frame, a band costs only its fill. After a walk that covers several
+//!   bands, the words the list leaves hold, when they can, a band index
+//!   ([`DisplayList::index_bands`]): each band then reads only its own
+//!   records, in walk order; without room it scans the record groups
+//!   that overlap it (the same picture either way).
 //!
 //! # Less memory than a frame needs
 //!
@@ -558,23 +562,34 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
     sink: &mut K,
 ) -> u64 {
     let mut spans = 0;
-    // Whole groups of records that miss the band are skipped unread.
-    let groups = (0..list.groups()).filter_map(|g| list.group(g));
-    let records = groups
+    // The band's own records when the list has a band index; else every
+    // record of the groups that overlap the band (whole groups that miss
+    // it are skipped unread). One loop over either, so that the fill is
+    // inlined once.
+    let indexed = list.band(y0);
+    let groups = (0..list.groups())
+        .filter_map(|g| list.group(g))
+        .filter(|_| indexed.is_none());
+    let scanned = groups
         .filter(|&(first, end, _, _)| end > y0 && first < y1)
         .flat_map(|(_, _, start, stop)| {
             let mut at = start;
-            core::iter::from_fn(move || {
+            // Each record's rows tested from its first words only.
+            core::iter::from_fn(move || loop {
                 let (first, end, next) = list.rows_at(at).filter(|_| at < stop)?;
                 let here = at;
                 at = next;
-                Some((first, end, here))
+                if end > y0 && first < y1 {
+                    return Some(here);
+                }
             })
         });
-    for (first, end, here) in records {
-        if end <= y0 || first >= y1 {
-            continue;
-        }
+    let records = indexed
+        .unwrap_or(&[])
+        .iter()
+        .map(|&at| usize::from(at))
+        .chain(scanned);
+    for here in records {
         let Some(rec) = list.record(here) else {
             break;
         };
@@ -915,6 +930,11 @@ where
         // (`direct`, and then `cut` is its end) or from the list now.
         if !direct {
             probe.enter(Phase::Fill);
+            // Each band then reads only its own records (when the words
+            // the list leaves hold the index; else it scans, as before).
+            if cut.get() > y + rows {
+                list.index_bands(y, rows, cut.get());
+            }
             let mut sink = Band::new(&mut fb, y);
             spans += replay(r, scratch, tree, &list, &cache, (y, y + rows), &mut sink);
         }
