@@ -7,7 +7,7 @@
 //! `cargo:rerun-if-changed=MESH`, and the firmware embeds the result with
 //! `include_bytes!(concat!(env!("OUT_DIR"), "/part.fpt"))`. The bytes are
 //! those of `fpt build MESH -o OUT.fpt` with default options (tested in
-//! `host-sim/tests/cli_build.rs`).
+//! `host-sim/tests/all/cli_build.rs`).
 
 use fpt_build::{build, mesh, serialize, tree::Method};
 use std::path::Path;

@@ -37,7 +37,7 @@
 //! ```
 //!
 //! The same bytes as `fpt build part.obj -o part.fpt` with default options
-//! (tested in `host-sim/tests/cli_build.rs`; `fpt-build/examples/build_rs.rs`
+//! (tested in `host-sim/tests/all/cli_build.rs`; `fpt-build/examples/build_rs.rs`
 //! is the same recipe as a program). For an STL file `fpt build` also
 //! records z as the model's up axis (header byte 23, read by viewers such
 //! as `fpt render`): `SerializeOptions { up: MeshFormat::Stl.up_axis(),

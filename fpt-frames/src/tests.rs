@@ -1,5 +1,5 @@
 //! Tests of the shared frame code on a small hand-made tree; the real
-//! scenes are checked against the firmware in `tests/tests/firmware_crc.rs`.
+//! scenes are checked against the firmware in `tests/tests/all/firmware_crc.rs`.
 
 extern crate std;
 

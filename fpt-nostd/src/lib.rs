@@ -121,7 +121,7 @@
 //! `seeds/` holds a few small valid inputs (serialized trees behind a control
 //! byte, tiny meshes behind a format byte); `corpus/` is where libFuzzer keeps
 //! what it finds (not versioned). What the runs found is recorded in
-//! [`reader`] ("Fuzzing"). `cargo test -p fpt-tests --test format_corruption`
+//! [`reader`] ("Fuzzing"). `cargo test -p fpt-tests --test all format_corruption`
 //! runs the same checks on stable Rust as a property test over corrupted
 //! files.
 #![no_std]

@@ -36,7 +36,7 @@
 //! the tree renderer), so they measure the storage quantization only.
 //!
 //! [`rows_for`] computes rows for any cases and views; the integration test
-//! `host-sim/tests/accuracy_cli.rs` checks them against `fpt render` output.
+//! `host-sim/tests/all/accuracy_cli.rs` checks them against `fpt render` output.
 
 pub mod eval;
 mod plot;

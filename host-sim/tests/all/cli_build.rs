@@ -2,7 +2,7 @@
 //! file; bad input of any kind gives exit status 2, one `error: ` line, and
 //! no output file.
 
-mod common;
+use crate::common;
 
 use common::{fpt, s, tmp, CUBE_OBJ};
 use std::path::PathBuf;

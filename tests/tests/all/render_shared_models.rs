@@ -4,7 +4,7 @@
 //! a face and from inside the model). Skipped when the folder is absent, as
 //! in a fresh clone.
 
-mod render_common;
+use crate::render_common;
 
 use fpt_tests::{random_cameras, shared_mesh};
 use render_common::{assert_clean, check_views};

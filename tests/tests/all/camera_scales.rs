@@ -7,10 +7,10 @@
 //! (`Orbit::camera`/`camera_up` around the bounding-sphere centre through
 //! `Frame::relative`, and around the centre in model coordinates through
 //! `Frame::new`), which composes in model space normalised by the
-//! distance. (`host-sim/tests/cli_scale.rs` checks the same through
+//! distance. (`host-sim/tests/all/cli_scale.rs` checks the same through
 //! `fpt render`.)
 
-mod render_common;
+use crate::render_common;
 
 use fpt_nostd::raster::{Camera as RasterCamera, DefaultPrecision, Libm, Mat4, Orbit, Up};
 use fpt_nostd::reader::Tree;

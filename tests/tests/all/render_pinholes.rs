@@ -28,7 +28,7 @@
 //! threads. `rocker-arm.obj`'s static build takes about a minute, so its
 //! static tree has an `#[ignore]`d test of its own.
 
-mod render_common;
+use crate::render_common;
 
 use fpt_nostd::raster::{DefaultPrecision, FixedPrecision, Precision};
 use fpt_nostd::reader::Tree;

@@ -11,7 +11,7 @@ use host_sim::cli::accuracy::{
 use host_sim::reference::{zbuffer, RefOptions};
 use std::path::{Path, PathBuf};
 
-mod common;
+use crate::common;
 
 use common::{fpt, tmp};
 

@@ -8,7 +8,7 @@
 //!   the facet edges are not drawn in the middle of its side, but its
 //!   silhouettes are; with a 10° crease the facet edges are drawn.
 
-mod render_common;
+use crate::render_common;
 
 use embedded_graphics::pixelcolor::Rgb888;
 use fpt_nostd::effects::Effects;

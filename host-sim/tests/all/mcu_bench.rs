@@ -6,7 +6,7 @@
 //! memories overflow and by how much. The QEMU part is skipped with a message when a tool is missing,
 //! and fails instead under `FPT_REQUIRE_FIRMWARE=1` (as in CI).
 
-mod common;
+use crate::common;
 
 use std::process::{Command, Output};
 

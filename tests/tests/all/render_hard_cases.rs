@@ -6,7 +6,7 @@
 //! plates. Every case: 30+ seeded views, no wrong pixel away from edges,
 //! no crack (the builder leaves no T-junction: `host_sim::seams`).
 
-mod render_common;
+use crate::render_common;
 
 use fpt_nostd::raster::{
     FixedMicromath, FixedPrecision, FloatLibm, FloatMicromath, IntPrecision, Precision,

@@ -3,7 +3,7 @@
 //! them and simulates displays only when asked; bad names are errors with
 //! exit status 2 and no output file.
 
-mod common;
+use crate::common;
 
 use common::{fpt, s, tmp, CUBE_OBJ};
 use std::path::Path;

@@ -30,9 +30,9 @@
 //! product interpolates from vertices snapped to 1/16 px, in 8.16 fixed
 //! point). With outlines on, every outline pixel the product draws
 //! must also lie within 1.5 px of an edge of a visible polygon. Regenerate
-//! the goldens with `FPT_BLESS=1 cargo test -p fpt-tests --test effects_golden`.
+//! the goldens with `FPT_BLESS=1 cargo test -p fpt-tests --test all effects_golden`.
 
-mod render_common;
+use crate::render_common;
 
 use std::path::PathBuf;
 

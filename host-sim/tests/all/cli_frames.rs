@@ -1,7 +1,7 @@
 //! `fpt frames --work`: one line per frame of the committed trees, with
 //! counts that hang together.
 
-mod common;
+use crate::common;
 
 use common::fpt;
 

@@ -5,7 +5,7 @@
 //! and packed framebuffers; the counters account for every polygon the
 //! walk emits; and a sane orbit skips no polygon.
 
-mod render_common;
+use crate::render_common;
 
 use embedded_graphics::pixelcolor::BinaryColor;
 use fpt_nostd::order::for_each_polygon_back_to_front;

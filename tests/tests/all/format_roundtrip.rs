@@ -1,7 +1,7 @@
 //! Round trips through the flat format: host serializer → fpt-nostd reader
 //! and walk, against the in-memory tree and a reference walk of it.
 
-mod format_common;
+use crate::format_common;
 
 use std::collections::HashSet;
 

@@ -8,7 +8,7 @@
 //! catch it) and with the file length field and CRC rewritten afterwards,
 //! which is what reaches the structural validation.
 
-mod format_common;
+use crate::format_common;
 
 use format_common::*;
 use fpt_nostd::format::{crc32, header, VertexFormat};

@@ -3,7 +3,7 @@
 //! the band path give the same pixels, in every pixel format; and
 //! `fpt render --mvp ... --ids` writes exactly the library's id buffer.
 
-mod render_common;
+use crate::render_common;
 
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::geometry::{OriginDimensions, Size};

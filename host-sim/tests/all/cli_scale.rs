@@ -8,7 +8,7 @@
 //! 1e30 from the origin) is refused at build time, an eye whose distance
 //! is beyond `f32` at render time.
 
-mod common;
+use crate::common;
 
 use common::{fpt, s, tmp};
 use glam::DVec3;

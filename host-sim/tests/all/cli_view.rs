@@ -5,7 +5,7 @@
 //! GIF, `fpt view` without its cargo feature, and `error: ...` with exit
 //! status 2 for every bad value.
 
-mod common;
+use crate::common;
 
 use common::{colours, error_line, fpt, s, stderr, tmp, CUBE_OBJ};
 use embedded_graphics::pixelcolor::Rgb888;

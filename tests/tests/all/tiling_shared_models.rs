@@ -15,7 +15,7 @@
 //!
 //! The models are checked on two threads. `rocker-arm.obj`'s feudal builds
 //! take about a minute each, so they have an `#[ignore]`d test of their own
-//! (`cargo test -p fpt-tests --test tiling_shared_models -- --ignored`).
+//! (`cargo test -p fpt-tests --test all tiling_shared_models -- --ignored`).
 
 use fpt_tests::shared_mesh;
 use fpt_tests::tiling::{check_tiling, open_edges};

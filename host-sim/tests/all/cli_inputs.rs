@@ -3,7 +3,7 @@
 //! on a mesh with holes, grey levels through a panel look, and the wording
 //! of messages about bad values and files.
 
-mod common;
+use crate::common;
 
 use common::{colours, error_line, fpt, s, stderr, tmp, CUBE_OBJ};
 use glam::DVec3;

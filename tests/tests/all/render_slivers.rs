@@ -7,7 +7,7 @@
 //! a culled face wound toward the viewer by the snap is common, so the
 //! test also checks that the pass had work to do.
 
-mod render_common;
+use crate::render_common;
 
 use fpt_nostd::effects::Effects;
 use fpt_nostd::raster::{DefaultPrecision, FixedPrecision, FloatLibm, IdBuffer, Precision};
