@@ -169,9 +169,9 @@ pub struct RenderArgs {
     /// The orbit camera (when no --mvp).
     #[command(flatten)]
     pub orbit: OrbitArgs,
-    /// Background colour R,G,B (0–255 each).
-    #[arg(long, default_value = "0,0,0")]
-    pub background: String,
+    /// Background, arithmetic, shading and slivers.
+    #[command(flatten)]
+    pub look: LookArgs,
     /// Also write the source face id + 1 of every pixel (u32 LE, 0 = none).
     #[arg(long)]
     pub ids: Option<PathBuf>,
@@ -182,12 +182,6 @@ pub struct RenderArgs {
     /// Draw in bands of N rows through one band buffer.
     #[arg(long, allow_negative_numbers = true)]
     pub band: Option<u32>,
-    /// Arithmetic configuration (vertex path, math library, sub-pixel bits).
-    #[arg(long, default_value = "fixed-subpx-4", value_parser = PRECISION_NAMES)]
-    pub precision: String,
-    /// Shading: lambert (face colours lit), flat (unlit) or grey.
-    #[arg(long, default_value = "lambert", value_parser = ["lambert", "flat", "grey"])]
-    pub shade: String,
     /// Effects instead of the tree's: comma-separated culling, two-sided,
     /// clipping, lighting, depth-cue, dither, outline, smooth; or none.
     #[arg(long)]
@@ -200,6 +194,21 @@ pub struct RenderArgs {
     /// oled-white, lcd-green, lcd-white, lcd-blue).
     #[arg(long, default_value = "plain", value_parser = PANELS)]
     pub display: String,
+}
+
+/// The options `fpt render`, `fpt turntable` and `fpt view` share about
+/// how a picture looks.
+#[derive(Args, Debug)]
+pub struct LookArgs {
+    /// Background colour R,G,B (0–255 each).
+    #[arg(long, default_value = "0,0,0")]
+    pub background: String,
+    /// Arithmetic configuration (vertex path, math library, sub-pixel bits).
+    #[arg(long, default_value = "fixed-subpx-4", value_parser = PRECISION_NAMES)]
+    pub precision: String,
+    /// Shading: lambert (face colours lit), flat (unlit) or grey.
+    #[arg(long, default_value = "lambert", value_parser = ["lambert", "flat", "grey"])]
+    pub shade: String,
     /// Leave out the sliver pass: without it, a face seen almost edge-on
     /// that the sub-pixel snap winds toward the viewer is culled, and a
     /// closed model can show single background pixels along its
@@ -207,6 +216,30 @@ pub struct RenderArgs {
     /// a frame).
     #[arg(long = "no-slivers")]
     pub no_slivers: bool,
+}
+
+/// [`LookArgs`] checked: what a [`Job`] takes from them.
+#[derive(Clone, Copy, Debug)]
+pub struct Look {
+    /// Background colour.
+    pub background: Rgb888,
+    /// Shading mode.
+    pub shade: ShadeMode,
+    /// Whether the sliver pass runs ([`Job::slivers`]).
+    pub slivers: bool,
+}
+
+impl LookArgs {
+    /// The checked background, shading and sliver choice (the precision
+    /// name is checked where it is used, by [`render_job`]).
+    pub fn parse(&self) -> Result<Look, CliError> {
+        let [r, g, b] = parse_rgb("--background", &self.background)?;
+        Ok(Look {
+            background: Rgb888::new(r, g, b),
+            shade: parse_shade(&self.shade)?,
+            slivers: !self.no_slivers,
+        })
+    }
 }
 
 /// Pixel format of the framebuffer.
@@ -632,9 +665,8 @@ pub fn open_tree<'a>(bytes: &'a [u8], path: &Path) -> Result<Tree<'a>, CliError>
 /// `fpt render`.
 pub fn run(a: &RenderArgs) -> CliResult {
     let (w, h) = parse_size(&a.size)?;
-    let [r, g, b] = parse_rgb("--background", &a.background)?;
+    let look = a.look.parse()?;
     let format = Format::parse(&a.format)?;
-    let shade = parse_shade(&a.shade)?;
     let effects = match &a.effects {
         Some(list) => Some(Effects::parse(list).map_err(|e| cli_err!("--effects: {e}"))?),
         None => None,
@@ -657,14 +689,14 @@ pub fn run(a: &RenderArgs) -> CliResult {
         camera,
         format,
         band: a.band,
-        shade,
-        background: Rgb888::new(r, g, b),
+        shade: look.shade,
+        background: look.background,
         ids: a.ids.is_some(),
         effects,
         gray_levels: a.gray_levels,
-        slivers: !a.no_slivers,
+        slivers: look.slivers,
     };
-    let r = render_job(&tree, &job, &a.precision)?;
+    let r = render_job(&tree, &job, &a.look.precision)?;
     if let Some(path) = &a.ids {
         let raw: Vec<u8> = r.ids.iter().flat_map(|v| v.to_le_bytes()).collect();
         write_atomic(path, &raw).map_err(|e| cli_err!("{}: {e}", path.display()))?;
@@ -674,7 +706,7 @@ pub fn run(a: &RenderArgs) -> CliResult {
     println!(
         "{}: {w}x{h} {}, {} polygons drawn ({} clipped, {} invisible, {} skipped), {} spans, {:.2} ms",
         a.output.display(),
-        a.precision,
+        a.look.precision,
         s.drawn,
         s.clipped,
         s.invisible,

@@ -18,8 +18,8 @@
 //! memory and written whole or not at all.
 
 use super::render::{
-    open_tree, orbit_camera, parse_rgb, parse_shade, parse_size, read_tree, render_job, CameraSpec,
-    Format, Image, Job, OrbitArgs, PRECISION_NAMES,
+    open_tree, orbit_camera, parse_size, read_tree, render_job, CameraSpec, Format, Image, Job,
+    LookArgs, OrbitArgs,
 };
 use super::{CliError, CliResult};
 use crate::cli_err;
@@ -59,18 +59,9 @@ pub struct TurntableArgs {
     /// The orbit of the first frame.
     #[command(flatten)]
     pub orbit: OrbitArgs,
-    /// Background colour R,G,B (0–255 each).
-    #[arg(long, default_value = "0,0,0")]
-    pub background: String,
-    /// Shading: lambert (face colours lit), flat (unlit) or grey.
-    #[arg(long, default_value = "lambert", value_parser = ["lambert", "flat", "grey"])]
-    pub shade: String,
-    /// Arithmetic configuration (see `fpt render --help`).
-    #[arg(long, default_value = "fixed-subpx-4", value_parser = PRECISION_NAMES)]
-    pub precision: String,
-    /// Leave out the sliver pass (see `fpt render --help`).
-    #[arg(long = "no-slivers")]
-    pub no_slivers: bool,
+    /// Background, arithmetic, shading and slivers.
+    #[command(flatten)]
+    pub look: LookArgs,
 }
 
 /// The GIF delay of one frame at `fps`, in hundredths of a second.
@@ -123,8 +114,7 @@ pub fn run(a: &TurntableArgs) -> CliResult {
             a.fps
         ));
     }
-    let [r, g, b] = parse_rgb("--background", &a.background)?;
-    let shade = parse_shade(&a.shade)?;
+    let look = a.look.parse()?;
     let bytes = read_tree(&a.tree)?;
     let tree = open_tree(&bytes, &a.tree)?;
     let spin = Spin {
@@ -133,11 +123,11 @@ pub fn run(a: &TurntableArgs) -> CliResult {
         frames: a.frames,
         fps: a.fps,
         camera: orbit_camera(&a.orbit, &tree, w, h)?,
-        shade,
-        background: Rgb888::new(r, g, b),
-        slivers: !a.no_slivers,
+        shade: look.shade,
+        background: look.background,
+        slivers: look.slivers,
     };
-    let gif = encode(&tree, &spin, &a.precision)?;
+    let gif = encode(&tree, &spin, &a.look.precision)?;
     write_atomic(&a.output, &gif).map_err(|e| cli_err!("{}: {e}", a.output.display()))?;
     println!(
         "{}: {w}x{h}, {} frames at {} fps ({} ms a frame), {} bytes",

@@ -29,7 +29,7 @@
 //! environment variable saves the first picture as PNG and quits instead
 //! of opening the window.
 
-use super::render::{CameraSpec, OrbitArgs, PRECISION_NAMES};
+use super::render::{CameraSpec, LookArgs, OrbitArgs};
 use super::CliResult;
 use clap::Args;
 use std::path::PathBuf;
@@ -55,15 +55,9 @@ pub struct ViewArgs {
     /// The orbit the window opens with.
     #[command(flatten)]
     pub orbit: OrbitArgs,
-    /// Background colour R,G,B (0–255 each).
-    #[arg(long, default_value = "0,0,0")]
-    pub background: String,
-    /// Shading: lambert (face colours lit), flat (unlit) or grey.
-    #[arg(long, default_value = "lambert", value_parser = ["lambert", "flat", "grey"])]
-    pub shade: String,
-    /// Arithmetic configuration (see `fpt render --help`).
-    #[arg(long, default_value = "fixed-subpx-4", value_parser = PRECISION_NAMES)]
-    pub precision: String,
+    /// Background, arithmetic, shading and slivers.
+    #[command(flatten)]
+    pub look: LookArgs,
     /// Quit after this many window updates (for scripted checks).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub frames: Option<u32>,

@@ -24,22 +24,26 @@ mod render_slivers;
 mod smooth;
 mod tiling_shared_models;
 
-/// Every `.rs` file in this folder is declared above (a file that is not
-/// would silently never run).
+/// Every `.rs` file of this folder and of `host-sim/tests/all` is declared
+/// in its `main.rs` (a file that is not would silently never run).
 #[test]
 fn declared_modules() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(DIR);
-    let main = std::fs::read_to_string(dir.join("main.rs")).unwrap();
-    for entry in std::fs::read_dir(&dir).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
-        let is_mod = path.extension().is_some_and(|e| e == "rs") || path.join("mod.rs").exists();
-        if is_mod && name != "main" {
-            assert!(
-                main.contains(&format!("\nmod {name};")),
-                "{name} is not declared in main.rs"
-            );
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for dir in [root.join("tests/all"), root.join("../host-sim/tests/all")] {
+        let main = std::fs::read_to_string(dir.join("main.rs")).unwrap();
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+            let is_mod =
+                path.extension().is_some_and(|e| e == "rs") || path.join("mod.rs").exists();
+            if is_mod && name != "main" {
+                let line = format!("\nmod {name};");
+                assert!(
+                    main.contains(&line),
+                    "{}: {name} is not declared",
+                    dir.display()
+                );
+            }
         }
     }
 }
-const DIR: &str = "tests/all";

@@ -201,6 +201,9 @@ fn fpt_render_ids_match_the_library() {
             mvp.join(","),
             "--ids".into(),
             ids.to_string_lossy().into_owned(),
+            // The library's default pipeline (`render_ids`) has no sliver
+            // pass; `fpt render` draws slivers unless told not to.
+            "--no-slivers".into(),
         ];
         assert_eq!(host_sim::cli::main_with_args(args), 0, "view {k}");
         let bytes = std::fs::read(&ids).expect("ids");

@@ -3,8 +3,7 @@
 //! [`Key`]s (see the parent module for what they do).
 
 use super::super::render::{
-    open_tree, orbit_camera, parse_rgb, parse_shade, parse_size, read_tree, render_job, Format,
-    Image, Job,
+    open_tree, orbit_camera, parse_size, read_tree, render_job, Format, Image, Job,
 };
 use super::super::turntable::MAX_SIDE;
 use super::{Key, ViewArgs, ViewOrbit};
@@ -41,8 +40,7 @@ pub fn run(a: &ViewArgs) -> CliResult {
             "--size: the window is at most {MAX_SIDE} pixels a side, got {w}x{h}"
         ));
     }
-    let [r, g, b] = parse_rgb("--background", &a.background)?;
-    let shade = parse_shade(&a.shade)?;
+    let look = a.look.parse()?;
     let bytes = read_tree(&a.tree)?;
     let tree = open_tree(&bytes, &a.tree)?;
     let start = orbit_camera(&a.orbit, &tree, w, h)?;
@@ -61,13 +59,14 @@ pub fn run(a: &ViewArgs) -> CliResult {
                 camera: orbit.camera(&start),
                 format: Format::Rgb888,
                 band: None,
-                shade,
-                background: Rgb888::new(r, g, b),
+                shade: look.shade,
+                background: look.background,
                 ids: false,
                 effects: None,
                 gray_levels: None,
+                slivers: look.slivers,
             };
-            let Image::Rgb888(rgb) = render_job(&tree, &job, &a.precision)?.image else {
+            let Image::Rgb888(rgb) = render_job(&tree, &job, &a.look.precision)?.image else {
                 return Err(cli_err!("the renderer returned no 24-bit picture"));
             };
             let pixels = rgb.chunks_exact(3).enumerate().map(|(i, c)| {
