@@ -22,7 +22,7 @@
 //!   equals stepping from an earlier row), so pixels are identical,
 //!   shared edges included.
 
-use super::edge::Dda32;
+use super::edge::{Dda32, SMALL};
 use super::scan::{pair_rows, Bbox, Pair, SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
@@ -223,6 +223,53 @@ pub(crate) fn fill_triangle<K: SpanSink>(
         spans += pair_rows(&mut long, &mut e, pair, b, y, stop, color, sink);
     }
     spans
+}
+
+/// A band's set-up for replaying triangles: the bounds and sub-pixel bits
+/// with which [`super::scan::fill_polygon_in`] hands a triangle to
+/// [`fill_triangle`], found once a band instead of once a triangle (the
+/// display list's replay fills every record of a band with the same
+/// renderer and sink).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TriangleBand {
+    sub: u32,
+    b: SpanBounds,
+}
+
+impl TriangleBand {
+    /// The set-up for a fill clipped to `clip` into a sink with bounds
+    /// `sink`, with `edges` edge slots and `active` active-edge slots in
+    /// the scratch; `None` when `fill_polygon_in` would not take the
+    /// triangle path (`sub > 8`, too few slots) or would fill nothing
+    /// (the bounds are empty), so that the caller takes the general fill.
+    #[inline]
+    pub(crate) fn new(
+        sub: u32,
+        clip: &SpanBounds,
+        sink: &SpanBounds,
+        edges: usize,
+        active: usize,
+    ) -> Option<Self> {
+        let b = clip.intersect(sink);
+        (sub <= 8 && edges >= 3 && active >= 3 && !b.is_empty()).then_some(Self { sub, b })
+    }
+
+    /// Fills triangle `pts` as `fill_polygon_in` would with this band's
+    /// set-up (the same spans, in the same order), or `None`, with nothing
+    /// emitted, when a point is outside ±`SMALL` (the general path).
+    #[inline(always)]
+    pub(crate) fn fill<K: SpanSink>(
+        &self,
+        pts: [ScreenPt; 3],
+        color: K::Color,
+        sink: &mut K,
+    ) -> Option<usize> {
+        let near = |p: &ScreenPt| p.x.abs() < SMALL && p.y.abs() < SMALL;
+        if !pts.iter().all(near) {
+            return None;
+        }
+        Some(fill_triangle(pts, self.sub, &self.b, color, sink))
+    }
 }
 
 #[cfg(test)]
