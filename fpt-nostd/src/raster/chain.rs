@@ -276,7 +276,7 @@ impl TriangleBand {
 mod tests {
     extern crate std;
     use super::super::edge::{build_edges, Edge, SMALL};
-    use super::super::scan::{scan, FillRule, Paint};
+    use super::super::scan::{fill_polygon_in, scan, FillRule, Paint};
     use super::*;
     use std::vec::Vec;
 
@@ -374,6 +374,74 @@ mod tests {
             assert_eq!(c, n);
             assert_eq!(fast.0, chain.0, "{tri:?} {sub} {b:?}");
         }
+    }
+
+    /// Random triangles (small, at and beyond the ±SMALL limit), clips and
+    /// sink bounds: whenever the band set-up accepts a triangle, it emits
+    /// exactly the spans of `fill_polygon_in` (what `fill_ready` calls);
+    /// it declines only for a point beyond ±SMALL (nothing emitted) or for
+    /// bounds that leave nothing to fill.
+    #[test]
+    fn triangle_band_equals_the_polygon_fill() {
+        let mut rng = crate::raster::tests::Rng(515);
+        let mut rnd = |m: i32| rng.range(-m, m);
+        let (mut accepted, mut declined) = (0, 0);
+        for k in 0..20_000 {
+            let sub = [0u32, 2, 4, 8][k % 4];
+            let m = match k % 5 {
+                0 => SMALL + SMALL / 4,
+                1 => SMALL - 1,
+                _ => 40 << sub,
+            };
+            let tri = [pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m))];
+            let clip = random_band(&mut rnd, 40 << sub, sub);
+            let bounds = random_band(&mut rnd, 40 << sub, sub);
+            let mut slow = Rec(Vec::new(), bounds);
+            let (mut edges, mut active) = ([Edge::ZERO; 3], [0u16; 3]);
+            let rule = FillRule::NonZero;
+            let Ok(n) = fill_polygon_in(
+                &tri,
+                None,
+                sub,
+                rule,
+                &clip,
+                &mut edges,
+                &mut active,
+                (),
+                &mut slow,
+            ) else {
+                panic!("capacity")
+            };
+            let Some(band) = TriangleBand::new(sub, &clip, &bounds, 3, 3) else {
+                assert!(clip.intersect(&bounds).is_empty() && n == 0);
+                continue;
+            };
+            let mut fast = Rec(Vec::new(), bounds);
+            match band.fill(tri, (), &mut fast) {
+                Some(f) => {
+                    accepted += 1;
+                    assert_eq!(f, n);
+                    assert_eq!(fast.0, slow.0, "{tri:?} {sub} {clip:?} {bounds:?}");
+                }
+                None => {
+                    declined += 1;
+                    assert!(fast.0.is_empty());
+                    assert!(tri.iter().any(|p| p.x.abs() >= SMALL || p.y.abs() >= SMALL));
+                }
+            }
+        }
+        assert!(accepted > 2000 && declined > 100, "{accepted} {declined}");
+        // No set-up where the polygon fill would not take the triangle path.
+        let b = SpanBounds {
+            x0: 0,
+            y0: 0,
+            x1: 8,
+            y1: 8,
+        };
+        assert!(TriangleBand::new(9, &b, &b, 3, 3).is_none());
+        assert!(TriangleBand::new(4, &b, &b, 2, 3).is_none());
+        assert!(TriangleBand::new(4, &b, &b, 3, 2).is_none());
+        assert!(TriangleBand::new(4, &b, &b, 3, 3).is_some());
     }
 
     fn pt(x: i32, y: i32) -> ScreenPt {
