@@ -22,7 +22,7 @@
 //!   equals stepping from an earlier row), so pixels are identical,
 //!   shared edges included.
 
-use super::edge::Dda32;
+use super::edge::{Dda32, SMALL};
 use super::scan::{pair_rows, Bbox, Pair, SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
@@ -225,11 +225,58 @@ pub(crate) fn fill_triangle<K: SpanSink>(
     spans
 }
 
+/// A band's set-up for replaying triangles: the bounds and sub-pixel bits
+/// with which [`super::scan::fill_polygon_in`] hands a triangle to
+/// [`fill_triangle`], found once a band instead of once a triangle (the
+/// display list's replay fills every record of a band with the same
+/// renderer and sink).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TriangleBand {
+    sub: u32,
+    b: SpanBounds,
+}
+
+impl TriangleBand {
+    /// The set-up for a fill clipped to `clip` into a sink with bounds
+    /// `sink`, with `edges` edge slots and `active` active-edge slots in
+    /// the scratch; `None` when `fill_polygon_in` would not take the
+    /// triangle path (`sub > 8`, too few slots) or would fill nothing
+    /// (the bounds are empty), so that the caller takes the general fill.
+    #[inline]
+    pub(crate) fn new(
+        sub: u32,
+        clip: &SpanBounds,
+        sink: &SpanBounds,
+        edges: usize,
+        active: usize,
+    ) -> Option<Self> {
+        let b = clip.intersect(sink);
+        (sub <= 8 && edges >= 3 && active >= 3 && !b.is_empty()).then_some(Self { sub, b })
+    }
+
+    /// Fills triangle `pts` as `fill_polygon_in` would with this band's
+    /// set-up (the same spans, in the same order), or `None`, with nothing
+    /// emitted, when a point is outside ±`SMALL` (the general path).
+    #[inline(always)]
+    pub(crate) fn fill<K: SpanSink>(
+        &self,
+        pts: [ScreenPt; 3],
+        color: K::Color,
+        sink: &mut K,
+    ) -> Option<usize> {
+        let near = |p: &ScreenPt| p.x.abs() < SMALL && p.y.abs() < SMALL;
+        if !pts.iter().all(near) {
+            return None;
+        }
+        Some(fill_triangle(pts, self.sub, &self.b, color, sink))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
     use super::super::edge::{build_edges, Edge, SMALL};
-    use super::super::scan::{scan, FillRule, Paint};
+    use super::super::scan::{fill_polygon_in, scan, FillRule, Paint};
     use super::*;
     use std::vec::Vec;
 
@@ -327,6 +374,74 @@ mod tests {
             assert_eq!(c, n);
             assert_eq!(fast.0, chain.0, "{tri:?} {sub} {b:?}");
         }
+    }
+
+    /// Random triangles (small, at and beyond the ±SMALL limit), clips and
+    /// sink bounds: whenever the band set-up accepts a triangle, it emits
+    /// exactly the spans of `fill_polygon_in` (what `fill_ready` calls);
+    /// it declines only for a point beyond ±SMALL (nothing emitted) or for
+    /// bounds that leave nothing to fill.
+    #[test]
+    fn triangle_band_equals_the_polygon_fill() {
+        let mut rng = crate::raster::tests::Rng(515);
+        let mut rnd = |m: i32| rng.range(-m, m);
+        let (mut accepted, mut declined) = (0, 0);
+        for k in 0..20_000 {
+            let sub = [0u32, 2, 4, 8][k % 4];
+            let m = match k % 5 {
+                0 => SMALL + SMALL / 4,
+                1 => SMALL - 1,
+                _ => 40 << sub,
+            };
+            let tri = [pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m))];
+            let clip = random_band(&mut rnd, 40 << sub, sub);
+            let bounds = random_band(&mut rnd, 40 << sub, sub);
+            let mut slow = Rec(Vec::new(), bounds);
+            let (mut edges, mut active) = ([Edge::ZERO; 3], [0u16; 3]);
+            let rule = FillRule::NonZero;
+            let Ok(n) = fill_polygon_in(
+                &tri,
+                None,
+                sub,
+                rule,
+                &clip,
+                &mut edges,
+                &mut active,
+                (),
+                &mut slow,
+            ) else {
+                panic!("capacity")
+            };
+            let Some(band) = TriangleBand::new(sub, &clip, &bounds, 3, 3) else {
+                assert!(clip.intersect(&bounds).is_empty() && n == 0);
+                continue;
+            };
+            let mut fast = Rec(Vec::new(), bounds);
+            match band.fill(tri, (), &mut fast) {
+                Some(f) => {
+                    accepted += 1;
+                    assert_eq!(f, n);
+                    assert_eq!(fast.0, slow.0, "{tri:?} {sub} {clip:?} {bounds:?}");
+                }
+                None => {
+                    declined += 1;
+                    assert!(fast.0.is_empty());
+                    assert!(tri.iter().any(|p| p.x.abs() >= SMALL || p.y.abs() >= SMALL));
+                }
+            }
+        }
+        assert!(accepted > 2000 && declined > 100, "{accepted} {declined}");
+        // No set-up where the polygon fill would not take the triangle path.
+        let b = SpanBounds {
+            x0: 0,
+            y0: 0,
+            x1: 8,
+            y1: 8,
+        };
+        assert!(TriangleBand::new(9, &b, &b, 3, 3).is_none());
+        assert!(TriangleBand::new(4, &b, &b, 2, 3).is_none());
+        assert!(TriangleBand::new(4, &b, &b, 3, 2).is_none());
+        assert!(TriangleBand::new(4, &b, &b, 3, 3).is_some());
     }
 
     fn pt(x: i32, y: i32) -> ScreenPt {

@@ -33,6 +33,7 @@ use core::marker::PhantomData;
 use embedded_graphics::pixelcolor::Rgb888;
 
 use super::camera::{Camera, Orbit};
+use super::chain::TriangleBand;
 use super::clip::{clip_polygon, ClipNum, ClipVert};
 use super::edge::{Dda32, Edge};
 use super::gouraud::{fill_smooth, Smooth, SmoothSink};
@@ -495,6 +496,25 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             Outcome::Invisible => self.stats.invisible += 1,
             Outcome::Skipped(_) => self.stats.skipped += 1,
         }
+    }
+
+    /// The set-up with which [`Renderer::fill_ready`] fills a triangle
+    /// into `sink` without a colour plane or outlines, found once for
+    /// many triangles (a band's replay, `render::cached`); `None` when
+    /// `fill_ready` would take another path (Gouraud, outlines, or see
+    /// [`TriangleBand::new`]).
+    #[inline]
+    pub(crate) fn triangle_band<K: SpanSink, const N: usize>(
+        &self,
+        _scratch: &Scratch<P, N>,
+        sink: &K,
+    ) -> Option<TriangleBand> {
+        let smooth = E::SET.contains(Effects::SMOOTH) && self.smooth.is_some();
+        if smooth || self.effects().contains(Effects::OUTLINE) {
+            return None;
+        }
+        let sub = self.viewport.sub_bits();
+        TriangleBand::new(sub, &self.viewport_bounds(), &sink.bounds(), N, N)
     }
 
     /// The viewport's pixels.

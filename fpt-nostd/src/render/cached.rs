@@ -54,8 +54,8 @@ use crate::raster::renderer::Ready;
 use crate::raster::transform::VertexPath;
 use crate::raster::vcache::{Slot, VertexCache};
 use crate::raster::{
-    Band, Face, Framebuffer, Outcome, PixelFormat, Precision, RenderStats, Renderer, Scratch,
-    SpanBounds, SpanSink,
+    Band, Face, Framebuffer, Outcome, Paint, PixelFormat, Precision, RenderStats, Renderer,
+    Scratch, SpanBounds, SpanSink,
 };
 use crate::reader::{PolygonAt, Tree};
 
@@ -589,6 +589,10 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
         .iter()
         .map(|&at| usize::from(at))
         .chain(scanned);
+    // Triangles by polygon (most records) go straight to the triangle
+    // fill with the band's bounds found once here: what `fill_ready`
+    // does for each, without its per-record checks.
+    let tri = r.triangle_band(scratch, sink);
     for here in records {
         let Some(rec) = list.record(here) else {
             break;
@@ -635,6 +639,18 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
         };
         if !ok {
             continue;
+        }
+        if let (Some(band), 3) = (&tri, n) {
+            if let [a, b, c, ..] = *scratch.screen() {
+                let color = sink.color(&Paint {
+                    rgb: e.rgb,
+                    id: e.id,
+                });
+                if let Some(s) = band.fill([a, b, c], color, sink) {
+                    spans += s as u64;
+                    continue;
+                }
+            }
         }
         let ready = Ready {
             n,
