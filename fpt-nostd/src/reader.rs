@@ -12,6 +12,9 @@
 //! - the section sizes implied by the counts against the file length;
 //! - every float that geometry is computed from is finite (origin, half
 //!   extent, radius, `f32` vertices, run and switch planes);
+//! - compact polygon records ([`crate::format::FLAG_COMPACT`]): the layout's
+//!   widths (each ≤ 32 bits, ≤ 56 together), every colour index below the
+//!   colour table's length and the unused bits zero;
 //! - every vertex index is below the vertex count, every polygon has at least
 //!   3 vertices and the polygons tile the index list; every edge record
 //!   (optional section) has a known kind; every corner normal (optional
@@ -74,7 +77,9 @@
 //!
 //! No crash, timeout or out-of-memory in any run. The seed trees are small
 //! static, dynamic and BSP trees, open and closed, in all three vertex
-//! formats, some with runs of several polygons; the seed meshes one OBJ,
+//! formats, some with runs of several polygons, three (`compact_*`, session
+//! 10) with compact polygon records, one of them with two colours and the
+//! edge and normal sections; the seed meshes one OBJ,
 //! OFF, ASCII STL and ASCII PLY each. Of the `tree_walk` corpus after the
 //! first run, 99 inputs are valid trees (walked) and the other 107 are
 //! rejected with every one of the 15 kinds of [`FormatError`] between them.
