@@ -196,7 +196,11 @@ fn compact_records_are_validated() {
     };
     let mut out_of_range = 0;
     for seed in 0..16 {
-        let t = random_tree(seed, 8, seed % 2 == 0, false, 1.0, DVec3::ZERO);
+        let mut t = random_tree(seed, 8, seed % 2 == 0, false, 1.0, DVec3::ZERO);
+        // Three colours: a 2-bit colour index with room for a bad one.
+        for (i, p) in t.polygons.iter_mut().enumerate() {
+            p.color = [(i % 3) as u8 * 40, 7, 9];
+        }
         let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
         let tree = Tree::from_bytes(&bytes).unwrap();
         assert!(tree.is_compact());
