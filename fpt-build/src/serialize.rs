@@ -21,7 +21,11 @@
 //! - vertices are encoded in the chosen [`VertexFormat`] and deduplicated by
 //!   their encoding, which merges every pair of exactly equal vertices (and,
 //!   for `q16`, vertices that quantize to the same point);
-//! - vertex indices are `u16` when there are at most 65 536 vertices.
+//! - vertex indices are `u16` when there are at most 65 536 vertices;
+//! - polygon records are compact (8 bytes: bit fields as narrow as the
+//!   largest value of each needs, colours in a table of the distinct ones
+//!   in order of first use) unless [`SerializeOptions::compact`] is off or
+//!   the fields need more than 56 bits together.
 //!
 //! Every tree whose bunches hold each polygon exactly once, with at least 3
 //! finite vertices each, serializes; the output passes
@@ -35,6 +39,7 @@ use fpt_nostd::format::{
     crc32, header as h, polygon as pg, Counts, Sections, UpAxis, FLAG_CLOSED, HEADER_LEN, MAGIC,
     MAX_SHIFT, NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION,
 };
+use fpt_nostd::format::{COMPACT_HIDDEN_SHIFT, COMPACT_POLYGON_LEN, FLAG_COMPACT};
 use fpt_nostd::format::{EDGE_LEN, FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 use glam::DVec3;
 
@@ -58,6 +63,12 @@ pub struct SerializeOptions {
     /// have a feature edge between them (the `outline` effect's edge
     /// section, written when the effects include `outline`).
     pub crease_deg: f32,
+    /// Write compact polygon records (8 bytes each, with a colour table;
+    /// [`fpt_nostd::format::FLAG_COMPACT`]) when the fields fit in 56
+    /// bits (first index, run, source face and colour index together; a
+    /// mesh of a million faces still fits); `false` writes the 16-byte
+    /// records of the files made before compact records existed.
+    pub compact: bool,
 }
 
 impl Default for SerializeOptions {
@@ -67,6 +78,7 @@ impl Default for SerializeOptions {
             effects: None,
             up: UpAxis::Y,
             crease_deg: DEFAULT_CREASE_DEG,
+            compact: true,
         }
     }
 }
@@ -499,8 +511,18 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         edges: if outline { count(indices.len())? } else { 0 },
         normals: if smooth { count(indices.len())? } else { 0 },
     };
-    let s =
-        Sections::new(&counts, opts.vertex_format, index_size).ok_or(SerializeError::TooLarge)?;
+    let layout = if opts.compact {
+        compact_layout(tree, &order, &first_index, &runs, &hidden)
+    } else {
+        None
+    };
+    let s = Sections::with_compact(
+        &counts,
+        opts.vertex_format,
+        index_size,
+        layout.as_ref().map(|l| l.colours.len() as u32),
+    )
+    .ok_or(SerializeError::TooLarge)?;
 
     let mut out = Vec::with_capacity(s.file_len);
     out.extend_from_slice(&MAGIC);
@@ -511,7 +533,10 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     let normal_flag = if smooth { FLAG_NORMALS } else { 0 };
     put_u32(
         &mut out,
-        edge_flag | normal_flag | if tree.closed { FLAG_CLOSED } else { 0 },
+        edge_flag
+            | normal_flag
+            | if tree.closed { FLAG_CLOSED } else { 0 }
+            | if layout.is_some() { FLAG_COMPACT } else { 0 },
     );
     put_u32(&mut out, effects);
     out.extend_from_slice(&[
@@ -550,17 +575,33 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     }
     debug_assert_eq!(out.len(), HEADER_LEN);
 
+    if let Some(l) = &layout {
+        out.extend_from_slice(&l.widths);
+        put_u32(&mut out, l.colours.len() as u32);
+        debug_assert_eq!(out.len(), s.colours);
+        l.colours.iter().for_each(|c| out.extend_from_slice(c));
+    }
+    out.resize(s.vertices, 0);
     out.extend_from_slice(&vertex_bytes);
     out.resize(s.polygons, 0);
     for (((&id, &first), &run), &mask) in order.iter().zip(&first_index).zip(&run_of).zip(&hidden) {
         let p = &tree.polygons[id as usize];
         let start = out.len();
-        put_u32(&mut out, first);
-        put_u32(&mut out, run);
-        put_u32(&mut out, p.source);
-        out.extend_from_slice(&[p.color[0], p.color[1], p.color[2], mask]);
-        debug_assert_eq!(out.len() - start, POLYGON_LEN);
-        debug_assert_eq!(pg::COLOR + 4, POLYGON_LEN);
+        match &layout {
+            Some(l) => {
+                let colour = l.colour_index[&p.color];
+                out.extend_from_slice(&l.pack([first, run, p.source, colour], mask).to_le_bytes());
+                debug_assert_eq!(out.len() - start, COMPACT_POLYGON_LEN);
+            }
+            None => {
+                put_u32(&mut out, first);
+                put_u32(&mut out, run);
+                put_u32(&mut out, p.source);
+                out.extend_from_slice(&[p.color[0], p.color[1], p.color[2], mask]);
+                debug_assert_eq!(out.len() - start, POLYGON_LEN);
+                debug_assert_eq!(pg::COLOR + 4, POLYGON_LEN);
+            }
+        }
     }
     out.resize(s.indices, 0);
     for &i in &indices {
@@ -622,6 +663,72 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     let crc = crc32(&out[..s.crc]);
     out[s.crc..].copy_from_slice(&crc.to_le_bytes());
     Ok(out)
+}
+
+/// The compact record layout of a file (see [`fpt_nostd::format`]).
+struct CompactLayout {
+    /// Bits of first_index, run, source and colour index.
+    widths: [u8; 4],
+    /// The distinct colours, in order of first use by file polygons.
+    colours: Vec<[u8; 3]>,
+    /// Each colour's position in `colours`.
+    colour_index: HashMap<[u8; 3], u32>,
+}
+
+impl CompactLayout {
+    /// The record of one polygon: the four fields from bit 0 up, each in
+    /// its width, and the outline mask in the top byte.
+    fn pack(&self, fields: [u32; 4], hidden: u8) -> u64 {
+        let mut r = 0u64;
+        let mut shift = 0u32;
+        for (f, w) in fields.into_iter().zip(self.widths) {
+            debug_assert!(u64::from(f) < 1u64 << w);
+            r |= u64::from(f) << shift;
+            shift += u32::from(w);
+        }
+        r | u64::from(hidden) << COMPACT_HIDDEN_SHIFT
+    }
+}
+
+/// Bits to hold every value up to `max`.
+fn bits(max: u32) -> u8 {
+    (32 - max.leading_zeros()) as u8
+}
+
+/// The narrowest compact layout for the file polygons `order` (with their
+/// index ranges, runs and masks as computed for the file), or `None` when
+/// the fields need more than the 56 bits below the mask.
+fn compact_layout(
+    tree: &FpTree,
+    order: &[u32],
+    first_index: &[u32],
+    runs: &[([f32; 4], u32)],
+    hidden: &[u8],
+) -> Option<CompactLayout> {
+    debug_assert_eq!(order.len(), hidden.len());
+    let mut colours = Vec::new();
+    let mut colour_index = HashMap::new();
+    let mut max_source = 0u32;
+    for &id in order {
+        let p = &tree.polygons[id as usize];
+        max_source = max_source.max(p.source);
+        colour_index.entry(p.color).or_insert_with(|| {
+            colours.push(p.color);
+            (colours.len() - 1) as u32
+        });
+    }
+    let widths = [
+        bits(first_index.last().copied().unwrap_or(0)),
+        bits(u32::try_from(runs.len().saturating_sub(1)).ok()?),
+        bits(max_source),
+        bits(u32::try_from(colours.len().saturating_sub(1)).ok()?),
+    ];
+    let used: u32 = widths.iter().map(|&w| u32::from(w)).sum();
+    (used <= COMPACT_HIDDEN_SHIFT).then_some(CompactLayout {
+        widths,
+        colours,
+        colour_index,
+    })
 }
 
 /// Whether vertex `i` of the loop `verts` (counter-clockwise around

@@ -8,10 +8,13 @@
 //!
 //! # Layout
 //!
-//! `header · vertices · polygons · indices · [edges] · [normals] · runs · bunches · nodes · switches · crc`
+//! `header · [layout · colours] · vertices · polygons · indices · [edges] · [normals] · runs · bunches · nodes · switches · crc`
 //!
 //! The bracketed sections are optional: present only when the header's
 //! flags say so (version 3, see below); a version 2 file never has them.
+//! The layout and colour sections come with [`FLAG_COMPACT`], which also
+//! makes every polygon record 8 bytes instead of 16 (see *Compact polygon
+//! records* below); a file without the flag is read as before.
 //!
 //! Each section starts right after the previous one, padded with zero bytes
 //! to a multiple of 4 (so a copy to aligned RAM could use them directly); its
@@ -28,7 +31,7 @@
 //! | 4 | `u16` | version | [`VERSION`] (3; version 2 had no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (112) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
-//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; other bits must be 0 |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; other bits must be 0 |
 //! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
@@ -81,6 +84,36 @@
 //! polygon `p` ends where polygon `p + 1` starts (the last one at
 //! `index_count`); each has at least 3 vertices, counter-clockwise seen from
 //! the front. A polygon's id is its position in this section.
+//!
+//! ## Compact polygon records (flag [`FLAG_COMPACT`])
+//!
+//! A compact file stores the same fields in [`COMPACT_POLYGON_LEN`] = 8
+//! bytes a polygon: the colour becomes an index into a table of the
+//! file's distinct colours, and each field takes only the bits its largest
+//! value needs. Two sections follow the header:
+//!
+//! **Layout** ([`LAYOUT_LEN`] = 8 bytes):
+//!
+//! | offset | type | field |
+//! |---:|---|---|
+//! | 0 | `u8` | bits of first_index |
+//! | 1 | `u8` | bits of run |
+//! | 2 | `u8` | bits of source |
+//! | 3 | `u8` | bits of the colour index |
+//! | 4 | `u32` | colour_count: entries in the colour table |
+//!
+//! Each width is at most 32 and the four add up to at most 56; anything
+//! else is `BadHeader("layout")`.
+//!
+//! **Colours** (`colour_count` entries of [`COLOUR_LEN`] = 3 bytes, RGB),
+//! padded to 4 bytes like every section.
+//!
+//! A record is one little-endian `u64`; from bit 0 up: first_index, run,
+//! source and colour index, each in its layout width, then (bits 56..64)
+//! hidden_edges. Bits between the colour index and bit 56 are zero.
+//! Every colour index must be below `colour_count` (else
+//! [`FormatError::BadColour`]); the other fields mean what they mean in a
+//! 16-byte record and are checked the same way.
 //!
 //! ## Vertex index list (`index_count` entries of `index_size` bytes)
 //!
@@ -191,6 +224,18 @@ pub const VERSION: u16 = 3;
 pub const HEADER_LEN: usize = 112;
 /// Length of one polygon record.
 pub const POLYGON_LEN: usize = 16;
+/// Length of one compact polygon record ([`FLAG_COMPACT`]).
+pub const COMPACT_POLYGON_LEN: usize = 8;
+/// Length of the layout section of a compact file.
+pub const LAYOUT_LEN: usize = 8;
+/// Length of one colour table entry.
+pub const COLOUR_LEN: usize = 3;
+/// Header flag: compact polygon records, with the layout and colour
+/// sections.
+pub const FLAG_COMPACT: u32 = 1 << 3;
+/// Bit of a compact record where hidden_edges starts; the other fields
+/// fit below it.
+pub const COMPACT_HIDDEN_SHIFT: u32 = 56;
 /// Length of one run record.
 pub const RUN_LEN: usize = 20;
 /// Length of one connecting node record.
@@ -472,6 +517,9 @@ pub enum FormatError {
     BadEdge(u32),
     /// A corner normal record is zero or has a component of −128.
     BadNormal(u32),
+    /// This polygon's colour index is not below the colour table's length
+    /// (compact records).
+    BadColour(u32),
     /// A float that must be finite is not; names the section.
     NonFinite(&'static str),
     /// A vertex index is not below the vertex count.
@@ -504,6 +552,7 @@ impl fmt::Display for FormatError {
             }
             FormatError::BadEdge(j) => write!(f, "invalid kind of edge record {j}"),
             FormatError::BadNormal(j) => write!(f, "invalid corner normal record {j}"),
+            FormatError::BadColour(p) => write!(f, "colour index of polygon {p} out of range"),
             FormatError::NonFinite(what) => write!(f, "non-finite number in {what}"),
             FormatError::IndexOutOfRange => f.write_str("vertex index out of range"),
             FormatError::BadPolygon(p) => write!(f, "invalid vertex range of polygon {p}"),
@@ -549,6 +598,11 @@ pub struct Counts {
 /// Byte offsets of the sections of a file, computed from its counts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Sections {
+    /// Start of the layout section (where the vertices start in a file
+    /// without compact records).
+    pub layout: usize,
+    /// Start of the colour table (ditto).
+    pub colours: usize,
     /// Start of the vertex section.
     pub vertices: usize,
     /// Start of the polygon section.
@@ -579,15 +633,34 @@ impl Sections {
     /// The layout of a file with `counts`, `format` vertices and indices of
     /// `index_size` bytes; `None` if its length overflows `u32`.
     pub fn new(counts: &Counts, format: VertexFormat, index_size: usize) -> Option<Sections> {
+        Sections::with_compact(counts, format, index_size, None)
+    }
+
+    /// The layout of a file as [`Sections::new`], with compact polygon
+    /// records and a colour table of `colours` entries when `colours` is
+    /// `Some` ([`FLAG_COMPACT`]).
+    pub fn with_compact(
+        counts: &Counts,
+        format: VertexFormat,
+        index_size: usize,
+        colours: Option<u32>,
+    ) -> Option<Sections> {
         // u64 arithmetic: every product of a u32 count and a record length
         // fits, so only the final length needs checking.
         fn next(start: u64, count: u32, len: usize) -> u64 {
             let end = start + u64::from(count) * len as u64;
             (end + 3) & !3
         }
-        let v = HEADER_LEN as u64;
+        let l = HEADER_LEN as u64;
+        let (ct, v, poly_len) = match colours {
+            Some(n) => {
+                let ct = l + LAYOUT_LEN as u64;
+                (ct, next(ct, n, COLOUR_LEN), COMPACT_POLYGON_LEN)
+            }
+            None => (l, l, POLYGON_LEN),
+        };
         let p = next(v, counts.vertices, format.vertex_len());
-        let i = next(p, counts.polygons, POLYGON_LEN);
+        let i = next(p, counts.polygons, poly_len);
         let e = next(i, counts.indices, index_size);
         let nm = next(e, counts.edges, EDGE_LEN);
         let r = next(nm, counts.normals, NORMAL_LEN);
@@ -603,6 +676,8 @@ impl Sections {
         // targets with a usize of 32 bits or more.
         let cv = |x: u64| usize::try_from(x).ok();
         Some(Sections {
+            layout: cv(l)?,
+            colours: cv(ct)?,
             vertices: cv(v)?,
             polygons: cv(p)?,
             indices: cv(i)?,
@@ -686,6 +761,12 @@ pub(crate) fn rec<const L: usize>(s: &[u8], i: usize) -> [u8; L] {
         .and_then(|end| s.get(start..end))
         .and_then(|r| r.try_into().ok())
         .unwrap_or([0; L])
+}
+
+/// Little-endian `u64` at `off`.
+#[inline]
+pub(crate) fn rd_u64(b: &[u8], off: usize) -> u64 {
+    u64::from_le_bytes(rd(b, off))
 }
 
 /// Little-endian `u32` at byte `at` of a record, or 0 past its end (with a
@@ -781,6 +862,13 @@ mod tests {
             ..c
         };
         assert_eq!(Sections::new(&max_bunches, VertexFormat::F32, 4), None);
+        // Compact: layout and colours after the header, 8-byte polygons.
+        let k = Sections::with_compact(&c, VertexFormat::Q16, 2, Some(2)).unwrap();
+        assert_eq!((k.layout, k.colours), (HEADER_LEN, HEADER_LEN + LAYOUT_LEN));
+        assert_eq!(k.vertices, k.colours + 8); // 6 bytes padded to 8
+        assert_eq!(k.indices, k.polygons + COMPACT_POLYGON_LEN);
+        assert_eq!(k.file_len, s.file_len + LAYOUT_LEN + 8 - 8);
+        assert_eq!((s.layout, s.colours), (HEADER_LEN, HEADER_LEN));
     }
 
     #[test]

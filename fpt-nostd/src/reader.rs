@@ -12,6 +12,9 @@
 //! - the section sizes implied by the counts against the file length;
 //! - every float that geometry is computed from is finite (origin, half
 //!   extent, radius, `f32` vertices, run and switch planes);
+//! - compact polygon records ([`crate::format::FLAG_COMPACT`]): the layout's
+//!   widths (each ≤ 32 bits, ≤ 56 together), every colour index below the
+//!   colour table's length and the unused bits zero;
 //! - every vertex index is below the vertex count, every polygon has at least
 //!   3 vertices and the polygons tile the index list; every edge record
 //!   (optional section) has a known kind; every corner normal (optional
@@ -74,7 +77,9 @@
 //!
 //! No crash, timeout or out-of-memory in any run. The seed trees are small
 //! static, dynamic and BSP trees, open and closed, in all three vertex
-//! formats, some with runs of several polygons; the seed meshes one OBJ,
+//! formats, some with runs of several polygons, three (`compact_*`, session
+//! 10) with compact polygon records, one of them with two colours and the
+//! edge and normal sections; the seed meshes one OBJ,
 //! OFF, ASCII STL and ASCII PLY each. Of the `tree_walk` corpus after the
 //! first run, 99 inputs are valid trees (walked) and the other 107 are
 //! rejected with every one of the 15 kinds of [`FormatError`] between them.
@@ -86,6 +91,9 @@ use crate::format::{
     rd_i16, rd_i32, rd_u16, rd_u32, rd_u8, rec, run as rn, Counts, FormatError, Sections, UpAxis,
     VertexFormat, CRC_LEN, FLAG_CLOSED, HEADER_LEN, MAGIC, MAX_SHIFT, NODE_LEN, POLYGON_LEN,
     Q16_MAX, RUN_LEN, SWITCH_LEN, VERSION,
+};
+use crate::format::{
+    rd_u64, COLOUR_LEN, COMPACT_HIDDEN_SHIFT, COMPACT_POLYGON_LEN, FLAG_COMPACT, LAYOUT_LEN,
 };
 use crate::format::{EDGE_LEN, FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 
@@ -146,6 +154,12 @@ struct Geometry<'a> {
     /// struct is copied into every polygon the walk hands out, and two
     /// more words cost 3.8 % of a `bench_city` frame on the Cortex-M4.
     has_edges: bool,
+    /// Whether the polygon records are compact ([`FLAG_COMPACT`]): 8
+    /// bytes, bit fields of the widths in `widths`, colours in a table.
+    compact: bool,
+    /// The compact layout's field widths in bits: first_index, run, source,
+    /// colour index (all 0 for 16-byte records).
+    widths: [u8; 4],
     vertices: usize,
     polygons: usize,
     indices: usize,
@@ -273,14 +287,105 @@ impl<'a> Geometry<'a> {
     /// The plane of polygon `id < polygon_count`: its run's.
     #[inline]
     fn polygon_plane(&self, id: u32) -> Plane {
-        let r = rd_u32(self.bytes, self.polygon_off(id).wrapping_add(pg::RUN));
+        let r = self.polygon_run(id);
         Plane::from_record(&rec::<RUN_LEN>(self.runs, r as usize))
     }
 
     #[inline]
     fn polygon_off(&self, id: u32) -> usize {
-        self.polygons
-            .wrapping_add((id as usize).wrapping_mul(POLYGON_LEN))
+        let len = if self.compact {
+            COMPACT_POLYGON_LEN
+        } else {
+            POLYGON_LEN
+        };
+        self.polygons.wrapping_add((id as usize).wrapping_mul(len))
+    }
+
+    /// Field `k` (0 first_index, 1 run, 2 source, 3 colour index) of the
+    /// compact record of polygon `id`. Wrapping shifts: the widths are
+    /// validated (each ≤ 32, sum ≤ 56), and a bug yields a wrong number,
+    /// never a panic.
+    #[inline(always)]
+    fn compact_field(&self, id: u32, k: usize) -> u32 {
+        let r = rd_u64(self.bytes, self.polygon_off(id));
+        let w = self.widths;
+        let shift = match k {
+            0 => 0,
+            1 => u32::from(w[0]),
+            2 => u32::from(w[0]) + u32::from(w[1]),
+            _ => u32::from(w[0]) + u32::from(w[1]) + u32::from(w[2]),
+        };
+        let width = u32::from(w[k & 3]);
+        let mask = 1u64.wrapping_shl(width).wrapping_sub(1);
+        (r.wrapping_shr(shift) & mask) as u32
+    }
+
+    /// The run field of polygon `id`.
+    #[inline]
+    fn polygon_run(&self, id: u32) -> u32 {
+        if self.compact {
+            self.compact_field(id, 1)
+        } else {
+            rd_u32(self.bytes, self.polygon_off(id).wrapping_add(pg::RUN))
+        }
+    }
+
+    /// The first_index field of polygon `id`.
+    #[inline]
+    fn polygon_first(&self, id: u32) -> u32 {
+        if self.compact {
+            self.compact_field(id, 0)
+        } else {
+            rd_u32(
+                self.bytes,
+                self.polygon_off(id).wrapping_add(pg::FIRST_INDEX),
+            )
+        }
+    }
+
+    /// The source field of polygon `id`.
+    #[inline]
+    fn polygon_source(&self, id: u32) -> u32 {
+        if self.compact {
+            self.compact_field(id, 2)
+        } else {
+            rd_u32(self.bytes, self.polygon_off(id).wrapping_add(pg::SOURCE))
+        }
+    }
+
+    /// The colour index of a compact polygon `id` (0 otherwise).
+    #[inline]
+    fn polygon_colour_index(&self, id: u32) -> u32 {
+        if self.compact {
+            self.compact_field(id, 3)
+        } else {
+            0
+        }
+    }
+
+    /// The colour of polygon `id`: from the colour table of a compact
+    /// file, which starts at a fixed offset after the layout.
+    #[inline]
+    fn polygon_color(&self, id: u32) -> [u8; 3] {
+        if self.compact {
+            let c = self.polygon_colour_index(id) as usize;
+            let at = (HEADER_LEN + LAYOUT_LEN).wrapping_add(c.wrapping_mul(COLOUR_LEN));
+            rd::<3>(self.bytes, at)
+        } else {
+            let c: [u8; 4] = rd(self.bytes, self.polygon_off(id).wrapping_add(pg::COLOR));
+            [c[0], c[1], c[2]]
+        }
+    }
+
+    /// The hidden_edges mask of polygon `id`.
+    #[inline]
+    fn polygon_hidden(&self, id: u32) -> u8 {
+        if self.compact {
+            let r = rd_u64(self.bytes, self.polygon_off(id));
+            (r >> COMPACT_HIDDEN_SHIFT) as u8
+        } else {
+            rd_u8(self.bytes, self.polygon_off(id).wrapping_add(pg::COLOR + 3))
+        }
     }
 
     /// Index-list entries `first..first + count` (empty when out of range).
@@ -300,16 +405,9 @@ impl<'a> Geometry<'a> {
     /// The index range `first..end` of polygon `id < polygon_count`.
     #[inline]
     fn polygon_range(&self, id: u32) -> (u32, u32) {
-        let first = rd_u32(
-            self.bytes,
-            self.polygon_off(id).wrapping_add(pg::FIRST_INDEX),
-        );
+        let first = self.polygon_first(id);
         let end = if id < self.polygon_count.saturating_sub(1) {
-            rd_u32(
-                self.bytes,
-                self.polygon_off(id.wrapping_add(1))
-                    .wrapping_add(pg::FIRST_INDEX),
-            )
+            self.polygon_first(id.wrapping_add(1))
         } else {
             self.index_count
         };
@@ -423,6 +521,8 @@ pub struct Tree<'a> {
     /// The corner normal section (`index_count` records of
     /// [`NORMAL_LEN`] bytes), empty without it.
     normals: &'a [u8],
+    /// Where each section starts (validated against the length).
+    sections: Sections,
 }
 
 /// What a renderer needs to draw a tree, from its header (see
@@ -501,10 +601,7 @@ impl<'a> PolygonRef<'a> {
     /// Its outline mask: bit `i` set when edge `i` (vertex `i` to `i + 1`)
     /// lies inside its source face (see [`crate::format`]).
     pub fn hidden_edges(&self) -> u8 {
-        rd_u8(
-            self.g.bytes,
-            self.g.polygon_off(self.id).wrapping_add(pg::COLOR + 3),
-        )
+        self.g.polygon_hidden(self.id)
     }
 
     /// Whether its tree has the edge section (see [`PolygonRef::edge`]).
@@ -610,20 +707,13 @@ impl<'a> PolygonAt<'_, 'a> {
     /// [`PolygonRef::source`].
     #[inline]
     pub(crate) fn source(&self) -> u32 {
-        rd_u32(
-            self.g.bytes,
-            self.g.polygon_off(self.id).wrapping_add(pg::SOURCE),
-        )
+        self.g.polygon_source(self.id)
     }
 
     /// [`PolygonRef::color`].
     #[inline]
     pub(crate) fn color(&self) -> [u8; 3] {
-        let c: [u8; 4] = rd(
-            self.g.bytes,
-            self.g.polygon_off(self.id).wrapping_add(pg::COLOR),
-        );
-        [c[0], c[1], c[2]]
+        self.g.polygon_color(self.id)
     }
 
     /// [`PolygonRef::plane`].
@@ -681,7 +771,7 @@ impl<'a> Tree<'a> {
         }
 
         let flags = rd_u32(bytes, h::FLAGS);
-        if flags & !(FLAG_CLOSED | FLAG_EDGES | FLAG_NORMALS) != 0 {
+        if flags & !(FLAG_CLOSED | FLAG_EDGES | FLAG_NORMALS | FLAG_COMPACT) != 0 {
             return Err(FormatError::BadHeader("flags"));
         }
         let format = VertexFormat::from_code(rd_u8(bytes, h::VERTEX_FORMAT))
@@ -717,7 +807,23 @@ impl<'a> Tree<'a> {
             normals: optional(FLAG_NORMALS),
             ..counts
         };
-        let s = Sections::new(&counts, format, usize::from(index_size))
+        // A compact file's layout: read before the section sizes, which
+        // depend on its colour count.
+        let compact = flags & FLAG_COMPACT != 0;
+        let (widths, colour_count) = if compact {
+            if len < HEADER_LEN + LAYOUT_LEN + CRC_LEN {
+                return Err(FormatError::SectionSizes);
+            }
+            let w = rd::<4>(bytes, HEADER_LEN);
+            let sum: u32 = w.iter().map(|&x| u32::from(x)).sum();
+            if w.iter().any(|&x| x > 32) || sum > COMPACT_HIDDEN_SHIFT {
+                return Err(FormatError::BadHeader("layout"));
+            }
+            (w, Some(rd_u32(bytes, HEADER_LEN + 4)))
+        } else {
+            ([0; 4], None)
+        };
+        let s = Sections::with_compact(&counts, format, usize::from(index_size), colour_count)
             .ok_or(FormatError::SectionSizes)?;
         if s.file_len != len {
             return Err(FormatError::SectionSizes);
@@ -758,6 +864,8 @@ impl<'a> Tree<'a> {
         let g = Geometry {
             bytes,
             has_edges: counts.edges != 0,
+            compact,
+            widths,
             vertices: s.vertices,
             polygons: s.polygons,
             indices: s.indices,
@@ -790,6 +898,7 @@ impl<'a> Tree<'a> {
                 memory_words: rd_u32(bytes, h::MEMORY_WORDS),
             },
             normals: section(s.normals, counts.normals, NORMAL_LEN)?,
+            sections: s,
         };
         if rd_u32(bytes, h::RESERVED32) != 0 {
             return Err(FormatError::BadHeader("reserved"));
@@ -802,6 +911,7 @@ impl<'a> Tree<'a> {
         if v < tree.capacities.polygon_vertices.saturating_add(5) || v > u32::from(u16::MAX) {
             return Err(FormatError::BadHeader("scratch_vertices"));
         }
+        tree.check_colours(colour_count.unwrap_or(0))?;
         tree.check_edges()?;
         tree.check_normals()?;
         tree.check_runs()?;
@@ -816,6 +926,45 @@ impl<'a> Tree<'a> {
     /// [`crate::format::VERSION`]).
     pub fn version(&self) -> u16 {
         rd_u16(self.g.bytes, h::VERSION)
+    }
+
+    /// Whether the polygon records are compact (8 bytes, with a colour
+    /// table; see [`crate::format`]).
+    pub fn is_compact(&self) -> bool {
+        self.g.compact
+    }
+
+    /// Entries in the colour table of a compact file (0 otherwise).
+    pub fn colour_count(&self) -> u32 {
+        if self.g.compact {
+            rd_u32(self.g.bytes, HEADER_LEN + 4)
+        } else {
+            0
+        }
+    }
+
+    /// Bytes of each section, in file order, with its name (padding
+    /// counted in the section it follows; the header includes nothing
+    /// else): what `fpt info` prints. Sections a file does not have are
+    /// left out.
+    pub fn section_bytes(&self) -> [(&'static str, usize); 13] {
+        let s = self.sections;
+        let n = self.g.bytes.len();
+        [
+            ("header", s.layout),
+            ("layout", s.colours - s.layout),
+            ("colours", s.vertices - s.colours),
+            ("vertices", s.polygons - s.vertices),
+            ("polygons", s.indices - s.polygons),
+            ("indices", s.edges - s.indices),
+            ("edges", s.normals - s.edges),
+            ("normals", s.runs - s.normals),
+            ("runs", s.bunches - s.runs),
+            ("bunches", s.nodes - s.bunches),
+            ("nodes", s.switches - s.nodes),
+            ("switches", s.crc - s.switches),
+            ("crc", n.saturating_sub(s.crc)),
+        ]
     }
 
     /// Whether the file has the edge section (every edge's outline kind,

@@ -161,8 +161,22 @@ fn rejects_bad_headers() {
     bad[hd::RADIUS] ^= 1;
     assert_eq!(Tree::from_bytes(&bad).unwrap_err(), FormatError::Checksum);
     assert_eq!(
-        parse_edited(&r, |b| b[hd::FLAGS] = 8),
+        parse_edited(&r, |b| b[hd::FLAGS] = 16),
         Err(FormatError::BadHeader("flags"))
+    );
+    // The compact flag on a file without its layout: the section sizes no
+    // longer add up, or the layout read from the vertices is invalid, or
+    // (here, one polygon: 8 bytes of layout for 8 of record) its colour
+    // table is empty.
+    let e = parse_edited(&r, |b| b[hd::FLAGS] = 8);
+    assert!(
+        matches!(
+            e,
+            Err(FormatError::SectionSizes
+                | FormatError::BadHeader("layout")
+                | FormatError::BadColour(_))
+        ),
+        "{e:?}"
     );
     assert_eq!(
         parse_edited(&r, |b| b[hd::VERTEX_FORMAT] = 3),

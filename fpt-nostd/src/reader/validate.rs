@@ -4,7 +4,7 @@
 
 use super::{finite3_f32, Tree};
 use crate::format::EDGE_SOFT;
-use crate::format::{polygon as pg, rd_f32x3, rd_u32, FormatError, VertexFormat, NO_SWITCH};
+use crate::format::{rd_f32x3, rd_u64, FormatError, VertexFormat, COMPACT_HIDDEN_SHIFT, NO_SWITCH};
 
 impl Tree<'_> {
     /// `f32` vertices finite; every vertex index below the vertex count.
@@ -27,12 +27,10 @@ impl Tree<'_> {
     /// The polygons tile the index list with at least 3 indices each;
     /// returns the largest vertex count (0 without polygons).
     pub(super) fn check_polygons(&self) -> Result<u32, FormatError> {
-        let b = self.g.bytes;
         let mut prev = 0u32;
         let mut largest = 0u32;
         for p in 0..self.counts.polygons {
-            let rec = self.g.polygon_off(p);
-            let first = rd_u32(b, rec.wrapping_add(pg::FIRST_INDEX));
+            let first = self.g.polygon_first(p);
             if p == 0 {
                 if first != 0 {
                     return Err(FormatError::BadPolygon(0));
@@ -53,6 +51,25 @@ impl Tree<'_> {
             None if self.counts.indices != 0 => Err(FormatError::BadHeader("index_count")),
             None => Ok(0),
         }
+    }
+
+    /// Compact records: every colour index is below the colour count, and
+    /// the bits between the colour index and hidden_edges are zero (so a
+    /// file has one encoding). Nothing to check for 16-byte records.
+    pub(super) fn check_colours(&self, colour_count: u32) -> Result<(), FormatError> {
+        if !self.g.compact {
+            return Ok(());
+        }
+        let used: u32 = self.g.widths.iter().map(|&w| u32::from(w)).sum();
+        let spare = (1u64 << (COMPACT_HIDDEN_SHIFT - used.min(COMPACT_HIDDEN_SHIFT))) - 1;
+        for p in 0..self.counts.polygons {
+            let r = rd_u64(self.g.bytes, self.g.polygon_off(p));
+            let padding = r.wrapping_shr(used) & spare;
+            if self.g.polygon_colour_index(p) >= colour_count || padding != 0 {
+                return Err(FormatError::BadColour(p));
+            }
+        }
+        Ok(())
     }
 
     /// Every edge record has a known kind.
@@ -80,8 +97,7 @@ impl Tree<'_> {
                 return Err(FormatError::BadRuns);
             }
             for p in start..end {
-                let field = rd_u32(self.g.bytes, self.g.polygon_off(p).wrapping_add(pg::RUN));
-                if field != r {
+                if self.g.polygon_run(p) != r {
                     return Err(FormatError::BadRuns);
                 }
             }

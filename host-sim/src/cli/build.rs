@@ -324,6 +324,7 @@ pub fn run(a: &BuildArgs) -> CliResult {
         effects: Some(effects.bits()),
         up,
         crease_deg: a.crease,
+        compact: a.records == "compact",
     };
     let bytes = crate::serialize::serialize(&tree, &opts)?;
     // Stats first: if it cannot be written, no tree file appears either.

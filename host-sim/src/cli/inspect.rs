@@ -179,6 +179,31 @@ pub fn info(a: &InfoArgs) -> CliResult {
     println!("switch nodes:      {}", t.switch_count());
     println!("max depth:         {}", t.max_depth());
     println!("bytes per polygon: {per_polygon}");
+    if t.is_compact() {
+        println!(
+            "polygon records:   compact, {} bytes each, {} colours in the table",
+            fpt_nostd::format::COMPACT_POLYGON_LEN,
+            t.colour_count()
+        );
+    } else {
+        println!(
+            "polygon records:   {} bytes each",
+            fpt_nostd::format::POLYGON_LEN
+        );
+    }
+    // Where the bytes go, per section (padding counted with the section
+    // it follows), and per polygon: what to shrink next.
+    let n = f64::from(t.polygon_count().max(1));
+    let parts: Vec<String> = t
+        .section_bytes()
+        .iter()
+        .filter(|&&(_, b)| b > 0)
+        .map(|&(name, b)| format!("{name} {b} ({:.1})", b as f64 / n))
+        .collect();
+    println!(
+        "bytes by section:  {} (per polygon in brackets)",
+        parts.join(", ")
+    );
     // What a renderer of this tree needs, from the header (checked by the
     // renderer before it draws: a smaller `N` or `V` is a
     // `CapacityError` naming the one to raise).

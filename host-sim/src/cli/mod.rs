@@ -145,6 +145,11 @@ pub struct BuildArgs {
     /// normals are averaged only over faces within this angle.
     #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
     pub crease: f32,
+    /// Polygon records: `compact` (8 bytes a polygon and a colour table,
+    /// when the fields fit) or `wide` (16 bytes, as files written before
+    /// compact records existed; for comparisons and older readers).
+    #[arg(long, default_value = "compact", value_parser = ["compact", "wide"])]
+    pub records: String,
 }
 
 /// Arguments of `fpt polygons`.

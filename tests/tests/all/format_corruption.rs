@@ -128,10 +128,15 @@ proptest! {
         closed: bool,
         bsp: bool,
         format in 0usize..3,
+        compact: bool,
         c in corruption(),
     ) {
         let t = random_tree(seed, n, closed, bsp, 1.0, DVec3::new(0.5, -2.0, 1.0));
-        let opts = SerializeOptions { vertex_format: VertexFormat::ALL[format], ..SerializeOptions::default() };
+        let opts = SerializeOptions {
+            vertex_format: VertexFormat::ALL[format],
+            compact,
+            ..SerializeOptions::default()
+        };
         let original = serialize(&t, &opts).unwrap();
         prop_assert!(exercise(&original));
 
@@ -154,7 +159,11 @@ fn some_corruptions_pass_validation() {
     // vertex coordinate bit of a valid file, with the CRC fixed, must be
     // accepted (so the property test above does walk corrupted trees).
     let t = random_tree(1, 8, false, false, 1.0, DVec3::ZERO);
-    let mut bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+    let wide = SerializeOptions {
+        compact: false,
+        ..SerializeOptions::default()
+    };
+    let mut bytes = serialize(&t, &wide).unwrap();
     let tree = Tree::from_bytes(&bytes).unwrap();
     // Polygon 0's colour: the polygon section follows the f32 vertices.
     let colour = fpt_nostd::format::HEADER_LEN
@@ -164,4 +173,80 @@ fn some_corruptions_pass_validation() {
     bytes[fpt_nostd::format::HEADER_LEN] ^= 0x01;
     fix_length_and_crc(&mut bytes);
     assert!(exercise(&bytes));
+}
+
+/// Where the polygon section of a valid `tree` starts.
+fn polygon_section(tree: &Tree<'_>) -> usize {
+    let parts = tree.section_bytes();
+    let at = parts
+        .iter()
+        .position(|&(name, _)| name == "polygons")
+        .unwrap();
+    parts[..at].iter().map(|&(_, b)| b).sum()
+}
+
+#[test]
+fn compact_records_are_validated() {
+    use fpt_nostd::format::{FormatError, HEADER_LEN};
+    let reject = |bytes: &[u8], edit: &dyn Fn(&mut Vec<u8>)| {
+        let mut b = bytes.to_vec();
+        edit(&mut b);
+        fix_length_and_crc(&mut b);
+        Tree::from_bytes(&b).err()
+    };
+    let mut out_of_range = 0;
+    for seed in 0..16 {
+        let mut t = random_tree(seed, 8, seed % 2 == 0, false, 1.0, DVec3::ZERO);
+        // Three colours: a 2-bit colour index with room for a bad one.
+        for (i, p) in t.polygons.iter_mut().enumerate() {
+            p.color = [(i % 3) as u8 * 40, 7, 9];
+        }
+        let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+        let tree = Tree::from_bytes(&bytes).unwrap();
+        assert!(tree.is_compact());
+        let w: [u8; 4] = bytes[HEADER_LEN..HEADER_LEN + 4].try_into().unwrap();
+        let used: u32 = w.iter().map(|&x| u32::from(x)).sum();
+        assert!(used < 56, "small trees leave spare bits");
+        let polys = polygon_section(&tree);
+        // A width above 32, or widths over 56 bits together.
+        assert_eq!(
+            reject(&bytes, &|b| b[HEADER_LEN] = 33),
+            Some(FormatError::BadHeader("layout"))
+        );
+        assert_eq!(
+            reject(&bytes, &|b| b[HEADER_LEN..HEADER_LEN + 4]
+                .copy_from_slice(&[32, 24, 1, 0])),
+            Some(FormatError::BadHeader("layout"))
+        );
+        // A set bit between the colour index and the outline mask.
+        let last = polygon_section(&tree) + 8 * (tree.polygon_count() as usize - 1);
+        let r = u64::from_le_bytes(bytes[last..last + 8].try_into().unwrap());
+        let spare = r | 1 << 55;
+        assert_eq!(
+            reject(&bytes, &|b| b[last..last + 8]
+                .copy_from_slice(&spare.to_le_bytes())),
+            Some(FormatError::BadColour(tree.polygon_count() - 1))
+        );
+        // A colour index past the table, where its width leaves room.
+        let shift = u32::from(w[0]) + u32::from(w[1]) + u32::from(w[2]);
+        let count = tree.colour_count();
+        if count < 1 << w[3] {
+            let r = u64::from_le_bytes(bytes[polys..polys + 8].try_into().unwrap());
+            let mask = ((1u64 << w[3]) - 1) << shift;
+            let bad = (r & !mask) | u64::from(count) << shift;
+            assert_eq!(
+                reject(&bytes, &|b| b[polys..polys + 8]
+                    .copy_from_slice(&bad.to_le_bytes())),
+                Some(FormatError::BadColour(0))
+            );
+            out_of_range += 1;
+        }
+        // A changed colour table entry is a valid file with another colour.
+        let table = HEADER_LEN + fpt_nostd::format::LAYOUT_LEN;
+        let mut b = bytes.clone();
+        b[table] ^= 0x10;
+        fix_length_and_crc(&mut b);
+        assert!(exercise(&b));
+    }
+    assert!(out_of_range > 0, "no tree left room for a bad colour index");
 }

@@ -99,6 +99,34 @@ fn check_round_trip(t: &FpTree, bytes: &[u8], f: VertexFormat) -> Vec<u32> {
     order
 }
 
+/// `compact` (compact records) and `wide` (16-byte records, as older files
+/// have) are the same tree: every polygon field reads the same, and the
+/// sizes differ by exactly the 8 bytes a polygon saved less the layout and
+/// the colour table.
+fn same_polygons(compact: &[u8], wide: &[u8]) {
+    let (c, w) = (
+        Tree::from_bytes(compact).unwrap(),
+        Tree::from_bytes(wide).unwrap(),
+    );
+    assert!(c.is_compact() && !w.is_compact());
+    assert_eq!(w.colour_count(), 0);
+    assert!(c.colour_count() >= 1 || c.polygon_count() == 0);
+    assert_eq!(c.polygon_count(), w.polygon_count());
+    for id in 0..c.polygon_count() {
+        let (a, b) = (c.polygon(id).unwrap(), w.polygon(id).unwrap());
+        assert_eq!(a.source(), b.source());
+        assert_eq!(a.color(), b.color());
+        assert_eq!(a.hidden_edges(), b.hidden_edges());
+        assert_eq!(a.plane(), b.plane());
+        let ia: Vec<u32> = a.vertex_indices().collect();
+        let ib: Vec<u32> = b.vertex_indices().collect();
+        assert_eq!(ia, ib);
+    }
+    let n = c.polygon_count() as usize;
+    let table = (3 * c.colour_count() as usize).next_multiple_of(4);
+    assert_eq!(compact.len() + 8 * n, wide.len() + 8 + table);
+}
+
 /// Compares the no_std walk with the reference walk for `views`; returns
 /// how many views were compared (ambiguous near-ties are skipped).
 fn check_orders(t: &FpTree, bytes: &[u8], order: &[u32], views: &[RefView], scale: f64) -> usize {
@@ -134,6 +162,17 @@ fn random_trees_round_trip_in_every_format() {
         for f in VertexFormat::ALL {
             let bytes = serialize(&t, &opts(f)).unwrap();
             let order = check_round_trip(&t, &bytes, f);
+            // The 16-byte records of older files read the same.
+            let wide = serialize(
+                &t,
+                &SerializeOptions {
+                    compact: false,
+                    ..opts(f)
+                },
+            )
+            .unwrap();
+            assert_eq!(check_round_trip(&t, &wide, f), order);
+            same_polygons(&bytes, &wide);
             if f == VertexFormat::F32 {
                 // Grid corners are far apart: only exact duplicates merge.
                 let r = Tree::from_bytes(&bytes).unwrap();
