@@ -232,6 +232,74 @@ impl Bvh {
         [c[0] + leaf[0], c[1] + leaf[1], leaf[2]]
     }
 
+    /// Lower bounds on the front, back and cut counts of the alive members
+    /// other than `skip` against `plane`, found by opening at most about
+    /// `budget` boxes (largest first) and classifying the members of the
+    /// leaves opened; returns them with the number of alive members left
+    /// undecided (0: the counts are exact, as [`Bvh::counts`] gives them).
+    /// Every member counted is counted by the same test as in
+    /// [`Bvh::counts`], so each true count is at least its bound and at most
+    /// its bound plus the undecided.
+    pub fn probe(
+        &self,
+        plane: &Plane,
+        skip: usize,
+        alive: &[bool],
+        tol: Tolerance,
+        budget: usize,
+    ) -> ([u32; 3], u32) {
+        let mut c = [0u32; 3];
+        if self.nodes.is_empty() {
+            return (c, 0);
+        }
+        let lim = tol.0 + MARGIN;
+        // Largest undecided box first: each step decides as many members
+        // as it can, so the undecided remainder falls fastest.
+        let mut heap = std::collections::BinaryHeap::with_capacity(2 * budget + 2);
+        heap.push((self.nodes[0].alive, 0u32));
+        let mut spent = 0;
+        while spent < budget {
+            let Some((_, k)) = heap.pop() else {
+                break;
+            };
+            spent += 1;
+            let node = &self.nodes[k as usize];
+            if node.alive == 0 {
+                continue;
+            }
+            let (min, max) = box_range(plane, node.lo, node.hi);
+            if min > lim {
+                c[0] += node.alive;
+            } else if max < -lim {
+                c[1] += node.alive;
+            } else if node.count == 0 {
+                for child in [node.first, node.first + 1] {
+                    heap.push((self.nodes[child as usize].alive, child));
+                }
+            } else {
+                let f = node.first as usize;
+                for k in f..f + node.count as usize {
+                    let i = self.order[k] as usize;
+                    if i == skip || !alive[i] {
+                        continue;
+                    }
+                    let v = &self.verts[self.vstart[k] as usize..self.vstart[k + 1] as usize];
+                    match plane.relation(v, tol) {
+                        Relation::Front => c[0] += 1,
+                        Relation::Back => c[1] += 1,
+                        Relation::Cut => c[2] += 1,
+                        Relation::Coplanar => {}
+                    }
+                }
+                spent += node.count as usize;
+            }
+        }
+        // `skip` may sit in an undecided box: it is not one of the others,
+        // but counting it as undecided only loosens the bounds.
+        let undecided = heap.iter().map(|&(a, _)| a).sum();
+        (c, undecided)
+    }
+
     /// The alive members other than `skip` that lie in `plane`, in
     /// ascending order.
     pub fn coplanar(

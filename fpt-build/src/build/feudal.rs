@@ -36,8 +36,9 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
     }
     // Static from step 1 on (for dynamic: every remaining row is known, so
     // this computes nothing new).
+    // Rows are counted when needed (see `table.rs`).
     let all: Vec<usize> = (0..table.len()).collect();
-    table.compute_rows(&all, ctx);
+    table.mark_rows(&all, ctx);
     extract_levels(&mut table, &mut levels, ctx);
     if table.alive_count() == 0 {
         return Connecting {
@@ -45,11 +46,10 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
             switch: None,
         };
     }
-    table.refresh_all(ctx);
-    let switch = if let Some(s) = choose_separator(&table, ctx) {
+    let switch = if let Some(s) = choose_separator(&mut table, ctx) {
         make_switch(table, s, mode, ctx)
     } else {
-        let s = choose_splitter(&table, ctx);
+        let s = choose_splitter(&mut table, ctx);
         let [f, b, c] = table.counts(s);
         let aux = best_aux(&table, ctx, split_score).filter(|a| a.score < split_score(f, b, c));
         match aux {
@@ -123,7 +123,7 @@ fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut Vec<usi
 /// Static step 2: peel off all absolute priority polygons, level by level.
 fn extract_levels(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) {
     let mut watch = Watch::new(absolute_slack);
-    t.refresh_all(ctx);
+    t.probe_all(ctx);
     for q in 0..t.len() {
         if t.is_alive(q) && t.has_row(q) {
             t.watch(&mut watch, q);
@@ -169,8 +169,10 @@ fn dynamic_phase(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) -> Optio
         .filter(|&q| t.is_alive(q) && !t.has_row(q))
         .collect();
     ctx.rng.shuffle(&mut order);
-    // Rows known from the parent group are examined as they were there.
+    // Rows known from the parent group are examined as they were there
+    // (watched from bounds: they are counted when due).
     let mut watch = Watch::new(cut_slack);
+    t.probe_all(ctx);
     for q in 0..t.len() {
         if t.is_alive(q) && t.has_row(q) {
             t.watch(&mut watch, q);
@@ -243,31 +245,84 @@ fn key_cmp(a: &[f64; 7], b: &[f64; 7]) -> Ordering {
         .unwrap_or(Ordering::Equal)
 }
 
-/// Picks the alive member minimising `score`, ties broken geometrically.
-fn best_by(t: &Table, ctx: &Ctx, score: impl Fn([u32; 3]) -> Option<(u32, u32)>) -> Option<usize> {
-    let mut best: Option<(usize, (u32, u32), [f64; 7])> = None;
-    for q in 0..t.len() {
-        if !t.is_alive(q) || !t.has_row(q) {
-            continue;
+/// Rows counted exactly at once by [`best_by`]: enough for the counting to
+/// use both cores when many rows could win, few enough that little is
+/// counted beyond the rows needed.
+const BATCH: usize = 256;
+
+/// `(score, key, index)` of a candidate, compared lexicographically.
+type Rank = ((u32, u32), [f64; 7], usize);
+
+fn rank_cmp(a: &Rank, b: &Rank) -> Ordering {
+    a.0.cmp(&b.0)
+        .then_with(|| key_cmp(&a.1, &b.1))
+        .then(a.2.cmp(&b.2))
+}
+
+/// Picks the alive member minimising `score`, ties broken geometrically,
+/// then by index (the first one): the member the full table would give.
+///
+/// Lazily: every row gets bounds ([`Table::probe_all`]); `bound(lower
+/// counts, undecided)` must be at most the row's score (`None`: the row
+/// cannot qualify). Rows are counted exactly in ascending order of bound
+/// and stop being counted once the next bound is above the best exact
+/// score: every row left has a score at least its bound, so none is better.
+fn best_by(
+    t: &mut Table,
+    ctx: &Ctx,
+    score: impl Fn([u32; 3]) -> Option<(u32, u32)>,
+    bound: impl Fn([u32; 3], u32) -> Option<(u32, u32)>,
+) -> Option<usize> {
+    t.probe_all(ctx);
+    let mut cands: Vec<Rank> = (0..t.len())
+        .filter(|&q| t.is_alive(q) && t.has_row(q))
+        .filter_map(|q| {
+            let (c, u) = t.bounds(q);
+            bound(c, u).map(|b| (b, geometric_key(ctx, t.ids[q]), q))
+        })
+        .collect();
+    cands.sort_unstable_by(rank_cmp);
+    let mut best: Option<Rank> = None;
+    let mut next = 0;
+    while next < cands.len() {
+        let end = cands[next..]
+            .iter()
+            .take(BATCH)
+            .take_while(|c| best.as_ref().is_none_or(|b| rank_cmp(c, b).is_lt()))
+            .count();
+        if end == 0 {
+            break;
         }
-        let Some(s) = score(t.counts(q)) else {
-            continue;
-        };
-        let key = geometric_key(ctx, t.ids[q]);
-        let better = match &best {
-            None => true,
-            Some((_, bs, bk)) => s < *bs || (s == *bs && key_cmp(&key, bk).is_lt()),
-        };
-        if better {
-            best = Some((q, s, key));
+        let batch: Vec<usize> = cands[next..next + end].iter().map(|c| c.2).collect();
+        next += end;
+        t.refresh(&batch, ctx);
+        for (i, &q) in batch.iter().enumerate() {
+            let Some(s) = score(t.counts(q)) else {
+                continue;
+            };
+            let r = (s, cands[next - end + i].1, q);
+            if best.as_ref().is_none_or(|b| rank_cmp(&r, b).is_lt()) {
+                best = Some(r);
+            }
         }
     }
-    best.map(|b| b.0)
+    best.map(|b| b.2)
+}
+
+/// At least `|f - b|` for counts at least `f` and `b` with `u` members
+/// undecided (all of them could join the smaller side).
+fn balance_bound(f: u32, b: u32, u: u32) -> u32 {
+    f.abs_diff(b).saturating_sub(u)
 }
 
 /// Step 4: a separating plane (empty cut column), the most balanced one.
-fn choose_separator(t: &Table, ctx: &Ctx) -> Option<usize> {
-    best_by(t, ctx, |[f, b, c]| (c == 0).then_some((0, f.abs_diff(b))))
+fn choose_separator(t: &mut Table, ctx: &Ctx) -> Option<usize> {
+    best_by(
+        t,
+        ctx,
+        |[f, b, c]| (c == 0).then_some((0, f.abs_diff(b))),
+        |[f, b, c], u| (c == 0).then_some((0, balance_bound(f, b, u))),
+    )
 }
 
 /// How many polygons of imbalance one split is worth when choosing a
@@ -291,10 +346,23 @@ fn split_score(f: u32, b: u32, c: u32) -> (u32, u32) {
 }
 
 /// Step 5: the fewest cuts, weighed against balance (see [`SPLIT_WEIGHT`]).
-fn choose_splitter(t: &Table, ctx: &Ctx) -> usize {
-    best_by(t, ctx, |[f, b, c]| Some(split_score(f, b, c)))
-        .or_else(|| (0..t.len()).find(|&q| t.is_alive(q)))
-        .unwrap_or(0)
+fn choose_splitter(t: &mut Table, ctx: &Ctx) -> usize {
+    // Each true count is at least its bound, so the score is at least the
+    // score of the cut bound with the balance bound (see `split_score`).
+    best_by(
+        t,
+        ctx,
+        |[f, b, c]| Some(split_score(f, b, c)),
+        |[f, b, c], u| {
+            Some((
+                c.saturating_mul(SPLIT_WEIGHT)
+                    .saturating_add(balance_bound(f, b, u)),
+                c,
+            ))
+        },
+    )
+    .or_else(|| (0..t.len()).find(|&q| t.is_alive(q)))
+    .unwrap_or(0)
 }
 
 /// Makes the switch node on the plane of member `s`: its coplanar bunch, and

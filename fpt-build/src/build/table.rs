@@ -18,6 +18,14 @@
 //! then cannot have become absolute or separating, and is left alone. A
 //! [`Watch`] orders rows by when that can first happen.
 //!
+//! Most rows are never counted exactly. [`Table::probe_all`] gives each row
+//! lower bounds on its counts from a few boxes of the hierarchy, with the
+//! number of members left undecided; the static builder counts exactly
+//! only the rows whose bounds say they could become absolute, separate or
+//! win the choice of the splitting plane (see `feudal.rs`). The bounds are
+//! valid (each true count is at least its bound), so the rows chosen, and
+//! the tree, are those of the exact table.
+//!
 //! Rows are counted through a bounding-volume hierarchy ([`super::bvh`]),
 //! so a row costs about √n classifications, and several rows are counted
 //! on all cores at once. Every row computed counts the relations of the
@@ -54,9 +62,12 @@ pub struct Table {
     pub ids: Vec<u32>,
     has_row: Vec<bool>,
     alive: Vec<bool>,
-    /// Front, back and cut counts of each computed row, exact when `stamp`
-    /// equals `removed`.
+    /// Front, back and cut counts of each computed row as of `stamp`
+    /// removals: exact when `undecided` is 0, otherwise lower bounds (see
+    /// [`Table::probe_all`]).
     counts: Vec<[u32; 3]>,
+    /// Alive members the bounds in `counts` left undecided, as of `stamp`.
+    undecided: Vec<u32>,
     stamp: Vec<u32>,
     removed: u32,
     /// The members removed, in order: `log[stamp..]` are those a row with
@@ -95,7 +106,7 @@ fn threads() -> usize {
 
 /// Applies `f` to every row of `rows`, on several threads when there are
 /// many.
-fn count_rows(rows: &[usize], f: impl Fn(usize) -> [u32; 3] + Sync) -> Vec<[u32; 3]> {
+fn count_rows<T: Send>(rows: &[usize], f: impl Fn(usize) -> T + Sync) -> Vec<T> {
     if rows.len() < 2 * PER_THREAD || threads() < 2 {
         return rows.iter().map(|&q| f(q)).collect();
     }
@@ -124,6 +135,11 @@ fn adjust(c: &mut [u32; 3], x: &Polygon, plane: &Plane, tol: Tolerance, add: boo
     c[i] = if add { c[i] + 1 } else { c[i] - 1 };
 }
 
+/// Boxes a probe opens ([`Table::probe_all`]): enough to decide most of a
+/// group's members against a row's plane (whole boxes are decided at
+/// once), far fewer than the √n or more of a full count.
+const PROBE: usize = 48;
+
 /// `stamp` of a row never counted.
 const NEVER: u32 = u32::MAX;
 
@@ -144,6 +160,7 @@ impl Table {
             has_row: vec![false; m],
             alive: vec![true; m],
             counts: vec![[0; 3]; m],
+            undecided: vec![0; m],
             stamp: vec![0; m],
             removed: 0,
             log: Vec::new(),
@@ -175,8 +192,21 @@ impl Table {
     /// after [`Table::compute_row`], [`Table::refresh`] or [`Table::due`]
     /// and until the next removal.
     pub fn counts(&self, q: usize) -> [u32; 3] {
-        debug_assert_eq!(self.stamp[q], self.removed, "stale counts of row {q}");
+        debug_assert!(self.is_exact(q), "stale or bounded counts of row {q}");
         self.counts[q]
+    }
+
+    /// Whether the counts of row `q` are exact now.
+    pub fn is_exact(&self, q: usize) -> bool {
+        self.stamp[q] == self.removed && self.undecided[q] == 0
+    }
+
+    /// Lower bounds on the front, back and cut counts of row `q` and the
+    /// number of members they leave undecided, valid after
+    /// [`Table::probe_all`] and until the next removal.
+    pub fn bounds(&self, q: usize) -> ([u32; 3], u32) {
+        debug_assert_eq!(self.stamp[q], self.removed, "stale bounds of row {q}");
+        (self.counts[q], self.undecided[q])
     }
 
     /// Makes the counts of `rows` (computed ones) exact.
@@ -184,14 +214,14 @@ impl Table {
         let rows: Vec<usize> = rows
             .iter()
             .copied()
-            .filter(|&q| self.has_row[q] && self.stamp[q] != self.removed)
+            .filter(|&q| self.has_row[q] && !self.is_exact(q))
             .collect();
         let limit = incremental_limit(self.alive_count);
         let (polys, tol) = (&ctx.polys, ctx.tol);
         let counts = count_rows(&rows, |q| {
             let plane = polys[self.ids[q] as usize].plane;
             let stamp = self.stamp[q];
-            if stamp != NEVER && self.removed - stamp <= limit {
+            if stamp != NEVER && self.undecided[q] == 0 && self.removed - stamp <= limit {
                 // Take out the members removed since the counts were exact.
                 let mut c = self.counts[q];
                 for &x in &self.log[stamp as usize..] {
@@ -210,11 +240,34 @@ impl Table {
         });
         for (q, c) in rows.into_iter().zip(counts) {
             self.counts[q] = c;
+            self.undecided[q] = 0;
+            self.stamp[q] = self.removed;
+        }
+    }
+
+    /// Gives every alive computed row bounds as of now: rows whose counts
+    /// are not exact now are probed ([`Bvh::probe`], about [`PROBE`] boxes
+    /// each) instead of counted, which is all the builders need of most
+    /// rows: a row that cannot become absolute yet, or whose score cannot
+    /// beat the best one, never needs its exact counts.
+    pub fn probe_all(&mut self, ctx: &Ctx) {
+        let rows: Vec<usize> = (0..self.len())
+            .filter(|&q| self.alive[q] && self.has_row[q] && self.stamp[q] != self.removed)
+            .collect();
+        let (polys, tol) = (&ctx.polys, ctx.tol);
+        let found = count_rows(&rows, |q| {
+            let plane = polys[self.ids[q] as usize].plane;
+            self.bvh.probe(&plane, q, &self.alive, tol, PROBE)
+        });
+        for (q, (c, u)) in rows.into_iter().zip(found) {
+            self.counts[q] = c;
+            self.undecided[q] = u;
             self.stamp[q] = self.removed;
         }
     }
 
     /// Makes the counts of every alive computed row exact.
+    #[cfg(test)]
     pub fn refresh_all(&mut self, ctx: &Ctx) {
         let rows: Vec<usize> = (0..self.len()).filter(|&q| self.alive[q]).collect();
         self.refresh(&rows, ctx);
@@ -234,6 +287,19 @@ impl Table {
             }
         }
         self.refresh(&new, ctx);
+    }
+
+    /// Marks the rows `qs` (those not computed yet) computed, without
+    /// counting them: their counts are bounded or counted when needed
+    /// ([`Table::probe_all`], [`Table::refresh`]).
+    pub fn mark_rows(&mut self, qs: &[usize], ctx: &mut Ctx) {
+        for &q in qs {
+            if !self.has_row[q] && self.alive[q] {
+                self.has_row[q] = true;
+                self.stamp[q] = NEVER;
+                ctx.relations += self.alive_count.saturating_sub(1) as u64;
+            }
+        }
     }
 
     /// Computes row `q` against the alive members.
@@ -280,7 +346,9 @@ impl Table {
         self.bvh.counts(plane, usize::MAX, &self.alive, ctx.tol)
     }
 
-    /// Starts watching row `q` (alive, computed, exact counts).
+    /// Starts watching row `q` (alive, computed, with exact counts or bounds
+    /// as of its stamp: the slack of lower bounds is at most the true one,
+    /// so the row is due no later than it could first pass).
     pub fn watch(&self, w: &mut Watch, q: usize) {
         let at = u64::from(self.stamp[q]) + u64::from((w.slack)(self.counts[q]));
         w.heap.push(Reverse((at, q as u32)));
@@ -309,10 +377,10 @@ impl Table {
     /// The table of a subgroup: `members` (local indices of this table) and
     /// new `pieces` (polygon id, local index of the polygon it was split
     /// from). A member keeps its row (computed or not); a piece lies in its
-    /// parent's plane and has its parent's. Counts are made exact: from
-    /// this table's counts, when they are exact and the members left out
-    /// are fewer than those kept (take out what left, add the pieces),
-    /// otherwise counted again.
+    /// parent's plane and has its parent's. Counts are derived from this
+    /// table's, when they are exact and the members left out are fewer
+    /// than those kept (take out what left, add the pieces); other rows are
+    /// left uncounted (bounded or counted when the subgroup needs them).
     pub fn subtable(&self, members: &[usize], pieces: &[(u32, usize)], ctx: &mut Ctx) -> Table {
         let mut ids: Vec<u32> = members.iter().map(|&i| self.ids[i]).collect();
         ids.extend(pieces.iter().map(|&(id, _)| id));
@@ -351,7 +419,7 @@ impl Table {
             let exact: Vec<usize> = rows
                 .iter()
                 .copied()
-                .filter(|&q| self.stamp[origin[q]] == self.removed)
+                .filter(|&q| self.is_exact(origin[q]))
                 .collect();
             let counts = count_rows(&exact, |q| {
                 let o = origin[q];
@@ -370,7 +438,8 @@ impl Table {
                 t.stamp[q] = 0;
             }
         }
-        t.refresh(&rows, ctx);
+        // The other rows stay uncounted until the subgroup's builder asks
+        // for bounds or counts.
         t
     }
 }
@@ -406,6 +475,24 @@ mod tests {
         assert!(rows > 0);
     }
 
+    /// Probes every row stale after removals and checks that each true
+    /// count lies between its bound and its bound plus the undecided, and
+    /// that some probe did leave members undecided (else this tests
+    /// nothing of the bounds).
+    fn check_bounds(t: &mut Table, ctx: &Ctx) {
+        t.probe_all(ctx);
+        let mut loose = 0;
+        for q in (0..t.len()).filter(|&q| t.is_alive(q) && t.has_row(q)) {
+            let (lo, u) = t.bounds(q);
+            let exact = full_row(t, q, ctx);
+            for i in 0..3 {
+                assert!(lo[i] <= exact[i] && exact[i] <= lo[i] + u, "row {q}");
+            }
+            loose += usize::from(u > 0);
+        }
+        assert!(loose > 0);
+    }
+
     /// The counts kept through the hierarchy, through removals (corrected
     /// one by one, or counted again) and through subtables (from the
     /// parent's counts, or counted again) equal the full table's.
@@ -435,6 +522,7 @@ mod tests {
                 let p = ctx.rng.below(n);
                 t.remove(p);
             }
+            check_bounds(&mut t, &ctx);
             t.refresh_all(&ctx);
             check(&t, &ctx);
         }
@@ -458,7 +546,10 @@ mod tests {
         assert!(!pieces.is_empty());
         // Most members kept: from the parent's counts; few: counted again.
         for keep in [front.len(), 5] {
-            let sub = t.subtable(&front[..keep], &pieces, &mut ctx);
+            let mut sub = t.subtable(&front[..keep], &pieces, &mut ctx);
+            // Rows derived from the parent are exact already; the others
+            // are left uncounted and counted here.
+            sub.refresh_all(&ctx);
             check(&sub, &ctx);
         }
     }
