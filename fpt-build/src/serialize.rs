@@ -897,10 +897,17 @@ mod tests {
         use fpt_nostd::effects::Effects;
         use fpt_nostd::format::{FormatError, EDGE_DRAWN};
         let t = sample(DVec3::ZERO);
-        let plain = serialize(&t, &SerializeOptions::default()).unwrap();
+        // 16-byte records: the offsets below come from `Sections::new`,
+        // which lays out the sections of a file without the compact
+        // records' layout section and colour table.
+        let wide = SerializeOptions {
+            compact: false,
+            ..SerializeOptions::default()
+        };
+        let plain = serialize(&t, &wide).unwrap();
         let opts = SerializeOptions {
             effects: Some(Effects::defaults(false).with(Effects::OUTLINE).bits()),
-            ..SerializeOptions::default()
+            ..wide
         };
         let bytes = serialize(&t, &opts).unwrap();
         let (a, b) = (
