@@ -55,7 +55,7 @@ impl core::fmt::Display for CapacityError {
 /// use fpt_nostd::reader::Tree;
 /// use fpt_nostd::render::{check_capacities, CapacityError};
 ///
-/// let tree = Tree::from_bytes(include_bytes!("../../firmware/trees/vise.fpt")).unwrap();
+/// let tree = Tree::from_bytes(include_bytes!("../../../firmware/trees/vise.fpt")).unwrap();
 /// let need = tree.capacities();
 /// assert!(matches!(
 ///     check_capacities::<64, 8>(&tree),

@@ -156,7 +156,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     /// use fpt_nostd::reader::Tree;
     /// use fpt_nostd::render::{BandBuffer, BandError, Frame, TreeRenderer};
     ///
-    /// let tree = Tree::from_bytes(include_bytes!("../../firmware/trees/vise.fpt")).unwrap();
+    /// let tree = Tree::from_bytes(include_bytes!("../../../firmware/trees/vise.fpt")).unwrap();
     /// let mut r = TreeRenderer::<FloatLibm<4>, 64>::new(64, 64).unwrap();
     /// let orbit = Orbit::framing::<Libm>(tree.bounding_radius(), 0.5, 0.4, 1.0, 1.0);
     /// let frame = Frame::relative(&tree, &orbit.camera::<Libm>(1.0));
