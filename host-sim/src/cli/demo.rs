@@ -16,7 +16,7 @@
 //! turntable GIF. It prints the build statistics and where every file is.
 
 use super::display::Panel;
-use super::render::{render_job, save_png, save_png_as, CameraSpec, Format, Job};
+use super::render::{render_job, save_png, save_png_as, CameraSpec, Format, Job, Look};
 use super::turntable::{encode, Spin};
 use super::CliResult;
 use crate::build::{build, NoProgress, DEFAULT_SEED};
@@ -163,12 +163,14 @@ fn demo_scene(show: &Show, out: &Path, slivers: bool) -> CliResult {
             },
             format: show.format,
             band: None,
-            shade: show.shade,
-            background: show.background,
+            look: Look {
+                background: show.background,
+                shade: show.shade,
+                slivers,
+            },
             ids: false,
             effects: None,
             gray_levels: None,
-            slivers,
         };
         let r = render_job(&t, &job, PRECISION)?;
         let png = out.join(format!("{}_{}.png", s.name, k + 1));
@@ -250,12 +252,14 @@ fn demo_effects(out: &Path, slivers: bool) -> CliResult {
             },
             format,
             band: None,
-            shade: ShadeMode::Lambert,
-            background: Rgb888::new(0, 0, 0),
+            look: Look {
+                background: Rgb888::new(0, 0, 0),
+                shade: ShadeMode::Lambert,
+                slivers,
+            },
             ids: false,
             effects: Some(effects),
             gray_levels,
-            slivers,
         };
         let r = render_job(&t, &job, PRECISION)?;
         let png = out.join(format!("vise_{name}.png"));
@@ -293,7 +297,11 @@ fn demo_coloured(out: &Path, slivers: bool) -> CliResult {
         bytes.len(),
         tree_path.display()
     );
-    let background = Rgb888::new(30, 34, 44);
+    let look = Look {
+        background: Rgb888::new(30, 34, 44),
+        shade: ShadeMode::Lambert,
+        slivers,
+    };
     let camera = |yaw: f64, pitch: f64| CameraSpec::Orbit {
         yaw,
         pitch,
@@ -307,12 +315,10 @@ fn demo_coloured(out: &Path, slivers: bool) -> CliResult {
         camera: camera(35.0, 25.0),
         format: Format::Rgb888,
         band: None,
-        shade: ShadeMode::Lambert,
-        background,
+        look,
         ids: false,
         effects: None,
         gray_levels: None,
-        slivers,
     };
     let r = render_job(&t, &job, PRECISION)?;
     let png = out.join("robot_1.png");
@@ -329,9 +335,7 @@ fn demo_coloured(out: &Path, slivers: bool) -> CliResult {
         frames: 36,
         fps: 12,
         camera: camera(35.0, 20.0),
-        shade: ShadeMode::Lambert,
-        background,
-        slivers,
+        look,
     };
     let gif = encode(&t, &spin, PRECISION)?;
     let gif_path = out.join("robot_spin.gif");

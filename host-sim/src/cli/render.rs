@@ -218,14 +218,17 @@ pub struct LookArgs {
     pub no_slivers: bool,
 }
 
-/// [`LookArgs`] checked: what a [`Job`] takes from them.
-#[derive(Clone, Copy, Debug)]
+/// [`LookArgs`] checked: how a [`Job`] paints, beside its geometry.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Look {
     /// Background colour.
     pub background: Rgb888,
     /// Shading mode.
     pub shade: ShadeMode,
-    /// Whether the sliver pass runs ([`Job::slivers`]).
+    /// Whether the renderer draws slivers (`Renderer::set_slivers`): on
+    /// for the pictures of the host commands, so that a closed model shows
+    /// no background pixel inside its silhouette; off for the accuracy
+    /// study, which measures the plain pipeline a firmware runs by default.
     pub slivers: bool,
 }
 
@@ -283,21 +286,14 @@ pub struct Job {
     pub format: Format,
     /// Rows per band, `None` for the full-frame path.
     pub band: Option<u32>,
-    /// Shading mode.
-    pub shade: ShadeMode,
-    /// Background colour.
-    pub background: Rgb888,
+    /// Background, shading and slivers.
+    pub look: Look,
     /// Whether to produce the id buffer too.
     pub ids: bool,
     /// Effects instead of the tree's.
     pub effects: Option<Effects>,
     /// Grey levels of a `Gray8` panel (`None`: 256, or 16 when dithering).
     pub gray_levels: Option<u16>,
-    /// Whether the renderer draws slivers (`Renderer::set_slivers`): on
-    /// for the pictures of the host commands, so that a closed model shows
-    /// no background pixel inside its silhouette; off for the accuracy
-    /// study, which measures the plain pipeline a firmware runs by default.
-    pub slivers: bool,
 }
 
 /// A finished picture: the framebuffer storage of its format.
@@ -369,22 +365,22 @@ fn render_with<P: Precision>(tree: &Tree<'_>, job: &Job) -> Result<Rendered, Cli
             .ok_or_else(|| cli_err!("bad image size {}x{}", job.w, job.h))?,
     );
     let frame = job.camera.frame::<P::Math>(tree, job.w, job.h);
-    tr.renderer.set_shade_mode(job.shade);
+    tr.renderer.set_shade_mode(job.look.shade);
     tr.renderer
         .set_light(Light::new(frame.key_light(), 0.25, 0.75));
     tr.renderer.set_effects(job.effects);
-    tr.renderer.set_slivers(job.slivers);
+    tr.renderer.set_slivers(job.look.slivers);
     let (near, far) = frame.depth_range(tree);
     tr.renderer.set_depth_cue(DepthCue {
         near,
         far,
-        fog: job.background,
+        fog: job.look.background,
         ..DepthCue::default()
     });
     let fx = job.effects.unwrap_or(Effects::from_bits(tree.effects()));
     let dither = fx.contains(Effects::DITHER);
     let start = Instant::now();
-    let bg = job.background;
+    let bg = job.look.background;
     let (image, stats) = match job.format {
         Format::Rgb565 => {
             let (v, s) = draw::<P, Rgb565Format>(&mut tr, tree, &frame, job, bg.into())?;
@@ -498,7 +494,7 @@ where
             sink = sink.rounding();
         }
         let paint = fpt_nostd::raster::Paint {
-            rgb: job.background,
+            rgb: job.look.background,
             id: 0,
         };
         let bg = fpt_nostd::raster::SpanSink::color(&sink, &paint);
@@ -689,12 +685,10 @@ pub fn run(a: &RenderArgs) -> CliResult {
         camera,
         format,
         band: a.band,
-        shade: look.shade,
-        background: look.background,
+        look,
         ids: a.ids.is_some(),
         effects,
         gray_levels: a.gray_levels,
-        slivers: look.slivers,
     };
     let r = render_job(&tree, &job, &a.look.precision)?;
     if let Some(path) = &a.ids {

@@ -19,14 +19,12 @@
 
 use super::render::{
     open_tree, orbit_camera, parse_size, read_tree, render_job, CameraSpec, Format, Image, Job,
-    LookArgs, OrbitArgs,
+    Look, LookArgs, OrbitArgs,
 };
 use super::{CliError, CliResult};
 use crate::cli_err;
 use crate::output::write_atomic;
 use clap::Args;
-use embedded_graphics::pixelcolor::Rgb888;
-use fpt_nostd::raster::ShadeMode;
 use fpt_nostd::reader::Tree;
 use std::path::PathBuf;
 
@@ -84,12 +82,8 @@ pub struct Spin {
     /// The camera of frame 0; an orbit's yaw advances by `360° / frames`
     /// each frame.
     pub camera: CameraSpec,
-    /// Shading mode.
-    pub shade: ShadeMode,
-    /// Background colour.
-    pub background: Rgb888,
-    /// Whether slivers are drawn ([`Job::slivers`]).
-    pub slivers: bool,
+    /// Background, shading and slivers of every frame.
+    pub look: Look,
 }
 
 /// `fpt turntable`.
@@ -123,9 +117,7 @@ pub fn run(a: &TurntableArgs) -> CliResult {
         frames: a.frames,
         fps: a.fps,
         camera: orbit_camera(&a.orbit, &tree, w, h)?,
-        shade: look.shade,
-        background: look.background,
-        slivers: look.slivers,
+        look,
     };
     let gif = encode(&tree, &spin, &a.look.precision)?;
     write_atomic(&a.output, &gif).map_err(|e| cli_err!("{}: {e}", a.output.display()))?;
@@ -177,12 +169,10 @@ pub fn encode(tree: &Tree<'_>, spin: &Spin, precision: &str) -> Result<Vec<u8>, 
                 camera,
                 format: Format::Rgb888,
                 band: None,
-                shade: spin.shade,
-                background: spin.background,
+                look: spin.look,
                 ids: false,
                 effects: None,
                 gray_levels: None,
-                slivers: spin.slivers,
             };
             let Image::Rgb888(rgb) = render_job(tree, &job, precision)?.image else {
                 return Err(cli_err!("the renderer returned no 24-bit picture"));

@@ -21,7 +21,7 @@
 //!   of the builder's `f64` vertex.
 
 use crate::build::{build, NoProgress, DEFAULT_SEED};
-use crate::cli::render::{render_job, resolve_precision, CameraSpec, Format, Job};
+use crate::cli::render::{render_job, resolve_precision, CameraSpec, Format, Job, Look};
 use crate::cli::CliError;
 use crate::cli_err;
 use crate::geom::Polygon;
@@ -372,12 +372,14 @@ pub fn job(camera: CameraSpec, w: u32, h: u32, ids: bool) -> Job {
         camera,
         format: Format::Rgb565,
         band: None,
-        shade: ShadeMode::Lambert,
-        background: Rgb888::new(0, 0, 0),
+        look: Look {
+            background: Rgb888::new(0, 0, 0),
+            shade: ShadeMode::Lambert,
+            slivers: false,
+        },
         ids,
         effects: None,
         gray_levels: None,
-        slivers: false,
     }
 }
 
@@ -422,14 +424,14 @@ pub fn render_raw_q16(tree: &Tree<'_>, job: &Job) -> Result<Vec<u32>, CliError> 
         TreeRenderer::<P, RAW_VERTS>::new(w, h).ok_or_else(|| cli_err!("bad size {w}x{h}"))?,
     );
     let frame = job.camera.frame::<<P as Precision>::Math>(tree, w, h);
-    tr.renderer.set_shade_mode(job.shade);
+    tr.renderer.set_shade_mode(job.look.shade);
     tr.renderer
         .set_light(Light::new(frame.key_light(), 0.25, 0.75));
     tr.renderer.set_effects(job.effects);
     let mut px = vec![0u16; Framebuffer::<Rgb565Format>::required_len(w, h)];
     let mut fb = Framebuffer::<Rgb565Format>::new(&mut px, w, h)
         .map_err(|e| cli_err!("framebuffer: {e:?}"))?;
-    fb.fill_all(job.background.into());
+    fb.fill_all(job.look.background.into());
     fn draw<K: SpanSink>(
         tr: &mut TreeRenderer<RawQ16, RAW_VERTS>,
         tree: &Tree<'_>,

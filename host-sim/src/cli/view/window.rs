@@ -59,12 +59,10 @@ pub fn run(a: &ViewArgs) -> CliResult {
                 camera: orbit.camera(&start),
                 format: Format::Rgb888,
                 band: None,
-                shade: look.shade,
-                background: look.background,
+                look,
                 ids: false,
                 effects: None,
                 gray_levels: None,
-                slivers: look.slivers,
             };
             let Image::Rgb888(rgb) = render_job(&tree, &job, &a.look.precision)?.image else {
                 return Err(cli_err!("the renderer returned no 24-bit picture"));
