@@ -30,6 +30,7 @@ use fpt_nostd::effects::{Effects, Pipeline};
 use fpt_nostd::raster::{Light, Rgb565Framebuffer};
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::TreeRenderer;
+use static_cell::ConstStaticCell;
 
 /// The scene's declared effects, and nothing else, compiled in.
 type Product = Pipeline<{ Effects::defaults(true).bits() }>;
@@ -50,16 +51,27 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
     }
 }
 
+/// The renderer, in a static like the frame set's (`src/main.rs`): its
+/// scratch buffers on the stack, beside the 112.5 KiB frame, overflowed
+/// the RAM into the frame (a bus fault on a pixel read as an address);
+/// call once.
+#[inline(never)]
+fn renderer() -> Option<&'static mut TreeRenderer<FramePrecision, MAX_VERTS, Product>> {
+    static RENDERER: ConstStaticCell<Option<TreeRenderer<FramePrecision, MAX_VERTS, Product>>> =
+        ConstStaticCell::new(TreeRenderer::new(WIDTH, HEIGHT));
+    RENDERER.take().as_mut()
+}
+
 #[entry]
 fn main() -> ! {
     // SAFETY: the only reference to FRAME, taken once here.
     let buf: &mut [u16] = unsafe { &mut *core::ptr::addr_of_mut!(FRAME) };
     let ok = match (
         Tree::from_bytes(TREE),
-        TreeRenderer::<FramePrecision, MAX_VERTS, Product>::new(WIDTH, HEIGHT),
+        renderer(),
         Rgb565Framebuffer::new(buf, WIDTH, HEIGHT),
     ) {
-        (Ok(tree), Some(mut r), Ok(mut fb)) => {
+        (Ok(tree), Some(r), Ok(mut fb)) => {
             let frame = VIEWS[0].frame(&tree);
             // The frame set's light (`fpt_frames`).
             r.renderer

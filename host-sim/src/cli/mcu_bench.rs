@@ -298,10 +298,23 @@ pub fn target_installed(target: &str) -> bool {
 }
 
 /// The firmware's directory: `FPT_FIRMWARE_DIR`, or the repository's.
+///
+/// Made absolute: the firmware build runs in this directory with
+/// `CARGO_TARGET_DIR` below it, and cargo resolves a relative target
+/// directory from its own working directory, so `FPT_FIRMWARE_DIR=firmware`
+/// built into `firmware/firmware/target` while the ELF was copied from
+/// `firmware/target`: a stale one when that existed (measured without a
+/// word of warning).
 fn firmware_dir() -> PathBuf {
-    std::env::var_os("FPT_FIRMWARE_DIR")
+    firmware_dir_from(std::env::var_os("FPT_FIRMWARE_DIR"))
+}
+
+/// [`firmware_dir`] for the variable's value `var`.
+fn firmware_dir_from(var: Option<std::ffi::OsString>) -> PathBuf {
+    let dir = var
         .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../firmware"))
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../firmware"));
+    std::path::absolute(&dir).unwrap_or(dir)
 }
 
 /// Runs `cmd` to completion within `limit`: exit success, stdout, stderr.
@@ -740,6 +753,16 @@ fn measure(b: &Bench, name: &str, elf: &Path, host: &[u32], tree: &Tree<'_>) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_relative_firmware_dir_is_made_absolute() {
+        let cwd = std::env::current_dir().unwrap();
+        assert_eq!(
+            firmware_dir_from(Some("firmware".into())),
+            cwd.join("firmware")
+        );
+        assert!(firmware_dir_from(None).is_absolute());
+    }
 
     #[test]
     fn sizes_parse_and_refuse() {
