@@ -739,6 +739,9 @@ pub(crate) struct PolygonAt<'t, 'a> {
     /// first index), and loading and range-checking the record for each
     /// cost the Cortex-M4F frame more than the bit fields themselves.
     rec: u64,
+    /// The next polygon's compact record (read with this one's: its first
+    /// index ends this one's index range); unused for the last polygon.
+    next: u64,
 }
 
 impl<'t, 'a> PolygonAt<'t, 'a> {
@@ -751,8 +754,18 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
     /// Polygon `id` of `g`, its compact record read once.
     #[inline(always)]
     fn new(g: &'t Geometry<'a>, id: u32) -> PolygonAt<'t, 'a> {
-        let rec = if g.compact { g.compact_record(id) } else { 0 };
-        PolygonAt { g, id, rec }
+        let (rec, next) = if g.compact {
+            // Both records in one read: the polygon section is followed by
+            // at least the index list, so 16 bytes from the last record
+            // are still in the file (and the second half is then unused).
+            let r: [u8; 16] = rd(g.bytes, g.polygon_off(id));
+            let (a, b) = r.split_at(8);
+            let word = |h: &[u8]| u64::from_le_bytes(h.try_into().unwrap_or([0; 8]));
+            (word(a), word(b))
+        } else {
+            (0, 0)
+        };
+        PolygonAt { g, id, rec, next }
     }
 
     /// [`PolygonRef::source`].
@@ -794,7 +807,7 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         let (first, end) = if self.g.compact {
             let first = self.g.field_of(self.rec, 0);
             let end = if self.id < self.g.polygon_count.saturating_sub(1) {
-                self.g.compact_field(self.id.wrapping_add(1), 0)
+                self.g.field_of(self.next, 0)
             } else {
                 self.g.index_count
             };
