@@ -297,11 +297,15 @@ pub fn target_installed(target: &str) -> bool {
     })
 }
 
-/// The firmware's directory: `FPT_FIRMWARE_DIR`, or the repository's.
+/// The firmware's directory: `FPT_FIRMWARE_DIR`, or the repository's;
+/// made absolute. (A relative `FPT_FIRMWARE_DIR=firmware` made cargo,
+/// which runs in that directory, build into `firmware/firmware/target`
+/// while the ELF was taken from `firmware/target`: a stale one, or none.)
 fn firmware_dir() -> PathBuf {
-    std::env::var_os("FPT_FIRMWARE_DIR")
+    let dir = std::env::var_os("FPT_FIRMWARE_DIR")
         .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../firmware"))
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../firmware"));
+    std::fs::canonicalize(&dir).unwrap_or(dir)
 }
 
 /// Runs `cmd` to completion within `limit`: exit success, stdout, stderr.
