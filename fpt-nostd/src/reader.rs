@@ -198,10 +198,10 @@ impl CompactFields {
     fn new(widths: [u8; 4]) -> CompactFields {
         let mut f = CompactFields::default();
         let mut at = 0u8;
-        for k in 0..4 {
-            f.shift[k] = at;
-            f.mask[k] = 1u64.wrapping_shl(u32::from(widths[k])).wrapping_sub(1) as u32;
-            at = at.wrapping_add(widths[k]);
+        for ((shift, mask), &w) in f.shift.iter_mut().zip(&mut f.mask).zip(&widths) {
+            *shift = at;
+            *mask = 1u64.wrapping_shl(u32::from(w)).wrapping_sub(1) as u32;
+            at = at.wrapping_add(w);
         }
         f
     }
@@ -316,13 +316,6 @@ impl<'a> Geometry<'a> {
             .get(at..at.checked_add(EDGE_LEN)?)?
             .try_into()
             .ok()
-    }
-
-    /// The plane of polygon `id < polygon_count`: its run's.
-    #[inline]
-    fn polygon_plane(&self, id: u32) -> Plane {
-        let r = self.polygon_run(id);
-        Plane::from_record(&rec::<RUN_LEN>(self.runs, r as usize))
     }
 
     #[inline]
