@@ -777,7 +777,10 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         if self.g.compact {
             let c = self.g.field_of(self.rec, 3) as usize;
             let at = (HEADER_LEN + LAYOUT_LEN).wrapping_add(c.wrapping_mul(COLOUR_LEN));
-            rd::<3>(self.g.bytes, at)
+            // Four bytes, one load: the table is padded to 4 bytes and
+            // the vertices follow it, so the fourth is always in the file.
+            let c: [u8; 4] = rd(self.g.bytes, at);
+            [c[0], c[1], c[2]]
         } else {
             self.g.polygon_color(self.id)
         }
