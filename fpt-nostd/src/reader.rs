@@ -155,11 +155,15 @@ struct Geometry<'a> {
     /// more words cost 3.8 % of a `bench_city` frame on the Cortex-M4.
     has_edges: bool,
     /// Whether the polygon records are compact ([`FLAG_COMPACT`]): 8
-    /// bytes, bit fields of the widths in `widths`, colours in a table.
+    /// bytes, bit fields described by `fields`, colours in a table.
     compact: bool,
-    /// The compact layout's field widths in bits: first_index, run, source,
-    /// colour index (all 0 for 16-byte records).
-    widths: [u8; 4],
+    /// The compact layout's fields (first_index, run, source, colour
+    /// index), each as where it starts in the record and the mask of its
+    /// width: computed once from the layout section, so that reading a
+    /// field in the walk is one shift and one mask (adding up the widths
+    /// and building the mask for every field read cost the Cortex-M4F
+    /// walk 1.6–2.0 % of a frame). All zero for 16-byte records.
+    fields: CompactFields,
     vertices: usize,
     polygons: usize,
     indices: usize,
@@ -176,6 +180,36 @@ struct Geometry<'a> {
     q16_scale: [f32; 3],
     /// `2^-shift`.
     q32_scale: f32,
+}
+
+/// Where each field of a compact polygon record starts and the mask of its
+/// width (see [`Geometry::compact_field`]).
+#[derive(Clone, Copy, Debug, Default)]
+struct CompactFields {
+    /// First bit of first_index, run, source and colour index.
+    shift: [u8; 4],
+    /// `2^width − 1` of each.
+    mask: [u32; 4],
+}
+
+impl CompactFields {
+    /// The fields of a layout with these widths (each ≤ 32: validated by
+    /// the caller; a wider one would only give a wrong mask, not a panic).
+    fn new(widths: [u8; 4]) -> CompactFields {
+        let mut f = CompactFields::default();
+        let mut at = 0u8;
+        for ((shift, mask), &w) in f.shift.iter_mut().zip(&mut f.mask).zip(&widths) {
+            *shift = at;
+            *mask = 1u64.wrapping_shl(u32::from(w)).wrapping_sub(1) as u32;
+            at = at.wrapping_add(w);
+        }
+        f
+    }
+
+    /// Bits used by the four fields together.
+    fn used_bits(&self) -> u32 {
+        u32::from(self.shift[3]) + self.mask[3].count_ones()
+    }
 }
 
 impl<'a> Geometry<'a> {
@@ -284,13 +318,6 @@ impl<'a> Geometry<'a> {
             .ok()
     }
 
-    /// The plane of polygon `id < polygon_count`: its run's.
-    #[inline]
-    fn polygon_plane(&self, id: u32) -> Plane {
-        let r = self.polygon_run(id);
-        Plane::from_record(&rec::<RUN_LEN>(self.runs, r as usize))
-    }
-
     #[inline]
     fn polygon_off(&self, id: u32) -> usize {
         let len = if self.compact {
@@ -302,22 +329,30 @@ impl<'a> Geometry<'a> {
     }
 
     /// Field `k` (0 first_index, 1 run, 2 source, 3 colour index) of the
-    /// compact record of polygon `id`. Wrapping shifts: the widths are
-    /// validated (each ≤ 32, sum ≤ 56), and a bug yields a wrong number,
-    /// never a panic.
+    /// compact record of polygon `id`, with the shift and mask computed
+    /// once per tree. Wrapping shifts: the widths are validated (each ≤ 32,
+    /// sum ≤ 56), and a bug yields a wrong number, never a panic.
     #[inline(always)]
     fn compact_field(&self, id: u32, k: usize) -> u32 {
-        let r = rd_u64(self.bytes, self.polygon_off(id));
-        let w = self.widths;
-        let shift = match k {
-            0 => 0,
-            1 => u32::from(w[0]),
-            2 => u32::from(w[0]) + u32::from(w[1]),
-            _ => u32::from(w[0]) + u32::from(w[1]) + u32::from(w[2]),
-        };
-        let width = u32::from(w[k & 3]);
-        let mask = 1u64.wrapping_shl(width).wrapping_sub(1);
-        (r.wrapping_shr(shift) & mask) as u32
+        self.field_of(self.compact_record(id), k)
+    }
+
+    /// The compact record of polygon `id`, as one `u64` (0 past the end).
+    #[inline(always)]
+    fn compact_record(&self, id: u32) -> u64 {
+        rd_u64(self.bytes, self.polygon_off(id))
+    }
+
+    /// Field `k` of the compact record `r` (see [`Geometry::compact_field`]).
+    #[inline(always)]
+    fn field_of(&self, r: u64, k: usize) -> u32 {
+        let f = &self.fields;
+        let k = k & 3;
+        if k == 0 {
+            // first_index starts at bit 0: no shift at all.
+            return (r as u32) & f.mask[0];
+        }
+        (r.wrapping_shr(u32::from(f.shift[k])) as u32) & f.mask[k]
     }
 
     /// The run field of polygon `id`.
@@ -582,10 +617,7 @@ impl<'a> PolygonRef<'a> {
     /// The same polygon borrowing this one's copy of the geometry.
     #[inline]
     fn at(&self) -> PolygonAt<'_, 'a> {
-        PolygonAt {
-            g: &self.g,
-            id: self.id,
-        }
+        PolygonAt::new(&self.g, self.id)
     }
 
     /// The face of the input mesh it came from.
@@ -695,37 +727,90 @@ impl<'a> PolygonRef<'a> {
 pub(crate) struct PolygonAt<'t, 'a> {
     g: &'t Geometry<'a>,
     id: u32,
+    /// Its compact record, read once when it is made (0 for 16-byte
+    /// records): a draw reads four of its fields (plane, colour, source,
+    /// first index), and loading and range-checking the record for each
+    /// cost the Cortex-M4F frame more than the bit fields themselves.
+    rec: u64,
+    /// The next polygon's compact record (read with this one's: its first
+    /// index ends this one's index range); unused for the last polygon.
+    next: u64,
 }
 
-impl<'a> PolygonAt<'_, 'a> {
+impl<'t, 'a> PolygonAt<'t, 'a> {
     /// Its id.
     #[inline]
     pub(crate) fn id(&self) -> u32 {
         self.id
     }
 
+    /// Polygon `id` of `g`, its compact record read once.
+    #[inline(always)]
+    fn new(g: &'t Geometry<'a>, id: u32) -> PolygonAt<'t, 'a> {
+        let (rec, next) = if g.compact {
+            // Both records in one read: the polygon section is followed by
+            // at least the index list, so 16 bytes from the last record
+            // are still in the file (and the second half is then unused).
+            let r: [u8; 16] = rd(g.bytes, g.polygon_off(id));
+            let (a, b) = r.split_at(8);
+            let word = |h: &[u8]| u64::from_le_bytes(h.try_into().unwrap_or([0; 8]));
+            (word(a), word(b))
+        } else {
+            (0, 0)
+        };
+        PolygonAt { g, id, rec, next }
+    }
+
     /// [`PolygonRef::source`].
     #[inline]
     pub(crate) fn source(&self) -> u32 {
-        self.g.polygon_source(self.id)
+        if self.g.compact {
+            self.g.field_of(self.rec, 2)
+        } else {
+            self.g.polygon_source(self.id)
+        }
     }
 
     /// [`PolygonRef::color`].
     #[inline]
     pub(crate) fn color(&self) -> [u8; 3] {
-        self.g.polygon_color(self.id)
+        if self.g.compact {
+            let c = self.g.field_of(self.rec, 3) as usize;
+            let at = (HEADER_LEN + LAYOUT_LEN).wrapping_add(c.wrapping_mul(COLOUR_LEN));
+            // Four bytes, one load: the table is padded to 4 bytes and
+            // the vertices follow it, so the fourth is always in the file.
+            let c: [u8; 4] = rd(self.g.bytes, at);
+            [c[0], c[1], c[2]]
+        } else {
+            self.g.polygon_color(self.id)
+        }
     }
 
     /// [`PolygonRef::plane`].
     #[inline]
     pub(crate) fn plane(&self) -> Plane {
-        self.g.polygon_plane(self.id)
+        let r = if self.g.compact {
+            self.g.field_of(self.rec, 1)
+        } else {
+            self.g.polygon_run(self.id)
+        };
+        Plane::from_record(&rec::<RUN_LEN>(self.g.runs, r as usize))
     }
 
     /// [`PolygonRef::vertex_indices`].
     #[inline]
     pub(crate) fn vertex_indices(&self) -> VertexIndices<'a> {
-        let (first, end) = self.g.polygon_range(self.id);
+        let (first, end) = if self.g.compact {
+            let first = self.g.field_of(self.rec, 0);
+            let end = if self.id < self.g.polygon_count.saturating_sub(1) {
+                self.g.field_of(self.next, 0)
+            } else {
+                self.g.index_count
+            };
+            (first, end)
+        } else {
+            self.g.polygon_range(self.id)
+        };
         self.g.indices_of(first, end.saturating_sub(first))
     }
 }
@@ -865,7 +950,7 @@ impl<'a> Tree<'a> {
             bytes,
             has_edges: counts.edges != 0,
             compact,
-            widths,
+            fields: CompactFields::new(widths),
             vertices: s.vertices,
             polygons: s.polygons,
             indices: s.indices,
@@ -1050,6 +1135,19 @@ impl<'a> Tree<'a> {
         self.counts.bunches
     }
 
+    /// Number of bunches that hold at least one polygon: what the
+    /// builder's statistics count (`fpt build --stats`), while
+    /// [`Tree::bunch_count`] also counts the empty `F_j`, `B_j` and `O_k`
+    /// that the node layout stores.
+    pub fn nonempty_bunch_count(&self) -> u32 {
+        let mut n = 0;
+        for b in 0..self.counts.bunches {
+            let (start, end) = self.w.bunch(b);
+            n += u32::from(end > start);
+        }
+        n
+    }
+
     /// Number of levels over all connecting nodes.
     pub fn level_count(&self) -> u32 {
         self.level_count
@@ -1111,7 +1209,7 @@ impl<'a> Tree<'a> {
     /// `id ≥ polygon_count()`.
     #[inline]
     pub(crate) fn polygon_at(&self, id: u32) -> Option<PolygonAt<'_, 'a>> {
-        (id < self.counts.polygons).then_some(PolygonAt { g: &self.g, id })
+        (id < self.counts.polygons).then(|| PolygonAt::new(&self.g, id))
     }
 
     /// Stored vertex `v` relative to the origin, decoded to `f32`.

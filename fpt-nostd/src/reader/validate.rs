@@ -60,7 +60,7 @@ impl Tree<'_> {
         if !self.g.compact {
             return Ok(());
         }
-        let used: u32 = self.g.widths.iter().map(|&w| u32::from(w)).sum();
+        let used = self.g.fields.used_bits();
         let spare = (1u64 << (COMPACT_HIDDEN_SHIFT - used.min(COMPACT_HIDDEN_SHIFT))) - 1;
         for p in 0..self.counts.polygons {
             let r = rd_u64(self.g.bytes, self.g.polygon_off(p));

@@ -172,7 +172,11 @@ pub fn stats_json(tree: &FpTree, seed: u64) -> serde_json::Value {
         "splittings": splittings,
         "connecting_nodes": connecting_nodes,
         "switch_nodes": switch_nodes,
-        "bunches": bunches,
+        // As `fpt info` counts them: the bunches the file stores (every
+        // level's `F_j` and `B_j` and every switch's `O_k`, empty or not),
+        // and those that hold polygons (the paper's count, `Stats::bunches`).
+        "bunches": 2 * levels + switch_nodes,
+        "nonempty_bunches": bunches,
         "levels": levels,
         "relations": relations,
         "max_depth": max_depth,

@@ -173,7 +173,11 @@ pub fn info(a: &InfoArgs) -> CliResult {
     println!("vertices:          {}", t.vertex_count());
     println!("vertex indices:    {}", t.index_count());
     println!("plane runs:        {}", t.run_count());
-    println!("bunches:           {}", t.bunch_count());
+    println!(
+        "bunches:           {} ({} non-empty)",
+        t.bunch_count(),
+        t.nonempty_bunch_count()
+    );
     println!("levels:            {}", t.level_count());
     println!("connecting nodes:  {}", t.node_count());
     println!("switch nodes:      {}", t.switch_count());
@@ -295,6 +299,7 @@ pub fn bench_order(a: &BenchOrderArgs) -> CliResult {
         "switches": tree.switch_count(),
         "levels": tree.level_count(),
         "bunches": tree.bunch_count(),
+        "nonempty_bunches": tree.nonempty_bunch_count(),
         "runs": tree.run_count(),
         "ns_per_view": elapsed * 1e9 / walks,
         "emitted_per_view": emitted as f64 / n,

@@ -256,3 +256,153 @@ fn bad_files_and_arguments_exit_2() {
     std::fs::remove_file(path).ok();
     std::fs::remove_file(corrupt).ok();
 }
+
+/// Boxes of several heights on a 3 × 3 grid, as one OBJ: a concave scene
+/// whose trees have switch nodes and empty bunches.
+fn boxes_obj() -> String {
+    let mut obj = String::new();
+    let mut base = 0;
+    for i in 0..9 {
+        let (x, z) = (f64::from(i % 3) * 1.5, f64::from(i / 3) * 1.5);
+        let h = 1.0 + f64::from((i * 5) % 4) * 0.7;
+        for (dx, dy, dz) in [
+            (0., 0., 0.),
+            (1., 0., 0.),
+            (1., h, 0.),
+            (0., h, 0.),
+            (0., 0., 1.),
+            (1., 0., 1.),
+            (1., h, 1.),
+            (0., h, 1.),
+        ] {
+            obj += &format!("v {} {} {}\n", x + dx, dy, z + dz);
+        }
+        for f in [
+            [1, 4, 3, 2],
+            [5, 6, 7, 8],
+            [1, 2, 6, 5],
+            [2, 3, 7, 6],
+            [3, 4, 8, 7],
+            [4, 1, 5, 8],
+        ] {
+            let f = f.map(|v| (v + base).to_string());
+            obj += &format!("f {}\n", f.join(" "));
+        }
+        base += 8;
+    }
+    obj
+}
+
+/// `fpt info`'s counts as name → number (the first number of each line).
+fn info_counts(tree: &str) -> std::collections::HashMap<String, u64> {
+    let out = fpt(&["info", tree]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut m = std::collections::HashMap::new();
+    for line in text.lines() {
+        let Some((key, rest)) = line.split_once(':') else {
+            continue;
+        };
+        if let Some(n) = rest.split_whitespace().next().and_then(|w| w.parse().ok()) {
+            m.insert(key.trim().to_string(), n);
+        }
+        // "bunches: N (M non-empty)"
+        if key.trim() == "bunches" {
+            let m2 = rest
+                .split('(')
+                .nth(1)
+                .and_then(|r| r.split_whitespace().next());
+            m.insert(
+                "non-empty bunches".to_string(),
+                m2.and_then(|w| w.parse().ok()).expect("non-empty count"),
+            );
+        }
+    }
+    m
+}
+
+/// Issue 15 item 7: the stats file of `fpt build --stats` and `fpt info`
+/// of the tree it wrote agree on every count they both give (the stats
+/// file used to count only the non-empty bunches, `fpt info` all the
+/// stored ones: 76 against 129 on a CAD part).
+#[test]
+fn info_and_stats_agree_on_every_count() {
+    let dir = std::env::temp_dir();
+    let mesh = dir.join(format!("fpt-cli-format-{}-boxes.obj", std::process::id()));
+    std::fs::write(&mesh, boxes_obj()).unwrap();
+    let mut saw_empty = false;
+    for method in ["static", "dynamic", "bsp"] {
+        let tree = dir.join(format!(
+            "fpt-cli-format-{}-boxes-{method}.fpt",
+            std::process::id()
+        ));
+        let stats = dir.join(format!(
+            "fpt-cli-format-{}-boxes-{method}.json",
+            std::process::id()
+        ));
+        let out = fpt(&[
+            "build",
+            mesh.to_str().unwrap(),
+            "-o",
+            tree.to_str().unwrap(),
+            "--method",
+            method,
+            "--stats",
+            stats.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
+        let info = info_counts(tree.to_str().unwrap());
+        for (stat, line) in [
+            ("output_polygons", "polygons"),
+            ("connecting_nodes", "connecting nodes"),
+            ("switch_nodes", "switch nodes"),
+            ("levels", "levels"),
+            ("bunches", "bunches"),
+            ("nonempty_bunches", "non-empty bunches"),
+            ("max_depth", "max depth"),
+        ] {
+            assert_eq!(
+                v[stat].as_u64(),
+                info.get(line).copied(),
+                "{method}: stats {stat} against info {line}"
+            );
+        }
+        let closed = info_volume_closed(tree.to_str().unwrap());
+        assert_eq!(v["closed"].as_bool(), Some(closed), "{method}: volume");
+        // bench-order's JSON gives the same counts.
+        let b = json_ok(&["bench-order", tree.to_str().unwrap(), "--views", "4"]);
+        for key in ["bunches", "nonempty_bunches", "levels", "switch_nodes"] {
+            let k = if key == "switch_nodes" {
+                "switches"
+            } else {
+                key
+            };
+            assert_eq!(b[k].as_u64(), v[key].as_u64(), "{method}: bench-order {k}");
+        }
+        saw_empty |= v["bunches"].as_u64() > v["nonempty_bunches"].as_u64();
+        std::fs::remove_file(tree).ok();
+        std::fs::remove_file(stats).ok();
+    }
+    // The case the issue saw: empty bunches stored, so the two counts differ.
+    assert!(saw_empty, "no tree of the boxes has an empty bunch");
+    std::fs::remove_file(mesh).ok();
+}
+
+/// Whether `fpt info` says the volume is closed.
+fn info_volume_closed(tree: &str) -> bool {
+    let out = fpt(&["info", tree]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    text.lines()
+        .find_map(|l| l.strip_prefix("volume:"))
+        .map(|v| v.trim() == "closed")
+        .expect("a volume line")
+}

@@ -121,6 +121,11 @@ fn same_polygons(compact: &[u8], wide: &[u8]) {
         let ia: Vec<u32> = a.vertex_indices().collect();
         let ib: Vec<u32> = b.vertex_indices().collect();
         assert_eq!(ia, ib);
+        // The renderers' path (the record read once, with the next
+        // polygon's first index; the last polygon ends at the index count)
+        // gives the same indices.
+        let fast: Vec<u32> = c.polygon_vertex_indices(id).collect();
+        assert_eq!(fast, ia, "polygon {id}");
     }
     let n = c.polygon_count() as usize;
     let table = (3 * c.colour_count() as usize).next_multiple_of(4);
