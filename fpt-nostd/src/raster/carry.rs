@@ -29,6 +29,7 @@ use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use super::chain::TriangleBand;
 use super::edge::{Dda32, SMALL};
 use super::scan::{pair_rows, Pair, SpanSink};
+use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
 
 /// Words (`u32`) a kept triangle takes in the ring.
@@ -53,6 +54,14 @@ pub(crate) struct Tri {
     /// Whether the long edge is the left one (else the right one).
     ab: bool,
 }
+
+/// Whether bands keep cut triangles: on cores with an FPU (the
+/// Cortex-M4F). On a Cortex-M0 its 16 KiB rarely leave room for the band
+/// index, let alone kept triangles, and the larger replay cost it 1.4 %
+/// (measured, `fpt mcu-bench --cpu m0`): there the replay is the one
+/// before (`TriangleBand::fill`). This crate's tests use it on every
+/// target.
+pub(crate) const CARRY: bool = HAS_FPU || cfg!(test);
 
 /// What [`TriangleBand::start`] found.
 #[derive(Clone, Copy, Debug)]
@@ -253,11 +262,13 @@ impl Ring {
     #[inline(always)]
     pub(crate) fn pop(&mut self, words: &[u32]) -> Option<(Tri, Rgb888)> {
         let at = self.head * WORDS;
-        let w: [u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
-        self.skip(words);
+        // By reference and word by word: a copy of the array is a `memcpy`
+        // call.
+        let w: &[u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
         let lo = |x: u32| i32::from(x as u16 as i16);
         let hi = |x: u32| (x as i32) >> 16;
         let dda = |k: usize| Dda32::from_words([w[k], w[k + 1], w[k + 2], w[k + 3], w[k + 4]]);
+        let c = w[14];
         let tri = Tri {
             long: dda(0),
             short: dda(5),
@@ -271,10 +282,10 @@ impl Ring {
             },
             mid: lo(w[12]),
             end: hi(w[12]),
-            upper: w[14] & 1 << 24 != 0,
-            ab: w[14] & 1 << 25 != 0,
+            upper: c & 1 << 24 != 0,
+            ab: c & 1 << 25 != 0,
         };
-        let c = w[14];
+        self.skip(words);
         Some((tri, Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)))
     }
 
@@ -298,6 +309,9 @@ impl Ring {
         let Some(out) = words.get_mut(at..at + WORDS) else {
             return false;
         };
+        let Ok(out) = <&mut [u32; WORDS]>::try_from(out) else {
+            return false;
+        };
         let pack = |a: i32, b: i32| (a as u16 as u32) | (b as u32) << 16;
         let [l0, l1, l2, l3, l4] = tri.long.to_words();
         let [s0, s1, s2, s3, s4] = tri.short.to_words();
@@ -306,23 +320,22 @@ impl Ring {
             | u32::from(rgb.b()) << 16
             | u32::from(tri.upper) << 24
             | u32::from(tri.ab) << 25;
-        out.copy_from_slice(&[
-            l0,
-            l1,
-            l2,
-            l3,
-            l4,
-            s0,
-            s1,
-            s2,
-            s3,
-            s4,
-            pack(tri.m.x, tri.m.y),
-            pack(tri.u.x, tri.u.y),
-            pack(tri.mid, tri.end),
-            pack(offset as i32, row),
-            c,
-        ]);
+        // Word by word: a copy of an array is a `memcpy` call.
+        out[0] = l0;
+        out[1] = l1;
+        out[2] = l2;
+        out[3] = l3;
+        out[4] = l4;
+        out[5] = s0;
+        out[6] = s1;
+        out[7] = s2;
+        out[8] = s3;
+        out[9] = s4;
+        out[10] = pack(tri.m.x, tri.m.y);
+        out[11] = pack(tri.u.x, tri.u.y);
+        out[12] = pack(tri.mid, tri.end);
+        out[13] = pack(offset as i32, row);
+        out[14] = c;
         self.len += 1;
         self.most = self.most.max(self.len);
         true

@@ -22,7 +22,7 @@
 //!   equals stepping from an earlier row), so pixels are identical,
 //!   shared edges included.
 
-use super::edge::Dda32;
+use super::edge::{Dda32, SMALL};
 use super::scan::{pair_rows, Bbox, Pair, SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
@@ -258,23 +258,19 @@ impl TriangleBand {
 
     /// Fills triangle `pts` as `fill_polygon_in` would with this band's
     /// set-up (the same spans, in the same order), or `None`, with nothing
-    /// emitted, when a point is outside ±`SMALL` (the general path):
-    /// [`TriangleBand::start`] then [`TriangleBand::run`], what the replay
-    /// does (`super::carry`). Tests only: the replay calls the two itself
-    /// (it keeps the state of a triangle cut by the band's end).
-    #[cfg(test)]
+    /// emitted, when a point is outside ±`SMALL` (the general path).
+    #[inline(always)]
     pub(crate) fn fill<K: SpanSink>(
         &self,
         pts: [ScreenPt; 3],
         color: K::Color,
         sink: &mut K,
     ) -> Option<usize> {
-        use super::carry::Start;
-        match self.start(pts) {
-            Start::Outside => None,
-            Start::Empty => Some(0),
-            Start::Rows(mut t, y) => Some(self.run(&mut t, y, color, sink)),
+        let near = |p: &ScreenPt| p.x.abs() < SMALL && p.y.abs() < SMALL;
+        if !pts.iter().all(near) {
+            return None;
         }
+        Some(fill_triangle(pts, self.sub, &self.b, color, sink))
     }
 }
 

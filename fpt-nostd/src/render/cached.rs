@@ -47,7 +47,7 @@ use super::{face_of, walk_effects, BandBuffer, FaceIds, Frame, RenderError, Walk
 use crate::effects::{Compiled, Effects};
 use crate::format::VertexFormat;
 use crate::order::{memo_words, Class, Order, OrderError, MEMO};
-use crate::raster::carry::{Ring, Start, WORDS as CARRY_WORDS};
+use crate::raster::carry::{Ring, Start, CARRY, WORDS as CARRY_WORDS};
 use crate::raster::clip::ClipVert;
 use crate::raster::int_path::q16_camera;
 use crate::raster::list::{DisplayList, Entry, Kind, Points};
@@ -602,7 +602,7 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
     let tri = r.triangle_band(scratch, sink);
     // Kept triangles carry their colour, not their id: only for sinks
     // that paint without ids.
-    let carry = tri.filter(|_| !K::NEEDS_ID && !words.is_empty());
+    let carry = tri.filter(|_| CARRY && !K::NEEDS_ID && !words.is_empty());
     ring.begin(words);
     let keep = keep && carry.is_some();
     let mut want = ring.peek(words);
@@ -682,15 +682,23 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
                     rgb: e.rgb,
                     id: e.id,
                 });
-                match band.start([a, b, c]) {
-                    Start::Outside => {}
-                    Start::Empty => continue,
-                    Start::Rows(mut t, y) => {
-                        spans += band.run(&mut t, y, color, sink) as u64;
-                        if keep && band.continues(&t) {
-                            ring.push(words, &t, (here, band.end_row()), e.rgb);
-                        }
+                if !CARRY {
+                    // The replay without kept triangles (a smaller loop).
+                    if let Some(s) = band.fill([a, b, c], color, sink) {
+                        spans += s as u64;
                         continue;
+                    }
+                } else {
+                    match band.start([a, b, c]) {
+                        Start::Outside => {}
+                        Start::Empty => continue,
+                        Start::Rows(mut t, y) => {
+                            spans += band.run(&mut t, y, color, sink) as u64;
+                            if keep && band.continues(&t) {
+                                ring.push(words, &t, (here, band.end_row()), e.rgb);
+                            }
+                            continue;
+                        }
                     }
                 }
             }
