@@ -185,6 +185,21 @@ impl TriangleBand {
     }
 }
 
+/// Most triangles a ring keeps at once. A band of socket's orbit keeps
+/// up to about 40 and its replay holds two bands' worth; the cap keeps
+/// the memory a frame reports (`RenderStats::memory_used`, what `fpt
+/// mcu-bench` gives the firmware by default) within what the Cortex-M4F's
+/// 32 KiB budget leaves beside the list: 64 × 60 B = 3.75 KiB. A triangle
+/// beyond it is set up again in the next band (measured: socket's 16-row
+/// bands, 78 entries at most without the cap).
+pub(crate) const MAX_KEPT: usize = 64;
+
+/// Entries a ring over `words` holds.
+#[inline(always)]
+fn capacity(words: &[u32]) -> usize {
+    (words.len() / WORDS).min(MAX_KEPT)
+}
+
 /// A ring of kept triangles over caller words: the ones the previous band
 /// kept (its **incoming**, read in order by the band being replayed) and
 /// the ones this band keeps for the next, appended behind them.
@@ -226,7 +241,7 @@ impl Ring {
     /// Starts a band: what the band before left unmet is dropped, and
     /// what it kept becomes this band's incoming.
     pub(crate) fn begin(&mut self, words: &[u32]) {
-        let cap = words.len() / WORDS;
+        let cap = capacity(words);
         if cap == 0 {
             self.clear();
             return;
@@ -246,10 +261,16 @@ impl Ring {
         Some(((w & 0xffff) as usize, (w as i32) >> 16))
     }
 
+    /// Whether [`Ring::push`] has room for one more entry.
+    #[inline(always)]
+    pub(crate) fn has_room(&self, words: &[u32]) -> bool {
+        self.len < capacity(words)
+    }
+
     /// Drops the next incoming entry.
     #[inline(always)]
     pub(crate) fn skip(&mut self, words: &[u32]) {
-        let cap = words.len() / WORDS;
+        let cap = capacity(words);
         if self.incoming == 0 || cap == 0 {
             return;
         }
@@ -301,7 +322,7 @@ impl Ring {
         (offset, row): (usize, i32),
         rgb: Rgb888,
     ) -> bool {
-        let cap = words.len() / WORDS;
+        let cap = capacity(words);
         if self.len >= cap || offset > usize::from(u16::MAX) {
             return false;
         }
@@ -464,6 +485,17 @@ mod tests {
         assert_eq!(ring.peek(&words), Some((12, 8)));
         ring.skip(&words);
         assert_eq!(ring.peek(&words), None);
+        // Never more than `MAX_KEPT`, however many words.
+        let mut many = std::vec![0u32; (MAX_KEPT + 5) * WORDS];
+        let mut big = Ring::new();
+        big.begin(&many);
+        for k in 0..MAX_KEPT {
+            assert!(big.has_room(&many));
+            assert!(big.push(&mut many, &t, (k, 4), rgb));
+        }
+        assert!(!big.has_room(&many));
+        assert!(!big.push(&mut many, &t, (MAX_KEPT, 4), rgb));
+        assert_eq!(big.most(), MAX_KEPT);
         // No words: nothing kept, nothing read.
         let mut none: [u32; 0] = [];
         ring.begin(&none);
