@@ -232,8 +232,10 @@ pub(crate) fn fill_triangle<K: SpanSink>(
 /// renderer and sink).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct TriangleBand {
-    sub: u32,
-    b: SpanBounds,
+    /// Sub-pixel bits.
+    pub(super) sub: u32,
+    /// The band's bounds (clip and sink intersected).
+    pub(super) b: SpanBounds,
 }
 
 impl TriangleBand {

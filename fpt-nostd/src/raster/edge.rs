@@ -387,6 +387,25 @@ impl Dda32 {
         )
     }
 
+    /// The state as five words, for keeping it in caller memory between
+    /// bands ([`super::carry`]); [`Dda32::from_words`] reads it back.
+    #[inline(always)]
+    pub(crate) fn to_words(self) -> [u32; 5] {
+        [self.c, self.g, self.qs, self.rs, self.d].map(|w| w as u32)
+    }
+
+    /// The state [`Dda32::to_words`] wrote.
+    #[inline(always)]
+    pub(crate) fn from_words([c, g, qs, rs, d]: [u32; 5]) -> Dda32 {
+        Dda32 {
+            c: c as i32,
+            g: g as i32,
+            qs: qs as i32,
+            rs: rs as i32,
+            d: d as i32,
+        }
+    }
+
     /// The crossing pixel on the current row.
     #[inline]
     pub(crate) fn crossing(&self) -> i32 {

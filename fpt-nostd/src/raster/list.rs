@@ -137,6 +137,8 @@ struct BandIndex {
     bands: usize,
     /// Where the cursors start (the entries follow them).
     at: usize,
+    /// One past the last entry: the free words start here.
+    end: usize,
 }
 
 /// Records per group. Every [`GROUP`] consecutive records share an entry
@@ -557,7 +559,14 @@ impl<'m> DisplayList<'m> {
             }
             r = next;
         }
-        self.index = Some(BandIndex { y, rows, bands, at });
+        let end = at + bands + 1 + total;
+        self.index = Some(BandIndex {
+            y,
+            rows,
+            bands,
+            at,
+            end,
+        });
         self.peak = self.peak.max(at + bands + 1 + total + 4 * self.groups);
         true
     }
@@ -587,6 +596,62 @@ impl<'m> DisplayList<'m> {
         let stop = usize::from(cursors[b]);
         let base = ix.at + ix.bands + 1;
         self.buf.get(base + start..base + stop)
+    }
+
+    /// The list for a replay, and the free words it leaves as `u32`s (the
+    /// carried triangles of [`super::carry`]): with a band index, a list
+    /// over the records and the index only (a band reads its records
+    /// through the index, never the group table) and the words between
+    /// the index and the group table; without one, the list itself and
+    /// no words. No words either when they are not 4-byte aligned (a
+    /// list over storage that did not start as `u32`s).
+    pub fn replay_parts(&mut self) -> (DisplayList<'_>, &mut [u32]) {
+        let (len, extra, ids, outlines) = (self.len, self.extra, self.ids, self.outlines);
+        let Some(ix) = self.index else {
+            return (
+                DisplayList {
+                    buf: &mut *self.buf,
+                    len,
+                    peak: 0,
+                    ids,
+                    outlines,
+                    extra,
+                    groups: self.groups,
+                    in_group: self.in_group,
+                    index: None,
+                },
+                &mut [],
+            );
+        };
+        let top = self.buf.len().saturating_sub(4 * self.groups);
+        // Even offsets of storage that was `u32`s are 4-byte aligned.
+        let lo = ix.end.next_multiple_of(2).min(top);
+        let hi = lo + (top - lo) / 2 * 2;
+        let (low, rest) = self.buf.split_at_mut(lo);
+        let spare = rest.get_mut(..hi - lo).unwrap_or(&mut []);
+        let words = bytemuck::try_cast_slice_mut::<u16, u32>(spare).unwrap_or(&mut []);
+        let view = DisplayList {
+            buf: low,
+            len,
+            peak: 0,
+            ids,
+            outlines,
+            extra,
+            // The replay of an indexed list reads no group.
+            groups: 0,
+            in_group: 0,
+            index: Some(ix),
+        };
+        (view, words)
+    }
+
+    /// Counts `words` (`u32`s) of the free words [`DisplayList::replay_parts`]
+    /// lent as used, in [`DisplayList::peak`].
+    pub fn note_spare_used(&mut self, words: usize) {
+        if let Some(ix) = self.index {
+            let used = ix.end.next_multiple_of(2) + 2 * words + 4 * self.groups;
+            self.peak = self.peak.max(used.min(self.buf.len()));
+        }
     }
 
     /// Drops every record whose first row is at or below `cut`, keeping

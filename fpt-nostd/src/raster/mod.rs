@@ -50,6 +50,7 @@
 
 pub mod band;
 pub mod camera;
+pub(crate) mod carry;
 mod chain;
 pub mod clip;
 pub mod dither;

@@ -1,0 +1,505 @@
+//! Triangles carried across band edges: a triangle cut by the bottom of
+//! a band keeps its two edge steppers, stepped to the band's last row, for
+//! the next band, instead of being read back from the display list and
+//! set up again there (sorting its corners, its row bounds and two or
+//! three exact edge starts, each with two divisions).
+//!
+//! # Contract
+//!
+//! * [`TriangleBand::start`] then [`TriangleBand::run`] emit exactly the
+//!   spans of [`TriangleBand::fill`] (so of `fill_polygon_in`) for the same
+//!   triangle and band; [`TriangleBand::run`] of the state it left, in the
+//!   next band (whose first row is this band's end), emits exactly what
+//!   [`TriangleBand::fill`] would there: an exact stepper started on a row
+//!   equals one stepped to it from an earlier row (see [`super::edge`]).
+//! * The kept states live in a [`Ring`] over caller words (the words the
+//!   display list and its band index leave, `DisplayList::replay_parts`),
+//!   [`WORDS`] words a triangle. Bands replay their records in walk order,
+//!   and the triangles a band keeps are among the next band's records in
+//!   the same order, so the next band finds each one by comparing record
+//!   offsets with the ring's head: a merge, no search.
+//! * With too few words a triangle is not kept ([`Ring::push`] says so)
+//!   and the next band sets it up from its record as before: the same
+//!   picture, only slower. A kept state that the next band does not meet
+//!   where expected (another band, another record) is dropped, never
+//!   drawn.
+
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+
+use super::chain::TriangleBand;
+use super::edge::{Dda32, SMALL};
+use super::scan::{pair_rows, Pair, SpanSink};
+use super::shade::HAS_FPU;
+use super::transform::ScreenPt;
+
+/// Words (`u32`) a kept triangle takes in the ring.
+pub(crate) const WORDS: usize = 15;
+
+/// A triangle's fill state on some row (see [`super::chain::fill_triangle`]
+/// for the edges): the long edge `t → u`, the short edge active on that
+/// row, and what the lower short edge needs to start.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Tri {
+    long: Dda32,
+    short: Dda32,
+    /// The middle and bottom corners (`m → u` starts from them).
+    m: ScreenPt,
+    u: ScreenPt,
+    /// First row of `m → u`.
+    mid: i32,
+    /// One past the triangle's last row.
+    pub(crate) end: i32,
+    /// Whether `short` is still `t → m`.
+    upper: bool,
+    /// Whether the long edge is the left one (else the right one).
+    ab: bool,
+}
+
+/// Whether bands keep cut triangles: on cores with an FPU (the
+/// Cortex-M4F). On a Cortex-M0 its 16 KiB rarely leave room for the band
+/// index, let alone kept triangles, and the larger replay cost it 1.4 %
+/// (measured, `fpt mcu-bench --cpu m0`): there the replay is the one
+/// before (`TriangleBand::fill`). This crate's tests use it on every
+/// target.
+pub(crate) const CARRY: bool = HAS_FPU || cfg!(test);
+
+/// What [`TriangleBand::start`] found.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Start {
+    /// A corner outside ±`SMALL`: the general fill's.
+    Outside,
+    /// Nothing to fill in this band (no row of it, or collinear corners).
+    Empty,
+    /// The state on row `.1`, the band's first row the triangle touches.
+    Rows(Tri, i32),
+}
+
+impl TriangleBand {
+    /// Sets up triangle `pts` on the first row of this band it touches,
+    /// as [`super::chain::fill_triangle`] does.
+    #[inline(always)]
+    pub(crate) fn start(&self, [mut t, mut m, mut u]: [ScreenPt; 3]) -> Start {
+        let near = |p: &ScreenPt| p.x.abs() < SMALL && p.y.abs() < SMALL;
+        if !(near(&t) && near(&m) && near(&u)) {
+            return Start::Outside;
+        }
+        if m.y < t.y {
+            core::mem::swap(&mut t, &mut m);
+        }
+        if u.y < m.y {
+            core::mem::swap(&mut m, &mut u);
+            if m.y < t.y {
+                core::mem::swap(&mut t, &mut m);
+            }
+        }
+        let sub = self.sub;
+        let (first, mid) = Dda32::rows(t, m, sub);
+        let end = Dda32::rows(m, u, sub).1;
+        let y = first.max(self.b.y0);
+        if y >= end.min(self.b.y1) {
+            return Start::Empty;
+        }
+        // The long edge's side: the sign of `m`'s offset from it (see
+        // `fill_triangle`); collinear corners fill nothing.
+        let side = (m.x - t.x) * (u.y - t.y) - (m.y - t.y) * (u.x - t.x);
+        if side == 0 {
+            return Start::Empty;
+        }
+        let upper = y < mid;
+        let short = if upper {
+            Dda32::start(t, m, sub, y)
+        } else {
+            Dda32::start(m, u, sub, y)
+        };
+        let tri = Tri {
+            long: Dda32::start(t, u, sub, y),
+            short,
+            m,
+            u,
+            mid,
+            end,
+            upper,
+            ab: side > 0,
+        };
+        Start::Rows(tri, y)
+    }
+
+    /// Fills `tri`'s rows from `y` (its current row) to the band's end or
+    /// the triangle's, leaving it stepped to that row; returns the spans.
+    /// The triangle goes on in the next band when `tri.end` is past this
+    /// band's end ([`TriangleBand::continues`]).
+    #[inline(always)]
+    pub(crate) fn run<K: SpanSink>(
+        &self,
+        tri: &mut Tri,
+        mut y: i32,
+        color: K::Color,
+        sink: &mut K,
+    ) -> usize {
+        let stop = tri.end.min(self.b.y1);
+        let pair = if tri.ab { Pair::Ab } else { Pair::Ba };
+        let mut spans = 0;
+        // One row loop for both short edges (code size: it is inlined
+        // into the replay).
+        while y < stop {
+            let run = if !tri.upper {
+                stop
+            } else if y < tri.mid {
+                tri.mid.min(stop)
+            } else {
+                tri.short = Dda32::start(tri.m, tri.u, self.sub, y);
+                tri.upper = false;
+                stop
+            };
+            spans += pair_rows(
+                &mut tri.long,
+                &mut tri.short,
+                pair,
+                &self.b,
+                y,
+                run,
+                color,
+                sink,
+            );
+            y = run;
+        }
+        spans
+    }
+
+    /// Whether `tri`, run through this band, has rows after it.
+    #[inline(always)]
+    pub(crate) fn continues(&self, tri: &Tri) -> bool {
+        tri.end > self.b.y1
+    }
+
+    /// This band's first row (where a kept triangle must resume).
+    #[inline(always)]
+    pub(crate) fn first_row(&self) -> i32 {
+        self.b.y0
+    }
+
+    /// This band's end row (where the triangles it keeps stop).
+    #[inline(always)]
+    pub(crate) fn end_row(&self) -> i32 {
+        self.b.y1
+    }
+}
+
+/// Most triangles a ring keeps at once. A band of socket's orbit keeps
+/// up to about 40 and its replay holds two bands' worth; the cap keeps
+/// the memory a frame reports (`RenderStats::memory_used`, what `fpt
+/// mcu-bench` gives the firmware by default) within what the Cortex-M4F's
+/// 32 KiB budget leaves beside the list: 64 × 60 B = 3.75 KiB. A triangle
+/// beyond it is set up again in the next band (measured: socket's 16-row
+/// bands, 78 entries at most without the cap).
+pub(crate) const MAX_KEPT: usize = 64;
+
+/// Entries a ring over `words` holds.
+#[inline(always)]
+fn capacity(words: &[u32]) -> usize {
+    (words.len() / WORDS).min(MAX_KEPT)
+}
+
+/// A ring of kept triangles over caller words: the ones the previous band
+/// kept (its **incoming**, read in order by the band being replayed) and
+/// the ones this band keeps for the next, appended behind them.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Ring {
+    /// Slot of the oldest entry.
+    head: usize,
+    /// Entries held.
+    len: usize,
+    /// Entries at the head kept by the previous band and not yet met.
+    incoming: usize,
+    /// The most entries held at once since [`Ring::clear`]'s caller made it.
+    most: usize,
+}
+
+impl Ring {
+    /// An empty ring.
+    pub(crate) const fn new() -> Self {
+        Ring {
+            head: 0,
+            len: 0,
+            incoming: 0,
+            most: 0,
+        }
+    }
+
+    /// Forgets every entry (a new list: its offsets mean other records).
+    pub(crate) fn clear(&mut self) {
+        self.head = 0;
+        self.len = 0;
+        self.incoming = 0;
+    }
+
+    /// The most entries held at once (the words used: `WORDS` each).
+    pub(crate) fn most(&self) -> usize {
+        self.most
+    }
+
+    /// Starts a band: what the band before left unmet is dropped, and
+    /// what it kept becomes this band's incoming.
+    pub(crate) fn begin(&mut self, words: &[u32]) {
+        let cap = capacity(words);
+        if cap == 0 {
+            self.clear();
+            return;
+        }
+        self.head = (self.head + self.incoming) % cap;
+        self.len -= self.incoming.min(self.len);
+        self.incoming = self.len;
+    }
+
+    /// The record offset and row of the next incoming entry.
+    #[inline(always)]
+    pub(crate) fn peek(&self, words: &[u32]) -> Option<(usize, i32)> {
+        if self.incoming == 0 {
+            return None;
+        }
+        let w = *words.get(self.head * WORDS + 13)?;
+        Some(((w & 0xffff) as usize, (w as i32) >> 16))
+    }
+
+    /// Whether [`Ring::push`] has room for one more entry.
+    #[inline(always)]
+    pub(crate) fn has_room(&self, words: &[u32]) -> bool {
+        self.len < capacity(words)
+    }
+
+    /// Drops the next incoming entry.
+    #[inline(always)]
+    pub(crate) fn skip(&mut self, words: &[u32]) {
+        let cap = capacity(words);
+        if self.incoming == 0 || cap == 0 {
+            return;
+        }
+        self.head = (self.head + 1) % cap;
+        self.len -= 1;
+        self.incoming -= 1;
+    }
+
+    /// Takes the next incoming entry: the triangle and its colour.
+    #[inline(always)]
+    pub(crate) fn pop(&mut self, words: &[u32]) -> Option<(Tri, Rgb888)> {
+        let at = self.head * WORDS;
+        // By reference and word by word: a copy of the array is a `memcpy`
+        // call.
+        let w: &[u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
+        let lo = |x: u32| i32::from(x as u16 as i16);
+        let hi = |x: u32| (x as i32) >> 16;
+        let dda = |k: usize| Dda32::from_words([w[k], w[k + 1], w[k + 2], w[k + 3], w[k + 4]]);
+        let c = w[14];
+        let tri = Tri {
+            long: dda(0),
+            short: dda(5),
+            m: ScreenPt {
+                x: lo(w[10]),
+                y: hi(w[10]),
+            },
+            u: ScreenPt {
+                x: lo(w[11]),
+                y: hi(w[11]),
+            },
+            mid: lo(w[12]),
+            end: hi(w[12]),
+            upper: c & 1 << 24 != 0,
+            ab: c & 1 << 25 != 0,
+        };
+        self.skip(words);
+        Some((tri, Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)))
+    }
+
+    /// Keeps `tri` (record at `offset`, drawn in `rgb`) for the band
+    /// starting at row `row`; `false`, nothing kept, when the ring is full
+    /// (or `offset` is not below 2^16). Corners and rows are within
+    /// ±2^14 (the corners within ±`SMALL`), so they fit 16 bits.
+    #[inline(always)]
+    pub(crate) fn push(
+        &mut self,
+        words: &mut [u32],
+        tri: &Tri,
+        (offset, row): (usize, i32),
+        rgb: Rgb888,
+    ) -> bool {
+        let cap = capacity(words);
+        if self.len >= cap || offset > usize::from(u16::MAX) {
+            return false;
+        }
+        let at = (self.head + self.len) % cap * WORDS;
+        let Some(out) = words.get_mut(at..at + WORDS) else {
+            return false;
+        };
+        let Ok(out) = <&mut [u32; WORDS]>::try_from(out) else {
+            return false;
+        };
+        let pack = |a: i32, b: i32| (a as u16 as u32) | (b as u32) << 16;
+        let [l0, l1, l2, l3, l4] = tri.long.to_words();
+        let [s0, s1, s2, s3, s4] = tri.short.to_words();
+        let c = u32::from(rgb.r())
+            | u32::from(rgb.g()) << 8
+            | u32::from(rgb.b()) << 16
+            | u32::from(tri.upper) << 24
+            | u32::from(tri.ab) << 25;
+        // Word by word: a copy of an array is a `memcpy` call.
+        out[0] = l0;
+        out[1] = l1;
+        out[2] = l2;
+        out[3] = l3;
+        out[4] = l4;
+        out[5] = s0;
+        out[6] = s1;
+        out[7] = s2;
+        out[8] = s3;
+        out[9] = s4;
+        out[10] = pack(tri.m.x, tri.m.y);
+        out[11] = pack(tri.u.x, tri.u.y);
+        out[12] = pack(tri.mid, tri.end);
+        out[13] = pack(offset as i32, row);
+        out[14] = c;
+        self.len += 1;
+        self.most = self.most.max(self.len);
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::super::scan::{Paint, SpanBounds};
+    use super::*;
+    use std::vec::Vec;
+
+    /// Records spans.
+    struct Rec(Vec<(i32, i32, i32)>, SpanBounds);
+
+    impl SpanSink for Rec {
+        type Color = ();
+        fn color(&self, _: &Paint) {}
+        fn bounds(&self) -> SpanBounds {
+            self.1
+        }
+        fn span(&mut self, y: i32, x0: i32, x1: i32, _: ()) {
+            self.0.push((y, x0, x1));
+        }
+    }
+
+    fn pt(x: i32, y: i32) -> ScreenPt {
+        ScreenPt { x, y }
+    }
+
+    /// Random triangles drawn in bands of random heights: resuming the
+    /// state a band kept (after a trip through the ring's words) emits in
+    /// every band exactly what a fresh set-up there emits (the replay's
+    /// path without the carry, itself tested against the polygon fill in
+    /// `chain`), and a triangle is kept exactly while rows are left.
+    #[test]
+    fn kept_triangles_equal_a_fresh_set_up_in_every_band() {
+        let mut rng = crate::raster::tests::Rng(2121);
+        let mut words = [0u32; 3 * WORDS];
+        let mut kept = 0;
+        for k in 0..4000 {
+            let sub = [0u32, 2, 4, 8][k % 4];
+            let m = if k % 5 == 0 { SMALL - 1 } else { 40 << sub };
+            let mut rnd = |m: i32| rng.range(-m, m);
+            let tri = [pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m))];
+            let (x0, x1) = (rnd(30), 30 + rnd(30).abs());
+            let rows = 1 + rnd(12).abs();
+            let mut ring = Ring::new();
+            let rgb = Rgb888::new(k as u8, 2, 3);
+            let mut y0 = -(m >> sub) - 1;
+            while y0 <= (m >> sub) + 1 {
+                let b = SpanBounds {
+                    x0,
+                    y0,
+                    x1,
+                    y1: y0 + rows,
+                };
+                let band = TriangleBand { sub, b };
+                let mut fresh = Rec(Vec::new(), b);
+                let want = band.fill(tri, (), &mut fresh);
+                ring.begin(&words);
+                let mut got = Rec(Vec::new(), b);
+                let mut state = None;
+                if let Some((at, row)) = ring.peek(&words) {
+                    assert_eq!((at, row), (7, y0));
+                    let (mut t, c) = ring.pop(&words).unwrap();
+                    assert_eq!(c, rgb);
+                    let n = band.run(&mut t, band.first_row(), (), &mut got);
+                    assert_eq!(Some(n), want);
+                    kept += 1;
+                    state = Some(t);
+                } else if let Start::Rows(mut t, y) = band.start(tri) {
+                    let n = band.run(&mut t, y, (), &mut got);
+                    assert_eq!(Some(n), want);
+                    state = Some(t);
+                }
+                assert_eq!(got.0, fresh.0, "{tri:?} {sub} {b:?}");
+                if let Some(t) = state.filter(|t| band.continues(t)) {
+                    assert!(ring.push(&mut words, &t, (7, band.end_row()), rgb));
+                }
+                y0 += rows;
+            }
+        }
+        assert!(kept > 1000, "{kept}");
+    }
+
+    /// The ring keeps entries in order, refuses one when full (nothing
+    /// written), drops at a band's start what the band before did not
+    /// meet, and never holds more than its words allow.
+    #[test]
+    fn ring_order_capacity_and_stale_entries() {
+        let band = TriangleBand {
+            sub: 0,
+            b: SpanBounds {
+                x0: 0,
+                y0: 0,
+                x1: 8,
+                y1: 4,
+            },
+        };
+        let Start::Rows(t, _) = band.start([pt(0, 0), pt(5, 9), pt(1, 9)]) else {
+            panic!("rows")
+        };
+        let rgb = Rgb888::new(1, 2, 3);
+        let mut words = [0u32; 2 * WORDS + 3];
+        let mut ring = Ring::new();
+        ring.begin(&words);
+        assert_eq!(ring.peek(&words), None);
+        assert!(ring.push(&mut words, &t, (3, 4), rgb));
+        assert!(ring.push(&mut words, &t, (9, 4), rgb));
+        assert!(!ring.push(&mut words, &t, (11, 4), rgb));
+        assert!(!Ring::new().push(&mut words, &t, (70_000, 4), rgb));
+        assert_eq!(ring.most(), 2);
+        // This band's own entries are not its incoming.
+        assert_eq!(ring.peek(&words), None);
+        ring.begin(&words);
+        assert_eq!(ring.peek(&words), Some((3, 4)));
+        assert!(ring.pop(&words).is_some());
+        assert_eq!(ring.peek(&words), Some((9, 4)));
+        // Room again: one slot freed, wrapping around.
+        assert!(ring.push(&mut words, &t, (12, 8), rgb));
+        assert!(!ring.push(&mut words, &t, (13, 8), rgb));
+        // (9, 4) was not met: dropped at the next band's start.
+        ring.begin(&words);
+        assert_eq!(ring.peek(&words), Some((12, 8)));
+        ring.skip(&words);
+        assert_eq!(ring.peek(&words), None);
+        // Never more than `MAX_KEPT`, however many words.
+        let mut many = std::vec![0u32; (MAX_KEPT + 5) * WORDS];
+        let mut big = Ring::new();
+        big.begin(&many);
+        for k in 0..MAX_KEPT {
+            assert!(big.has_room(&many));
+            assert!(big.push(&mut many, &t, (k, 4), rgb));
+        }
+        assert!(!big.has_room(&many));
+        assert!(!big.push(&mut many, &t, (MAX_KEPT, 4), rgb));
+        assert_eq!(big.most(), MAX_KEPT);
+        // No words: nothing kept, nothing read.
+        let mut none: [u32; 0] = [];
+        ring.begin(&none);
+        assert!(!ring.push(&mut none, &t, (1, 4), rgb));
+        assert_eq!(ring.peek(&none), None);
+    }
+}
