@@ -53,6 +53,7 @@ pub const PAIR_GROUP: usize = 12;
 const VERIFIED: usize = 8;
 
 /// A chosen auxiliary plane and the relation of every member to it.
+#[derive(Clone)]
 pub struct AuxPlane {
     /// The plane.
     pub plane: Plane,

@@ -11,6 +11,7 @@ mod auxiliary;
 mod bsp;
 mod bvh;
 mod feudal;
+mod lookahead;
 mod rng;
 mod table;
 
@@ -54,6 +55,15 @@ pub(crate) struct Ctx<'a> {
     placed: f64,
     total: usize,
     progress: &'a mut dyn Progress,
+    /// Inside a trial build (`lookahead.rs`): no progress, no lookahead.
+    trial: bool,
+}
+
+/// What a trial build must give back ([`Ctx::begin_trial`]).
+pub(crate) struct Trial {
+    polys: usize,
+    splittings: usize,
+    rng: Rng,
 }
 
 impl Ctx<'_> {
@@ -105,8 +115,41 @@ impl Ctx<'_> {
         (f, b)
     }
 
+    /// Whether a trial build is running.
+    pub fn in_trial(&self) -> bool {
+        self.trial
+    }
+
+    /// Starts a trial build: what it splits and draws is undone by
+    /// [`Ctx::end_trial`] (the relations it computes stay counted: they
+    /// are work done).
+    pub fn begin_trial(&mut self) -> Trial {
+        self.trial = true;
+        Trial {
+            polys: self.polys.len(),
+            splittings: self.splittings,
+            rng: self.rng.clone(),
+        }
+    }
+
+    /// Ends a trial build; returns the output polygons it added (each split
+    /// replaces one polygon by its pieces).
+    pub fn end_trial(&mut self, t: Trial) -> usize {
+        let pieces = self.polys.len() - t.polys;
+        let splits = self.splittings - t.splittings;
+        self.polys.truncate(t.polys);
+        self.weight.truncate(t.polys);
+        self.splittings = t.splittings;
+        self.rng = t.rng;
+        self.trial = false;
+        pieces.saturating_sub(splits)
+    }
+
     /// Records that the polygons `ids` have their place in the tree.
     pub fn placed(&mut self, ids: impl IntoIterator<Item = u32>) {
+        if self.trial {
+            return;
+        }
         for id in ids {
             self.placed += self.weight[id as usize];
         }
@@ -161,6 +204,7 @@ pub fn build(
         placed: 0.0,
         total: input_polygons,
         progress,
+        trial: false,
     };
     let ids: Vec<u32> = (0..input_polygons as u32).collect();
     // The builders recurse once per switch node; a BSP tree of a hostile

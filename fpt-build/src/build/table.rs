@@ -512,6 +512,7 @@ mod tests {
             placed: 0.0,
             total: n,
             progress: &mut progress,
+            trial: false,
         };
         let mut t = Table::new((0..n as u32).collect(), &ctx.polys);
         let all: Vec<usize> = (0..n).collect();
