@@ -6,7 +6,7 @@
 //! a random order and acts on each as soon as it shows an absolute priority
 //! polygon or a separating plane, then finishes what is left statically.
 
-use super::auxiliary::{best_aux, AuxPlane};
+use super::auxiliary::{best_aux, cutting_aux, AuxPlane};
 use super::lookahead;
 use super::table::{Rel, Table, Watch};
 use super::Ctx;
@@ -25,6 +25,10 @@ pub enum Mode {
 
 /// Builds the connecting node of the group in `table`.
 pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
+    if ctx.trial_over() {
+        // A lookahead trial that cannot win: its tree is thrown away.
+        return Connecting::default();
+    }
     let mut levels = Vec::new();
     if mode == Mode::Dynamic {
         if let Some(s) = dynamic_phase(&mut table, &mut levels, ctx) {
@@ -68,6 +72,14 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
                 options.extend(splitters.into_iter().map(Divide::Member));
                 options.extend(a.map(Divide::Aux));
             }
+        }
+        if look {
+            let n = lookahead::CUTTING;
+            options.extend(
+                cutting_aux(&table, ctx, split_score, n)
+                    .into_iter()
+                    .map(Divide::Aux),
+            );
         }
         let pick = if look && options.len() > 1 {
             lookahead::cheapest(&table, &options, mode, ctx)

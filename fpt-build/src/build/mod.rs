@@ -57,6 +57,11 @@ pub(crate) struct Ctx<'a> {
     progress: &'a mut dyn Progress,
     /// Inside a trial build (`lookahead.rs`): no progress, no lookahead.
     trial: bool,
+    /// In a trial: the working polygons and splittings at its start, and
+    /// the output polygons it may add before it is cut short.
+    trial_base: (usize, usize, usize),
+    /// The largest group that looks ahead (`lookahead.rs`).
+    pub look_group: usize,
 }
 
 /// What a trial build must give back ([`Ctx::begin_trial`]).
@@ -123,13 +128,23 @@ impl Ctx<'_> {
     /// Starts a trial build: what it splits and draws is undone by
     /// [`Ctx::end_trial`] (the relations it computes stay counted: they
     /// are work done).
-    pub fn begin_trial(&mut self) -> Trial {
+    /// A trial that would add more than `limit` output polygons is cut
+    /// short ([`Ctx::trial_over`]): it cannot win.
+    pub fn begin_trial(&mut self, limit: usize) -> Trial {
         self.trial = true;
+        self.trial_base = (self.polys.len(), self.splittings, limit);
         Trial {
             polys: self.polys.len(),
             splittings: self.splittings,
             rng: self.rng.clone(),
         }
+    }
+
+    /// Whether the trial running has added more output polygons than its
+    /// limit: the builders then stop (the trial's tree is thrown away).
+    pub fn trial_over(&self) -> bool {
+        let (polys, splits, limit) = self.trial_base;
+        self.trial && (self.polys.len() - polys).saturating_sub(self.splittings - splits) > limit
     }
 
     /// Ends a trial build; returns the output polygons it added (each split
@@ -205,6 +220,8 @@ pub fn build(
         total: input_polygons,
         progress,
         trial: false,
+        trial_base: (0, 0, 0),
+        look_group: lookahead::group_limit(input_polygons),
     };
     let ids: Vec<u32> = (0..input_polygons as u32).collect();
     // The builders recurse once per switch node; a BSP tree of a hostile

@@ -513,6 +513,8 @@ mod tests {
             total: n,
             progress: &mut progress,
             trial: false,
+            trial_base: (0, 0, 0),
+            look_group: 0,
         };
         let mut t = Table::new((0..n as u32).collect(), &ctx.polys);
         let all: Vec<usize> = (0..n).collect();
