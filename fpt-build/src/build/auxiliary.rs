@@ -53,6 +53,7 @@ pub const PAIR_GROUP: usize = 12;
 const VERIFIED: usize = 8;
 
 /// A chosen auxiliary plane and the relation of every member to it.
+#[derive(Clone)]
 pub struct AuxPlane {
     /// The plane.
     pub plane: Plane,
@@ -188,4 +189,93 @@ pub fn best_aux(
         rels[q] = ctx.classify(t.ids[q], &plane);
     }
     Some(AuxPlane { plane, rels, score })
+}
+
+/// The offset along unit `u` where a plane `u · x = c` has the best
+/// `score(f, b, c)` among planes between two distinct interval ends, with
+/// members on both sides: the counts of a plane are those of the intervals
+/// wholly above it, wholly below it and across it.
+fn best_cutting(
+    u: DVec3,
+    t: &Table,
+    alive: &[usize],
+    ctx: &Ctx,
+    score: &impl Fn(u32, u32, u32) -> (u32, u32),
+) -> Option<((u32, u32), f64)> {
+    let tol = ctx.tol.0;
+    let (mut lo, mut hi): (Vec<f64>, Vec<f64>) = alive
+        .iter()
+        .map(|&q| {
+            let v = &ctx.polys[t.ids[q] as usize].verts;
+            v.iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                    let d = u.dot(*x);
+                    (lo.min(d), hi.max(d))
+                })
+        })
+        .unzip();
+    lo.sort_by(f64::total_cmp);
+    hi.sort_by(f64::total_cmp);
+    let mut ends: Vec<f64> = lo.iter().chain(&hi).copied().collect();
+    ends.sort_by(f64::total_cmp);
+    let m = alive.len() as u32;
+    let mut best: Option<((u32, u32), f64)> = None;
+    for w in ends.windows(2) {
+        if w[1] - w[0] <= 4.0 * tol {
+            continue;
+        }
+        let c = 0.5 * (w[0] + w[1]);
+        let front = (lo.len() - lo.partition_point(|&x| x <= c)) as u32;
+        let back = hi.partition_point(|&x| x < c) as u32;
+        if front == 0 || back == 0 {
+            continue;
+        }
+        let s = score(front, back, m - front - back);
+        if best.is_none_or(|(b, _)| s < b) {
+            best = Some((s, c));
+        }
+    }
+    best
+}
+
+/// Up to `n` auxiliary planes that cut members, the best by `score(f, b,
+/// c)` first: candidates for the lookahead (`lookahead.rs`), which judges
+/// them by the pieces their subtrees create rather than by their cuts.
+pub fn cutting_aux(
+    t: &Table,
+    ctx: &mut Ctx,
+    score: impl Fn(u32, u32, u32) -> (u32, u32),
+    n: usize,
+) -> Vec<AuxPlane> {
+    let alive: Vec<usize> = (0..t.len()).filter(|&q| t.is_alive(q)).collect();
+    if alive.len() < 3 || n == 0 {
+        return Vec::new();
+    }
+    let mut candidates: Vec<((u32, u32), Plane)> = directions(t, &alive, ctx)
+        .into_iter()
+        .filter_map(|u| {
+            best_cutting(u, t, &alive, ctx, &score).map(|(s, c)| (s, Plane { normal: u, d: -c }))
+        })
+        .collect();
+    ctx.relations += (candidates.len() * alive.len()) as u64;
+    candidates.sort_by(|a, b| a.0.cmp(&b.0).then_with(|| plane_cmp(&a.1, &b.1)));
+    let mut out: Vec<((u32, u32), Plane)> = Vec::new();
+    for (_, plane) in candidates.into_iter().take(VERIFIED) {
+        let [f, b, cut] = t.plane_counts(&plane, ctx);
+        if cut == 0 || f == 0 || b == 0 {
+            continue;
+        }
+        out.push((score(f, b, cut), plane));
+    }
+    out.sort_by(|a, b| a.0.cmp(&b.0).then_with(|| plane_cmp(&a.1, &b.1)));
+    out.truncate(n);
+    out.into_iter()
+        .map(|(score, plane)| {
+            let mut rels = vec![Rel::Unknown; t.len()];
+            for &q in &alive {
+                rels[q] = ctx.classify(t.ids[q], &plane);
+            }
+            AuxPlane { plane, rels, score }
+        })
+        .collect()
 }

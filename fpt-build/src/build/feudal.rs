@@ -6,7 +6,8 @@
 //! a random order and acts on each as soon as it shows an absolute priority
 //! polygon or a separating plane, then finishes what is left statically.
 
-use super::auxiliary::best_aux;
+use super::auxiliary::{best_aux, cutting_aux, AuxPlane};
+use super::lookahead;
 use super::table::{Rel, Table, Watch};
 use super::Ctx;
 use crate::geom::Plane;
@@ -24,6 +25,10 @@ pub enum Mode {
 
 /// Builds the connecting node of the group in `table`.
 pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
+    if ctx.trial_over() {
+        // A lookahead trial that cannot win: its tree is thrown away.
+        return Connecting::default();
+    }
     let mut levels = Vec::new();
     if mode == Mode::Dynamic {
         if let Some(s) = dynamic_phase(&mut table, &mut levels, ctx) {
@@ -49,16 +54,40 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
     let switch = if let Some(s) = choose_separator(&mut table, ctx) {
         make_switch(table, s, mode, ctx)
     } else {
-        let s = choose_splitter(&mut table, ctx);
+        let look = lookahead::applies(&table, ctx);
+        let k = if look { lookahead::CANDIDATES } else { 1 };
+        let splitters = choose_splitters(&mut table, ctx, k);
+        let s = splitters.first().copied().unwrap_or(0);
         let [f, b, c] = table.counts(s);
-        let aux = best_aux(&table, ctx, split_score).filter(|a| a.score < split_score(f, b, c));
+        let aux = best_aux(&table, ctx, split_score);
+        // The paper's greedy choice: the better-scored of the best member
+        // plane and the best auxiliary plane.
+        let mut options: Vec<Divide> = Vec::new();
         match aux {
-            Some(a) => {
-                let rels = a.rels;
-                make_switch_on(table, a.plane, None, |_, p, _| rels[p], mode, ctx)
+            Some(a) if a.score < split_score(f, b, c) => {
+                options.push(Divide::Aux(a));
+                options.extend(splitters.into_iter().map(Divide::Member));
             }
-            None => make_switch(table, s, mode, ctx),
+            a => {
+                options.extend(splitters.into_iter().map(Divide::Member));
+                options.extend(a.map(Divide::Aux));
+            }
         }
+        if look {
+            let n = lookahead::CUTTING;
+            options.extend(
+                cutting_aux(&table, ctx, split_score, n)
+                    .into_iter()
+                    .map(Divide::Aux),
+            );
+        }
+        let pick = if look && options.len() > 1 {
+            lookahead::cheapest(&table, &options, mode, ctx)
+        } else {
+            0
+        };
+        let chosen = options.swap_remove(pick);
+        divide(table, chosen, mode, ctx)
     };
     Connecting {
         levels,
@@ -259,20 +288,23 @@ fn rank_cmp(a: &Rank, b: &Rank) -> Ordering {
         .then(a.2.cmp(&b.2))
 }
 
-/// Picks the alive member minimising `score`, ties broken geometrically,
-/// then by index (the first one): the member the full table would give.
+/// Picks the `k` alive members minimising `score`, best first, ties broken
+/// geometrically, then by index (the first one): the first is the member
+/// the full table would give.
 ///
 /// Lazily: every row gets bounds ([`Table::probe_all`]); `bound(lower
 /// counts, undecided)` must be at most the row's score (`None`: the row
 /// cannot qualify). Rows are counted exactly in ascending order of bound
-/// and stop being counted once the next bound is above the best exact
-/// score: every row left has a score at least its bound, so none is better.
+/// and stop being counted once the next bound is above the `k`-th best
+/// exact score: every row left has a score at least its bound, so none is
+/// better.
 fn best_by(
     t: &mut Table,
     ctx: &Ctx,
+    k: usize,
     score: impl Fn([u32; 3]) -> Option<(u32, u32)>,
     bound: impl Fn([u32; 3], u32) -> Option<(u32, u32)>,
-) -> Option<usize> {
+) -> Vec<usize> {
     t.probe_all(ctx);
     let mut cands: Vec<Rank> = (0..t.len())
         .filter(|&q| t.is_alive(q) && t.has_row(q))
@@ -282,13 +314,14 @@ fn best_by(
         })
         .collect();
     cands.sort_unstable_by(rank_cmp);
-    let mut best: Option<Rank> = None;
+    // The best `k` exact ranks so far, ascending.
+    let mut best: Vec<Rank> = Vec::new();
     let mut next = 0;
     while next < cands.len() {
         let end = cands[next..]
             .iter()
             .take(BATCH)
-            .take_while(|c| best.as_ref().is_none_or(|b| rank_cmp(c, b).is_lt()))
+            .take_while(|c| best.len() < k || rank_cmp(c, &best[k - 1]).is_lt())
             .count();
         if end == 0 {
             break;
@@ -301,12 +334,14 @@ fn best_by(
                 continue;
             };
             let r = (s, cands[next - end + i].1, q);
-            if best.as_ref().is_none_or(|b| rank_cmp(&r, b).is_lt()) {
-                best = Some(r);
+            let at = best.partition_point(|b| rank_cmp(b, &r).is_lt());
+            if at < k {
+                best.insert(at, r);
+                best.truncate(k);
             }
         }
     }
-    best.map(|b| b.2)
+    best.into_iter().map(|b| b.2).collect()
 }
 
 /// At least `|f - b|` for counts at least `f` and `b` with `u` members
@@ -320,9 +355,12 @@ fn choose_separator(t: &mut Table, ctx: &Ctx) -> Option<usize> {
     best_by(
         t,
         ctx,
+        1,
         |[f, b, c]| (c == 0).then_some((0, f.abs_diff(b))),
         |[f, b, c], u| (c == 0).then_some((0, balance_bound(f, b, u))),
     )
+    .first()
+    .copied()
 }
 
 /// How many polygons of imbalance one split is worth when choosing a
@@ -345,13 +383,15 @@ fn split_score(f: u32, b: u32, c: u32) -> (u32, u32) {
     )
 }
 
-/// Step 5: the fewest cuts, weighed against balance (see [`SPLIT_WEIGHT`]).
-fn choose_splitter(t: &mut Table, ctx: &Ctx) -> usize {
+/// Step 5: the fewest cuts, weighed against balance (see [`SPLIT_WEIGHT`]):
+/// the best `k` members, best first (never empty while a member is alive).
+fn choose_splitters(t: &mut Table, ctx: &Ctx, k: usize) -> Vec<usize> {
     // Each true count is at least its bound, so the score is at least the
     // score of the cut bound with the balance bound (see `split_score`).
-    best_by(
+    let best = best_by(
         t,
         ctx,
+        k,
         |[f, b, c]| Some(split_score(f, b, c)),
         |[f, b, c], u| {
             Some((
@@ -360,9 +400,31 @@ fn choose_splitter(t: &mut Table, ctx: &Ctx) -> usize {
                 c,
             ))
         },
-    )
-    .or_else(|| (0..t.len()).find(|&q| t.is_alive(q)))
-    .unwrap_or(0)
+    );
+    if best.is_empty() {
+        return (0..t.len()).find(|&q| t.is_alive(q)).into_iter().collect();
+    }
+    best
+}
+
+/// A way to divide a group that no plane separates.
+#[derive(Clone)]
+pub(super) enum Divide {
+    /// The plane of a member (local index).
+    Member(usize),
+    /// An auxiliary plane.
+    Aux(AuxPlane),
+}
+
+/// Makes the switch node of `d`.
+pub(super) fn divide(t: Table, d: Divide, mode: Mode, ctx: &mut Ctx) -> Switch {
+    match d {
+        Divide::Member(s) => make_switch(t, s, mode, ctx),
+        Divide::Aux(a) => {
+            let rels = a.rels;
+            make_switch_on(t, a.plane, None, |_, p, _| rels[p], mode, ctx)
+        }
+    }
 }
 
 /// Makes the switch node on the plane of member `s`: its coplanar bunch, and

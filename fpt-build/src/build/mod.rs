@@ -11,6 +11,7 @@ mod auxiliary;
 mod bsp;
 mod bvh;
 mod feudal;
+mod lookahead;
 mod rng;
 mod table;
 
@@ -54,6 +55,20 @@ pub(crate) struct Ctx<'a> {
     placed: f64,
     total: usize,
     progress: &'a mut dyn Progress,
+    /// Inside a trial build (`lookahead.rs`): no progress, no lookahead.
+    trial: bool,
+    /// In a trial: the working polygons and splittings at its start, and
+    /// the output polygons it may add before it is cut short.
+    trial_base: (usize, usize, usize),
+    /// The largest group that looks ahead (`lookahead.rs`).
+    pub look_group: usize,
+}
+
+/// What a trial build must give back ([`Ctx::begin_trial`]).
+pub(crate) struct Trial {
+    polys: usize,
+    splittings: usize,
+    rng: Rng,
 }
 
 impl Ctx<'_> {
@@ -105,8 +120,51 @@ impl Ctx<'_> {
         (f, b)
     }
 
+    /// Whether a trial build is running.
+    pub fn in_trial(&self) -> bool {
+        self.trial
+    }
+
+    /// Starts a trial build: what it splits and draws is undone by
+    /// [`Ctx::end_trial`] (the relations it computes stay counted: they
+    /// are work done).
+    /// A trial that would add more than `limit` output polygons is cut
+    /// short ([`Ctx::trial_over`]): it cannot win.
+    pub fn begin_trial(&mut self, limit: usize) -> Trial {
+        self.trial = true;
+        self.trial_base = (self.polys.len(), self.splittings, limit);
+        Trial {
+            polys: self.polys.len(),
+            splittings: self.splittings,
+            rng: self.rng.clone(),
+        }
+    }
+
+    /// Whether the trial running has added more output polygons than its
+    /// limit: the builders then stop (the trial's tree is thrown away).
+    pub fn trial_over(&self) -> bool {
+        let (polys, splits, limit) = self.trial_base;
+        self.trial && (self.polys.len() - polys).saturating_sub(self.splittings - splits) > limit
+    }
+
+    /// Ends a trial build; returns the output polygons it added (each split
+    /// replaces one polygon by its pieces).
+    pub fn end_trial(&mut self, t: Trial) -> usize {
+        let pieces = self.polys.len() - t.polys;
+        let splits = self.splittings - t.splittings;
+        self.polys.truncate(t.polys);
+        self.weight.truncate(t.polys);
+        self.splittings = t.splittings;
+        self.rng = t.rng;
+        self.trial = false;
+        pieces.saturating_sub(splits)
+    }
+
     /// Records that the polygons `ids` have their place in the tree.
     pub fn placed(&mut self, ids: impl IntoIterator<Item = u32>) {
+        if self.trial {
+            return;
+        }
         for id in ids {
             self.placed += self.weight[id as usize];
         }
@@ -161,6 +219,9 @@ pub fn build(
         placed: 0.0,
         total: input_polygons,
         progress,
+        trial: false,
+        trial_base: (0, 0, 0),
+        look_group: lookahead::group_limit(input_polygons),
     };
     let ids: Vec<u32> = (0..input_polygons as u32).collect();
     // The builders recurse once per switch node; a BSP tree of a hostile

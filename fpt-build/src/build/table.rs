@@ -512,6 +512,9 @@ mod tests {
             placed: 0.0,
             total: n,
             progress: &mut progress,
+            trial: false,
+            trial_base: (0, 0, 0),
+            look_group: 0,
         };
         let mut t = Table::new((0..n as u32).collect(), &ctx.polys);
         let all: Vec<usize> = (0..n).collect();
