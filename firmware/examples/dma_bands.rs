@@ -44,8 +44,8 @@ use fail::fail;
 static TREE: &[u8] = include_bytes!("../trees/vise.fpt");
 const SIZE: u32 = 240;
 const ROWS: u32 = 16;
-/// `fpt info trees/vise.fpt`: `TreeRenderer<P, 61>`, depth 37.
-const V: usize = 61;
+/// `fpt info trees/vise.fpt`: `TreeRenderer<P, 62>`, depth 27.
+const V: usize = 62;
 const N: usize = 40;
 /// One walk a frame (`fpt info`: 5,816 words).
 const MEMORY_WORDS: usize = 6144;

@@ -51,10 +51,10 @@ const SIZE: u32 = 240;
 /// framebuffer.
 const ROWS: u32 = 16;
 /// The vertex capacity `fpt info trees/vise.fpt` prints
-/// (`TreeRenderer<P, 61>`); the renderer checks it against the tree's
+/// (`TreeRenderer<P, 62>`); the renderer checks it against the tree's
 /// header and refuses a tree that needs more.
-const V: usize = 61;
-/// The walk stack: `fpt info` prints the tree's depth (37), a few more
+const V: usize = 62;
+/// The walk stack: `fpt info` prints the tree's depth (27), a few more
 /// levels leave room for a rebuilt tree.
 const N: usize = 40;
 /// Working memory for one walk a frame (`fpt info`: 5,816 words for the

@@ -107,7 +107,7 @@ mod target {
     /// * `band` on the Cortex-M0: none (its 16 KiB hold the band buffer,
     ///   the renderer and the stack; it walks the tree once per band);
     /// * `full`: the 3.5 KiB the 112.5 KiB frame and the renderer (whose
-    ///   vertex capacity is 103, what the house's tree needs) leave, a
+    ///   vertex capacity is 99, what the house's tree needs) leave, a
     ///   vertex cache for the first 900 vertices.
     #[cfg(all(feature = "band", not(fpt_armv6m)))]
     pub const MEMORY_WORDS: usize = 10 * 1024;

@@ -77,11 +77,11 @@ pub const FRAME_WORDS: usize = (WIDTH * HEIGHT) as usize;
 /// `u16` words of a band buffer.
 pub const BAND_WORDS: usize = (WIDTH * BAND_ROWS) as usize;
 /// Vertex capacity of the per-polygon scratch: what the scenes' trees
-/// need (`fpt info`, [`fpt_nostd::reader::Capacities::vertices`]): house 103,
-/// vise 61, bench_city 48; on the Cortex-M0, which draws only the vise,
-/// 61. A tree that needs more is refused
+/// need (`fpt info`, [`fpt_nostd::reader::Capacities::vertices`]): house 99,
+/// vise 62, bench_city 29 (session 11's builder); on the Cortex-M0, which
+/// draws only the vise, 62. A tree that needs more is refused
 /// ([`fpt_nostd::render::CapacityError`]).
-pub const MAX_VERTS: usize = if SMALL_RAM { 61 } else { 103 };
+pub const MAX_VERTS: usize = if SMALL_RAM { 62 } else { 99 };
 /// Stack frames of the tree walk: the scenes' trees are at most 37 deep
 /// (a deeper tree is refused with [`fpt_nostd::render::CapacityError`]).
 pub const WALK_DEPTH: usize = 40;
