@@ -96,6 +96,16 @@ fn directions(t: &Table, alive: &[usize], ctx: &Ctx) -> Vec<DVec3> {
     out
 }
 
+/// The interval `[min, max]` of `u · v` over the vertices `verts`.
+fn interval(u: DVec3, verts: &[DVec3]) -> (f64, f64) {
+    verts
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            let d = u.dot(*x);
+            (lo.min(d), hi.max(d))
+        })
+}
+
 /// The offsets along unit `u` at which a plane `u · x = c` cuts no member
 /// and has members on both sides, as the best `(balance, c)` by `|f − b|`:
 /// the members' intervals along `u`, sorted by their low ends, leave a gap
@@ -104,14 +114,7 @@ fn best_gap(u: DVec3, t: &Table, alive: &[usize], ctx: &Ctx) -> Option<(u32, f64
     let tol = ctx.tol.0;
     let mut iv: Vec<(f64, f64)> = alive
         .iter()
-        .map(|&q| {
-            let v = &ctx.polys[t.ids[q] as usize].verts;
-            v.iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-                    let d = u.dot(*x);
-                    (lo.min(d), hi.max(d))
-                })
-        })
+        .map(|&q| interval(u, &ctx.polys[t.ids[q] as usize].verts))
         .collect();
     iv.sort_by(|a, b| a.0.total_cmp(&b.0));
     let m = iv.len();
@@ -205,14 +208,7 @@ fn best_cutting(
     let tol = ctx.tol.0;
     let (mut lo, mut hi): (Vec<f64>, Vec<f64>) = alive
         .iter()
-        .map(|&q| {
-            let v = &ctx.polys[t.ids[q] as usize].verts;
-            v.iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-                    let d = u.dot(*x);
-                    (lo.min(d), hi.max(d))
-                })
-        })
+        .map(|&q| interval(u, &ctx.polys[t.ids[q] as usize].verts))
         .unzip();
     lo.sort_by(f64::total_cmp);
     hi.sort_by(f64::total_cmp);

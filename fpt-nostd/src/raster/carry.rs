@@ -366,23 +366,11 @@ impl Ring {
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::super::scan::{Paint, SpanBounds};
+    use super::super::scan::SpanBounds;
     use super::*;
     use std::vec::Vec;
 
-    /// Records spans.
-    struct Rec(Vec<(i32, i32, i32)>, SpanBounds);
-
-    impl SpanSink for Rec {
-        type Color = ();
-        fn color(&self, _: &Paint) {}
-        fn bounds(&self) -> SpanBounds {
-            self.1
-        }
-        fn span(&mut self, y: i32, x0: i32, x1: i32, _: ()) {
-            self.0.push((y, x0, x1));
-        }
-    }
+    use super::super::chain::tests::Rec;
 
     fn pt(x: i32, y: i32) -> ScreenPt {
         ScreenPt { x, y }

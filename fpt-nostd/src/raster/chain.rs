@@ -275,15 +275,15 @@ impl TriangleBand {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     extern crate std;
     use super::super::edge::{build_edges, Edge, SMALL};
     use super::super::scan::{fill_polygon_in, scan, FillRule, Paint};
     use super::*;
     use std::vec::Vec;
 
-    /// Records spans.
-    struct Rec(Vec<(i32, i32, i32)>, SpanBounds);
+    /// Records spans (also the band-carry tests' sink, `carry.rs`).
+    pub(in super::super) struct Rec(pub Vec<(i32, i32, i32)>, pub SpanBounds);
 
     impl SpanSink for Rec {
         type Color = ();
