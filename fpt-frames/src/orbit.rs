@@ -54,7 +54,7 @@ pub const AMBIENT: f32 = Light::AMBIENT;
 /// Diffuse weight of the key light ([`Light::DIFFUSE`]).
 pub const DIFFUSE: f32 = Light::DIFFUSE;
 /// Vertex capacity of the host's scratch for the orbit: more than the
-/// trees of the project's scenes and shared models need (house 103); a
+/// trees of the project's scenes and shared models need (house 99); a
 /// tree that needs more is refused ([`fpt_nostd::render::CapacityError`]). The
 /// firmware takes the tree's own ([`fpt_nostd::reader::Capacities`]).
 pub const MAX_VERTS: usize = 256;
