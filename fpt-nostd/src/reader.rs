@@ -355,37 +355,33 @@ impl<'a> Geometry<'a> {
         (r.wrapping_shr(u32::from(f.shift[k])) as u32) & f.mask[k]
     }
 
+    /// Field `k` of polygon `id` (see [`Geometry::compact_field`]), at byte
+    /// `wide` of a 16-byte record.
+    #[inline(always)]
+    fn polygon_field(&self, id: u32, k: usize, wide: usize) -> u32 {
+        if self.compact {
+            self.compact_field(id, k)
+        } else {
+            rd_u32(self.bytes, self.polygon_off(id).wrapping_add(wide))
+        }
+    }
+
     /// The run field of polygon `id`.
     #[inline]
     fn polygon_run(&self, id: u32) -> u32 {
-        if self.compact {
-            self.compact_field(id, 1)
-        } else {
-            rd_u32(self.bytes, self.polygon_off(id).wrapping_add(pg::RUN))
-        }
+        self.polygon_field(id, 1, pg::RUN)
     }
 
     /// The first_index field of polygon `id`.
     #[inline]
     fn polygon_first(&self, id: u32) -> u32 {
-        if self.compact {
-            self.compact_field(id, 0)
-        } else {
-            rd_u32(
-                self.bytes,
-                self.polygon_off(id).wrapping_add(pg::FIRST_INDEX),
-            )
-        }
+        self.polygon_field(id, 0, pg::FIRST_INDEX)
     }
 
     /// The source field of polygon `id`.
     #[inline]
     fn polygon_source(&self, id: u32) -> u32 {
-        if self.compact {
-            self.compact_field(id, 2)
-        } else {
-            rd_u32(self.bytes, self.polygon_off(id).wrapping_add(pg::SOURCE))
-        }
+        self.polygon_field(id, 2, pg::SOURCE)
     }
 
     /// The colour index of a compact polygon `id` (0 otherwise).
@@ -403,21 +399,29 @@ impl<'a> Geometry<'a> {
     #[inline]
     fn polygon_color(&self, id: u32) -> [u8; 3] {
         if self.compact {
-            let c = self.polygon_colour_index(id) as usize;
-            let at = (HEADER_LEN + LAYOUT_LEN).wrapping_add(c.wrapping_mul(COLOUR_LEN));
-            rd::<3>(self.bytes, at)
+            self.table_colour(self.polygon_colour_index(id))
         } else {
             let c: [u8; 4] = rd(self.bytes, self.polygon_off(id).wrapping_add(pg::COLOR));
             [c[0], c[1], c[2]]
         }
     }
 
+    /// Entry `c` of a compact file's colour table, which starts at a fixed
+    /// offset after the layout.
+    #[inline(always)]
+    fn table_colour(&self, c: u32) -> [u8; 3] {
+        let at = (HEADER_LEN + LAYOUT_LEN).wrapping_add((c as usize).wrapping_mul(COLOUR_LEN));
+        // Four bytes, one load: the table is padded to 4 bytes and the
+        // vertices follow it, so the fourth is always in the file.
+        let c: [u8; 4] = rd(self.bytes, at);
+        [c[0], c[1], c[2]]
+    }
+
     /// The hidden_edges mask of polygon `id`.
     #[inline]
     fn polygon_hidden(&self, id: u32) -> u8 {
         if self.compact {
-            let r = rd_u64(self.bytes, self.polygon_off(id));
-            (r >> COMPACT_HIDDEN_SHIFT) as u8
+            (self.compact_record(id) >> COMPACT_HIDDEN_SHIFT) as u8
         } else {
             rd_u8(self.bytes, self.polygon_off(id).wrapping_add(pg::COLOR + 3))
         }
@@ -775,12 +779,7 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
     #[inline]
     pub(crate) fn color(&self) -> [u8; 3] {
         if self.g.compact {
-            let c = self.g.field_of(self.rec, 3) as usize;
-            let at = (HEADER_LEN + LAYOUT_LEN).wrapping_add(c.wrapping_mul(COLOUR_LEN));
-            // Four bytes, one load: the table is padded to 4 bytes and
-            // the vertices follow it, so the fourth is always in the file.
-            let c: [u8; 4] = rd(self.g.bytes, at);
-            [c[0], c[1], c[2]]
+            self.g.table_colour(self.g.field_of(self.rec, 3))
         } else {
             self.g.polygon_color(self.id)
         }

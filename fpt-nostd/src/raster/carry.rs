@@ -26,8 +26,8 @@
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
-use super::chain::TriangleBand;
-use super::edge::{Dda32, SMALL};
+use super::chain::{sort_by_y, TriangleBand};
+use super::edge::{all_small, Dda32};
 use super::scan::{pair_rows, Pair, SpanSink};
 use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
@@ -78,20 +78,11 @@ impl TriangleBand {
     /// Sets up triangle `pts` on the first row of this band it touches,
     /// as [`super::chain::fill_triangle`] does.
     #[inline(always)]
-    pub(crate) fn start(&self, [mut t, mut m, mut u]: [ScreenPt; 3]) -> Start {
-        let near = |p: &ScreenPt| p.x.abs() < SMALL && p.y.abs() < SMALL;
-        if !(near(&t) && near(&m) && near(&u)) {
+    pub(crate) fn start(&self, pts: [ScreenPt; 3]) -> Start {
+        if !all_small(&pts) {
             return Start::Outside;
         }
-        if m.y < t.y {
-            core::mem::swap(&mut t, &mut m);
-        }
-        if u.y < m.y {
-            core::mem::swap(&mut m, &mut u);
-            if m.y < t.y {
-                core::mem::swap(&mut t, &mut m);
-            }
-        }
+        let [t, m, u] = sort_by_y(pts);
         let sub = self.sub;
         let (first, mid) = Dda32::rows(t, m, sub);
         let end = Dda32::rows(m, u, sub).1;
@@ -366,6 +357,7 @@ impl Ring {
 #[cfg(test)]
 mod tests {
     extern crate std;
+    use super::super::edge::SMALL;
     use super::super::scan::SpanBounds;
     use super::*;
     use std::vec::Vec;

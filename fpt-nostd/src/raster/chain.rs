@@ -22,7 +22,7 @@
 //!   equals stepping from an earlier row), so pixels are identical,
 //!   shared edges included.
 
-use super::edge::{Dda32, SMALL};
+use super::edge::{all_small, Dda32};
 use super::scan::{pair_rows, Bbox, Pair, SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
@@ -172,21 +172,13 @@ pub(crate) fn fill_monotone<K: SpanSink>(
 /// starts. The caller guarantees `|x|, |y| < edge::SMALL` and `sub ≤ 8`.
 #[inline(always)]
 pub(crate) fn fill_triangle<K: SpanSink>(
-    [mut t, mut m, mut u]: [ScreenPt; 3],
+    pts: [ScreenPt; 3],
     sub: u32,
     b: &SpanBounds,
     color: K::Color,
     sink: &mut K,
 ) -> usize {
-    if m.y < t.y {
-        core::mem::swap(&mut t, &mut m);
-    }
-    if u.y < m.y {
-        core::mem::swap(&mut m, &mut u);
-        if m.y < t.y {
-            core::mem::swap(&mut t, &mut m);
-        }
-    }
+    let [t, m, u] = sort_by_y(pts);
     let (first, mid) = Dda32::rows(t, m, sub);
     let end = Dda32::rows(m, u, sub).1;
     let mut y = first.max(b.y0);
@@ -223,6 +215,22 @@ pub(crate) fn fill_triangle<K: SpanSink>(
         spans += pair_rows(&mut long, &mut e, pair, b, y, stop, color, sink);
     }
     spans
+}
+
+/// The corners of a triangle sorted by y: top, middle, bottom (three
+/// compare-and-swaps; [`fill_triangle`] and the band carry's set-up).
+#[inline(always)]
+pub(crate) fn sort_by_y([mut t, mut m, mut u]: [ScreenPt; 3]) -> [ScreenPt; 3] {
+    if m.y < t.y {
+        core::mem::swap(&mut t, &mut m);
+    }
+    if u.y < m.y {
+        core::mem::swap(&mut m, &mut u);
+        if m.y < t.y {
+            core::mem::swap(&mut t, &mut m);
+        }
+    }
+    [t, m, u]
 }
 
 /// A band's set-up for replaying triangles: the bounds and sub-pixel bits
@@ -266,8 +274,7 @@ impl TriangleBand {
         color: K::Color,
         sink: &mut K,
     ) -> Option<usize> {
-        let near = |p: &ScreenPt| p.x.abs() < SMALL && p.y.abs() < SMALL;
-        if !pts.iter().all(near) {
+        if !all_small(&pts) {
             return None;
         }
         Some(fill_triangle(pts, self.sub, &self.b, color, sink))

@@ -97,6 +97,13 @@ fn ceil_shr(a: i64, k: u32) -> i64 {
 /// polygon of a small display that does not reach far into the guard band.
 pub(crate) const SMALL: i32 = 1 << 13;
 
+/// Whether every point of `pts` is within ±[`SMALL`] (where the 32-bit
+/// edge set-ups and the triangle path apply).
+#[inline(always)]
+pub(crate) fn all_small(pts: &[ScreenPt]) -> bool {
+    pts.iter().all(|p| p.x.abs() < SMALL && p.y.abs() < SMALL)
+}
+
 /// [`div_floor`] for 32-bit values (`d > 0`): one hardware division.
 #[inline]
 fn div_floor32(n: i32, d: i32) -> (i32, i32) {
