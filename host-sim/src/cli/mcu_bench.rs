@@ -21,7 +21,12 @@
 //! | `m4f` | `thumbv7em-none-eabihf` | `netduinoplus2` (STM32F405) | 1 MiB | 128 KiB | 0 (full frame) | 168 MHz |
 //! | `m0` | `thumbv6m-none-eabi` | `microbit` (nRF51822) | 256 KiB | 16 KiB | 8 | 64 MHz (an STM32G0-class M0+; the nRF51 runs at 16) |
 //!
-//! Other defaults: `--size 240x240 --precision f32-libm --frames 100`.
+//! Other defaults: `--size 240x240 --precision f32-libm --frames 100`;
+//! `--memory`: what the frames need, or on the Cortex-M0, when its 16 KiB
+//! cannot hold that, what a probe run of the firmware measured they leave
+//! beside its statics, its stack peak and a 256 B margin ([`memory`]; the
+//! JSON says which in `memory_from` and gives the probe's figures in
+//! `memory_probe`).
 //! `fps_at_clock` is `clock / instr_median` at one instruction per cycle
 //! (an upper bound: loads, branches and multiplies can take more).
 //!
@@ -51,6 +56,8 @@ use serde_json::json;
 
 use super::{CliError, CliResult};
 use crate::cli_err;
+
+mod memory;
 
 /// Walk stack of the host's check (the firmware's is the tree's depth).
 const HOST_DEPTH: usize = 256;
@@ -90,8 +97,9 @@ pub struct McuBenchArgs {
     pub clock: Option<f64>,
     /// Words of working memory (vertex cache, display list, facing memo;
     /// see the README, "Small RAM") [default: what a frame of the tree
-    /// needs, on m0 at most what the 16 KiB leave beside the band buffer,
-    /// the renderer and the stack].
+    /// needs; on m0, when 16 KiB cannot hold that, what a probe run
+    /// measured they leave beside the statics, the stack peak and a
+    /// 256 B margin].
     #[arg(long, allow_negative_numbers = true)]
     pub memory: Option<usize>,
 }
@@ -195,6 +203,12 @@ struct Bench {
     /// The most working memory a frame used on the host (with all it
     /// could want).
     needed: usize,
+    /// How `memory` was chosen: `--memory`, the frames' need, the
+    /// estimate or measured ([`memory`]).
+    memory_from: &'static str,
+    /// The probe run of a measured memory: its words, statics and stack
+    /// peak.
+    probe: Option<(usize, u64, u64)>,
 }
 
 impl Bench {
@@ -216,6 +230,8 @@ impl Bench {
             clock,
             memory: a.memory,
             needed: 0,
+            memory_from: "--memory",
+            probe: None,
         })
     }
 }
@@ -528,26 +544,32 @@ fn parse_run(out: &str) -> Run {
     run
 }
 
-/// The working memory a run gets unless `--memory` says: the most any
-/// frame of the orbit used on the host with all it could want (`used`),
-/// on the Cortex-M0 at most what its RAM leaves beside the band buffer,
-/// the renderer's scratch (as `build.rs` sizes it: 106 B a vertex) and
-/// 4 KiB for the stack and the other statics (measured: a 3.8 KiB stack
-/// peak for socket in 8-row bands; `fpt mcu-bench` fails with the
-/// measured overflow if a tree needs more).
-fn default_memory(b: &Bench, tree: &Tree<'_>, used: usize) -> usize {
-    if b.cpu != Cpu::M0 {
-        return used;
-    }
-    let verts = (0..tree.polygon_count())
+/// The largest polygon's vertex capacity as the firmware's renderer has
+/// it (`build.rs`: twice the largest polygon's vertices and 8).
+fn max_vertices(tree: &Tree<'_>) -> usize {
+    (0..tree.polygon_count())
         .filter_map(|i| tree.polygon(i))
         .map(|p| 2 * p.vertex_count() + 8)
         .max()
         .unwrap_or(0)
-        .max(16);
-    let band = 2 * band_words(b.size.0, b.size.1, b.band);
-    let left = (b.cpu.ram() as usize).saturating_sub(band + 106 * verts + 4 * 1024);
-    used.min(left / 4)
+}
+
+/// The probe run of [`memory::measured`]: the firmware built with
+/// `b.memory` words and run over the whole orbit; its statics and stack
+/// peak, or `None` when it did not run through (the reported run then
+/// says why).
+fn probe(b: &Bench, name: &str) -> Result<Option<(u64, u64)>, CliError> {
+    let elf = build_firmware(b, name, false)?;
+    let run = run_qemu(b.cpu.qemu(), &elf, b.frames);
+    let _ = std::fs::remove_file(&elf);
+    let Ok((true, out)) = run else {
+        return Ok(None);
+    };
+    let r = parse_run(&out);
+    Ok(match (r.error, r.static_ram, r.stack_peak) {
+        (None, Some(s), Some(p)) => Some((s, p)),
+        _ => None,
+    })
 }
 
 /// Runs `fpt mcu-bench`.
@@ -573,9 +595,23 @@ pub fn run(a: &McuBenchArgs) -> CliResult {
         band: b.band,
         frames: b.frames,
     })?;
-    b.memory = Some(b.memory.unwrap_or_else(|| default_memory(&b, &tree, used)));
     b.needed = used;
     check_tools(b.cpu)?;
+    if b.memory.is_none() {
+        let guess = memory::estimate(&b, max_vertices(&tree), used);
+        b.memory = Some(guess);
+        b.memory_from = "the frames' need";
+        if guess < used {
+            b.memory_from = "estimate";
+            if let Some(m) = probe(&b, &name)? {
+                if let Some(words) = memory::measured(b.cpu.ram(), guess, m, used) {
+                    b.memory = Some(words);
+                    b.memory_from = "measured";
+                    b.probe = Some((guess, m.0, m.1));
+                }
+            }
+        }
+    }
     let elf = build_firmware(&b, &name, false)?;
     let result = measure(&b, &name, &elf, &host, &tree);
     let _ = std::fs::remove_file(&elf);
@@ -724,6 +760,13 @@ fn measure(b: &Bench, name: &str, elf: &Path, host: &[u32], tree: &Tree<'_>) -> 
         "frames": b.frames,
         "memory_words": b.memory.unwrap_or(0),
         "memory_needed": b.needed,
+        "memory_from": b.memory_from,
+        "memory_probe": b.probe.map(|(words, statics, stack)| json!({
+            "memory_words": words,
+            "ram_static": statics,
+            "stack_peak": stack,
+            "margin": memory::MARGIN,
+        })),
         "instr_median": median,
         "instr_min": instr[0],
         "instr_max": instr[instr.len() - 1],
