@@ -39,6 +39,7 @@ use super::edge::{Dda32, Edge};
 use super::gouraud::{fill_smooth, Smooth, SmoothSink};
 use super::outline::draw_outline;
 use super::precision::Precision;
+use super::proof::VertexBound;
 use super::scan::{fill_polygon_in, Bbox, FillRule, Paint, SpanBounds, SpanSink};
 use super::shade::{shade, shade_color, DepthCue, Light, ShadeMode};
 use super::transform::{ScreenPt, VertexPath, Viewport};
@@ -590,6 +591,42 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
                 .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
                 .and_then(|c| P::Path::project_clipped(&c, &self.viewport))
         };
+        self.load_points(scratch, cache, indices, project)
+    }
+
+    /// Whether this frame's camera lets every model point within `bound`
+    /// take [`Renderer::load_proven`] (`VertexPath::prove`, once a frame).
+    pub(crate) fn prove(&self, bound: &VertexBound) -> bool {
+        P::Path::prove(&self.matrix, self.near, bound)
+    }
+
+    /// [`Renderer::load_cached`] for a frame where [`Renderer::prove`]
+    /// holds for every vertex `model` gives (by index): each vertex is
+    /// transformed and projected without the checks it is proven to pass
+    /// (`VertexPath::project_proven`); the same points.
+    #[inline]
+    pub(crate) fn load_proven<const N: usize>(
+        &self,
+        scratch: &mut Scratch<P, N>,
+        cache: &mut VertexCache<'_>,
+        indices: impl Iterator<Item = u32>,
+        model: impl Fn(u32) -> [f32; 3],
+    ) -> Option<(usize, bool)> {
+        let (m, near, vp) = (&self.matrix, self.near, &self.viewport);
+        let project = |v: u32| P::Path::project_proven(m, near, model(v), vp);
+        self.load_points(scratch, cache, indices, project)
+    }
+
+    /// The loop of [`Renderer::load_cached`], with `project` finding a
+    /// vertex's screen point (`None`: it needs the per-polygon path).
+    #[inline(always)]
+    fn load_points<const N: usize>(
+        &self,
+        scratch: &mut Scratch<P, N>,
+        cache: &mut VertexCache<'_>,
+        indices: impl Iterator<Item = u32>,
+        project: impl Fn(u32) -> Option<ScreenPt>,
+    ) -> Option<(usize, bool)> {
         let cap = cache.capacity();
         let mut n = 0;
         let mut all = true;

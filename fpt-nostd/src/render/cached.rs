@@ -181,6 +181,10 @@ enum Source {
     /// Decoded to `f32` and multiplied by the frame's vertex scale (the
     /// renderer has the frame's camera).
     Scaled(f32),
+    /// As `Scaled`, in a frame where the renderer proved that no vertex
+    /// can fail a per-vertex check (`Renderer::prove`): every vertex takes
+    /// `Renderer::load_proven`.
+    Proven(f32),
     /// A q16 tree's `i16` values as stored, with this many fraction bits
     /// (the renderer has the frame's camera with the per-axis scale
     /// folded in: `VertexPath::RAW_Q16_FRAC`).
@@ -214,7 +218,15 @@ fn begin_frame<P: Precision, E: Compiled>(
         }
         _ => {
             r.set_camera(&frame.camera);
-            Source::Scaled(frame.vertex_scale)
+            let s = frame.vertex_scale;
+            // Depth cueing needs each polygon's clip `w`, which the proven
+            // path (screen points only) does not keep.
+            let cue = r.effects().contains(Effects::DEPTH_CUE);
+            if !cue && r.prove(&tree.vertex_bound().scaled(s)) {
+                Source::Proven(s)
+            } else {
+                Source::Scaled(s)
+            }
         }
     };
     (source, fx, turn)
@@ -419,6 +431,10 @@ impl Walk<'_, '_, '_> {
             Source::Q16(frac) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
                 <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
             }),
+            Source::Proven(s) => r.load_proven(scratch, self.cache, p.vertex_indices(), |v| {
+                let x = dec.get(v as usize);
+                [x[0] * s, x[1] * s, x[2] * s]
+            }),
         };
         loaded.map(|(n, _)| n)
     }
@@ -449,6 +465,23 @@ impl Walk<'_, '_, '_> {
                 let decode = move |v: u32| dec.raw_q16(v as usize);
                 let xf = move |m: &_, x| <P::Path as VertexPath>::transform_q(m, x, frac);
                 self.prepare_from(r, scratch, p, (decode, xf), face, reach)
+            }
+            Source::Proven(s) => {
+                let decode = move |v: u32| {
+                    let x = dec.get(v as usize);
+                    [x[0] * s, x[1] * s, x[2] * s]
+                };
+                // Every vertex, cached or not (no depth cue: the screen
+                // points are all the polygon needs); a polygon of more
+                // vertices than the scratch holds takes the checked path.
+                if let Some((n, by_index)) =
+                    r.load_proven(scratch, self.cache, p.vertex_indices(), decode)
+                {
+                    return (r.prepare_screen(scratch, n, face, reach), by_index);
+                }
+                let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
+                let verts = p.vertex_indices().map(decode);
+                (r.prepare_verts(scratch, verts, xf, face, reach), false)
             }
         }
     }
