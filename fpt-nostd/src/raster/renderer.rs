@@ -577,7 +577,11 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// must take the per-polygon path instead: a vertex is [`Slot::Slow`]
     /// (outside a clip plane, not finite or far off screen), or the polygon
     /// has more than `N` vertices. Every path gives the same points (see
-    /// [`super::vcache`]).
+    /// [`super::vcache`]). `model`, given only in a frame where
+    /// [`Renderer::prove`] holds for every vertex it returns (by index),
+    /// stands for `xform` and the checks: each vertex is transformed and
+    /// projected without the tests it is proven to pass
+    /// (`VertexPath::project_proven`).
     #[inline]
     pub(crate) fn load_cached<const N: usize>(
         &self,
@@ -585,48 +589,17 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         cache: &mut VertexCache<'_>,
         indices: impl Iterator<Item = u32>,
         xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
-    ) -> Option<(usize, bool)> {
-        let project = |v: u32| {
-            xform(v)
-                .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
-                .and_then(|c| P::Path::project_clipped(&c, &self.viewport))
-        };
-        self.load_points(scratch, cache, indices, project)
-    }
-
-    /// Whether this frame's camera lets every model point within `bound`
-    /// take [`Renderer::load_proven`] (`VertexPath::prove`, once a frame).
-    pub(crate) fn prove(&self, bound: &VertexBound) -> bool {
-        P::Path::prove(&self.matrix, self.near, bound)
-    }
-
-    /// [`Renderer::load_cached`] for a frame where [`Renderer::prove`]
-    /// holds for every vertex `model` gives (by index): each vertex is
-    /// transformed and projected without the checks it is proven to pass
-    /// (`VertexPath::project_proven`); the same points.
-    #[inline]
-    pub(crate) fn load_proven<const N: usize>(
-        &self,
-        scratch: &mut Scratch<P, N>,
-        cache: &mut VertexCache<'_>,
-        indices: impl Iterator<Item = u32>,
-        model: impl Fn(u32) -> [f32; 3],
+        model: Option<impl Fn(u32) -> [f32; 3]>,
     ) -> Option<(usize, bool)> {
         let (m, near, vp) = (&self.matrix, self.near, &self.viewport);
-        let project = |v: u32| P::Path::project_proven(m, near, model(v), vp);
-        self.load_points(scratch, cache, indices, project)
-    }
+        let project = |v: u32| match &model {
+            // A proven frame: the checks left out, the same point.
+            Some(f) => P::Path::project_proven(m, near, f(v), vp),
+            None => xform(v)
+                .filter(|c| <Scalar<P> as ClipNum>::inside(c, near))
+                .and_then(|c| P::Path::project_clipped(&c, vp)),
+        };
 
-    /// The loop of [`Renderer::load_cached`], with `project` finding a
-    /// vertex's screen point (`None`: it needs the per-polygon path).
-    #[inline(always)]
-    fn load_points<const N: usize>(
-        &self,
-        scratch: &mut Scratch<P, N>,
-        cache: &mut VertexCache<'_>,
-        indices: impl Iterator<Item = u32>,
-        project: impl Fn(u32) -> Option<ScreenPt>,
-    ) -> Option<(usize, bool)> {
         let cap = cache.capacity();
         let mut n = 0;
         let mut all = true;
@@ -648,6 +621,13 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             n += 1;
         }
         Some((n, all))
+    }
+
+    /// Whether this frame's camera lets every model point within `bound`
+    /// skip the per-vertex checks of [`Renderer::load_cached`]
+    /// (`VertexPath::prove`, once a frame).
+    pub(crate) fn prove(&self, bound: &VertexBound) -> bool {
+        P::Path::prove(&self.matrix, self.near, bound)
     }
 
     /// [`Renderer::prepare_verts`] for points already in

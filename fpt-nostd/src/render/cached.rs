@@ -175,16 +175,18 @@ enum Pass {
     Unsure(i32),
 }
 
+/// `Renderer::load_cached`'s `model` where there is none (q16 vertices).
+const NO_MODEL: Option<fn(u32) -> [f32; 3]> = None;
+
 /// How vertices reach the transform.
 #[derive(Clone, Copy, Debug)]
 enum Source {
     /// Decoded to `f32` and multiplied by the frame's vertex scale (the
-    /// renderer has the frame's camera).
-    Scaled(f32),
-    /// As `Scaled`, in a frame where the renderer proved that no vertex
-    /// can fail a per-vertex check (`Renderer::prove`): every vertex takes
-    /// `Renderer::load_proven`.
-    Proven(f32),
+    /// renderer has the frame's camera); `true` in a frame where the
+    /// renderer proved that no vertex can fail a per-vertex check
+    /// (`Renderer::prove`): the vertex cache's misses are projected
+    /// without them (`Renderer::load_cached`'s `model`).
+    Scaled(f32, bool),
     /// A q16 tree's `i16` values as stored, with this many fraction bits
     /// (the renderer has the frame's camera with the per-axis scale
     /// folded in: `VertexPath::RAW_Q16_FRAC`).
@@ -222,11 +224,7 @@ fn begin_frame<P: Precision, E: Compiled>(
             // Depth cueing needs each polygon's clip `w`, which the proven
             // path (screen points only) does not keep.
             let cue = r.effects().contains(Effects::DEPTH_CUE);
-            if !cue && r.prove(&tree.vertex_bound().scaled(s)) {
-                Source::Proven(s)
-            } else {
-                Source::Scaled(s)
-            }
+            Source::Scaled(s, !cue && r.prove(&tree.vertex_bound().scaled(s)))
         }
     };
     (source, fx, turn)
@@ -424,17 +422,28 @@ impl Walk<'_, '_, '_> {
     ) -> Option<usize> {
         let dec = self.tree.vertex_decoder();
         let loaded = match self.source {
-            Source::Scaled(s) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
-                let x = dec.get(v as usize);
-                <P::Path as VertexPath>::transform(r.matrix(), [x[0] * s, x[1] * s, x[2] * s])
-            }),
-            Source::Q16(frac) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
-                <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
-            }),
-            Source::Proven(s) => r.load_proven(scratch, self.cache, p.vertex_indices(), |v| {
-                let x = dec.get(v as usize);
-                [x[0] * s, x[1] * s, x[2] * s]
-            }),
+            Source::Scaled(s, proven) => {
+                let decode = move |v: u32| {
+                    let x = dec.get(v as usize);
+                    [x[0] * s, x[1] * s, x[2] * s]
+                };
+                let xform = |v| <P::Path as VertexPath>::transform(r.matrix(), decode(v));
+                let indices = p.vertex_indices();
+                r.load_cached(
+                    scratch,
+                    self.cache,
+                    indices,
+                    xform,
+                    proven.then_some(decode),
+                )
+            }
+            Source::Q16(frac) => {
+                let xform = |v: u32| {
+                    <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
+                };
+                let indices = p.vertex_indices();
+                r.load_cached(scratch, self.cache, indices, xform, NO_MODEL)
+            }
         };
         loaded.map(|(n, _)| n)
     }
@@ -453,50 +462,36 @@ impl Walk<'_, '_, '_> {
     ) -> (Result<Ready, Outcome>, bool) {
         let dec = self.tree.vertex_decoder();
         match self.source {
-            Source::Scaled(s) => {
+            Source::Scaled(s, proven) => {
                 let decode = move |v: u32| {
                     let x = dec.get(v as usize);
                     [x[0] * s, x[1] * s, x[2] * s]
                 };
                 let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
-                self.prepare_from(r, scratch, p, (decode, xf), face, reach)
+                let model = proven.then_some(decode);
+                self.prepare_from(r, scratch, p, (decode, xf, model), face, reach)
             }
             Source::Q16(frac) => {
                 let decode = move |v: u32| dec.raw_q16(v as usize);
                 let xf = move |m: &_, x| <P::Path as VertexPath>::transform_q(m, x, frac);
-                self.prepare_from(r, scratch, p, (decode, xf), face, reach)
-            }
-            Source::Proven(s) => {
-                let decode = move |v: u32| {
-                    let x = dec.get(v as usize);
-                    [x[0] * s, x[1] * s, x[2] * s]
-                };
-                // Every vertex, cached or not (no depth cue: the screen
-                // points are all the polygon needs); a polygon of more
-                // vertices than the scratch holds takes the checked path.
-                if let Some((n, by_index)) =
-                    r.load_proven(scratch, self.cache, p.vertex_indices(), decode)
-                {
-                    return (r.prepare_screen(scratch, n, face, reach), by_index);
-                }
-                let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
-                let verts = p.vertex_indices().map(decode);
-                (r.prepare_verts(scratch, verts, xf, face, reach), false)
+                self.prepare_from(r, scratch, p, (decode, xf, NO_MODEL), face, reach)
             }
         }
     }
 
     /// [`Walk::prepare`] for vertices that `decode` reads by index and `xf`
-    /// transforms with the frame's matrix.
+    /// transforms with the frame's matrix (`model`: see
+    /// [`Renderer::load_cached`]).
     #[inline(always)]
     fn prepare_from<P: Precision, E: Compiled, X, const V: usize>(
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
         p: &PolygonAt<'_, '_>,
-        (decode, xf): (
+        (decode, xf, model): (
             impl Fn(u32) -> X,
             impl Fn(&<P::Path as VertexPath>::Matrix, X) -> Option<ClipVert<PathScalar<P>>>,
+            Option<impl Fn(u32) -> [f32; 3]>,
         ),
         face: &Face,
         reach: &SpanBounds,
@@ -504,7 +499,7 @@ impl Walk<'_, '_, '_> {
         if self.cache.capacity() > 0 {
             let xform = |v: u32| xf(r.matrix(), decode(v));
             if let Some((n, by_index)) =
-                r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
+                r.load_cached(scratch, self.cache, p.vertex_indices(), xform, model)
             {
                 return (r.prepare_screen(scratch, n, face, reach), by_index);
             }
