@@ -577,10 +577,10 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// must take the per-polygon path instead: a vertex is [`Slot::Slow`]
     /// (outside a clip plane, not finite or far off screen), or the polygon
     /// has more than `N` vertices. Every path gives the same points (see
-    /// [`super::vcache`]). `model`, given only in a frame where
-    /// [`Renderer::prove`] holds for every vertex it returns (by index),
-    /// stands for `xform` and the checks: each vertex is transformed and
-    /// projected without the tests it is proven to pass
+    /// [`super::vcache`]). With `proven`, only in a frame where
+    /// [`Renderer::prove`] holds for every vertex `model` returns (by
+    /// index), `model` stands for `xform` and the checks: each vertex is
+    /// transformed and projected without the tests it is proven to pass
     /// (`VertexPath::project_proven`).
     #[inline]
     pub(crate) fn load_cached<const N: usize>(
@@ -589,15 +589,18 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         cache: &mut VertexCache<'_>,
         indices: impl Iterator<Item = u32>,
         xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
-        model: Option<impl Fn(u32) -> [f32; 3]>,
+        (model, proven): (impl Fn(u32) -> [f32; 3], bool),
     ) -> Option<(usize, bool)> {
         let (m, near, vp) = (&self.matrix, self.near, &self.viewport);
-        let project = |v: u32| match &model {
-            // A proven frame: the checks left out, the same point.
-            Some(f) => P::Path::project_proven(m, near, f(v), vp),
-            None => xform(v)
-                .filter(|c| <Scalar<P> as ClipNum>::inside(c, near))
-                .and_then(|c| P::Path::project_clipped(&c, vp)),
+        let project = |v: u32| {
+            if proven {
+                // A proven frame: the checks left out, the same point.
+                P::Path::project_proven(m, near, model(v), vp)
+            } else {
+                xform(v)
+                    .filter(|c| <Scalar<P> as ClipNum>::inside(c, near))
+                    .and_then(|c| P::Path::project_clipped(&c, vp))
+            }
         };
 
         let cap = cache.capacity();

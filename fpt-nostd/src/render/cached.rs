@@ -175,8 +175,9 @@ enum Pass {
     Unsure(i32),
 }
 
-/// `Renderer::load_cached`'s `model` where there is none (q16 vertices).
-const NO_MODEL: Option<fn(u32) -> [f32; 3]> = None;
+/// `Renderer::load_cached`'s `model` where there is none (q16 vertices):
+/// never called, `proven` is false.
+const NO_MODEL: (fn(u32) -> [f32; 3], bool) = (|_| [0.0; 3], false);
 
 /// How vertices reach the transform.
 #[derive(Clone, Copy, Debug)]
@@ -429,13 +430,7 @@ impl Walk<'_, '_, '_> {
                 };
                 let xform = |v| <P::Path as VertexPath>::transform(r.matrix(), decode(v));
                 let indices = p.vertex_indices();
-                r.load_cached(
-                    scratch,
-                    self.cache,
-                    indices,
-                    xform,
-                    proven.then_some(decode),
-                )
+                r.load_cached(scratch, self.cache, indices, xform, (&decode, proven))
             }
             Source::Q16(frac) => {
                 let xform = |v: u32| {
@@ -468,8 +463,7 @@ impl Walk<'_, '_, '_> {
                     [x[0] * s, x[1] * s, x[2] * s]
                 };
                 let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
-                let model = proven.then_some(decode);
-                self.prepare_from(r, scratch, p, (decode, xf, model), face, reach)
+                self.prepare_from(r, scratch, p, (decode, xf, (decode, proven)), face, reach)
             }
             Source::Q16(frac) => {
                 let decode = move |v: u32| dec.raw_q16(v as usize);
@@ -491,7 +485,7 @@ impl Walk<'_, '_, '_> {
         (decode, xf, model): (
             impl Fn(u32) -> X,
             impl Fn(&<P::Path as VertexPath>::Matrix, X) -> Option<ClipVert<PathScalar<P>>>,
-            Option<impl Fn(u32) -> [f32; 3]>,
+            (impl Fn(u32) -> [f32; 3], bool),
         ),
         face: &Face,
         reach: &SpanBounds,
