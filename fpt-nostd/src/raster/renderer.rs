@@ -577,11 +577,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// must take the per-polygon path instead: a vertex is [`Slot::Slow`]
     /// (outside a clip plane, not finite or far off screen), or the polygon
     /// has more than `N` vertices. Every path gives the same points (see
-    /// [`super::vcache`]). With `proven`, only in a frame where
-    /// [`Renderer::prove`] holds for every vertex `model` returns (by
-    /// index), `model` stands for `xform` and the checks: each vertex is
-    /// transformed and projected without the tests it is proven to pass
-    /// (`VertexPath::project_proven`).
+    /// [`super::vcache`]).
     #[inline]
     pub(crate) fn load_cached<const N: usize>(
         &self,
@@ -589,20 +585,12 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         cache: &mut VertexCache<'_>,
         indices: impl Iterator<Item = u32>,
         xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
-        (model, proven): (impl Fn(u32) -> [f32; 3], bool),
     ) -> Option<(usize, bool)> {
-        let (m, near, vp) = (&self.matrix, self.near, &self.viewport);
         let project = |v: u32| {
-            if proven {
-                // A proven frame: the checks left out, the same point.
-                P::Path::project_proven(m, near, model(v), vp)
-            } else {
-                xform(v)
-                    .filter(|c| <Scalar<P> as ClipNum>::inside(c, near))
-                    .and_then(|c| P::Path::project_clipped(&c, vp))
-            }
+            xform(v)
+                .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
+                .and_then(|c| P::Path::project_clipped(&c, &self.viewport))
         };
-
         let cap = cache.capacity();
         let mut n = 0;
         let mut all = true;
@@ -627,10 +615,32 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     }
 
     /// Whether this frame's camera lets every model point within `bound`
-    /// skip the per-vertex checks of [`Renderer::load_cached`]
-    /// (`VertexPath::prove`, once a frame).
+    /// skip the per-vertex checks (`VertexPath::prove`, once a frame):
+    /// then [`Renderer::prefill`] may stand for the walk's transforms.
     pub(crate) fn prove(&self, bound: &VertexBound) -> bool {
         P::Path::prove(&self.matrix, self.near, bound)
+    }
+
+    /// Fills `cache` with the screen point of every vertex it holds (the
+    /// first `count` at most, `model` giving each by index), transformed
+    /// and projected without the per-vertex checks
+    /// (`VertexPath::project_proven`), for a frame where
+    /// [`Renderer::prove`] holds for every vertex `model` gives. The same
+    /// points [`Renderer::load_cached`] finds, found before the walk and
+    /// outside it: the walk then finds every cached vertex there, and its
+    /// own code (and register allocation) is that of any other frame.
+    #[inline(never)]
+    pub(crate) fn prefill(
+        &self,
+        cache: &mut VertexCache<'_>,
+        count: usize,
+        model: impl Fn(u32) -> [f32; 3],
+    ) {
+        let (m, near, vp) = (&self.matrix, self.near, &self.viewport);
+        let n = cache.capacity().min(count).min(u32::MAX as usize) as u32;
+        for v in 0..n {
+            cache.set(v, P::Path::project_proven(m, near, model(v), vp));
+        }
     }
 
     /// [`Renderer::prepare_verts`] for points already in

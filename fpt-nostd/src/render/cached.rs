@@ -94,6 +94,32 @@ fn take_cache<'m>(
     (c, rest)
 }
 
+/// In a frame whose camera is proven to keep every vertex of `tree`
+/// inside the clip planes and the viewport ([`crate::raster::proof`]),
+/// fills the cleared `cache` before the walk ([`Renderer::prefill`]): each
+/// cached vertex is transformed without the per-vertex checks, in a loop
+/// of its own; the walk then finds them all cached (the same points). Not
+/// with q16 vertices (paths for cores without an FPU, which prove
+/// nothing) nor depth cueing (no cache).
+fn prefill<P: Precision, E: Compiled>(
+    r: &Renderer<P, E>,
+    tree: &Tree<'_>,
+    source: Source,
+    cache: &mut VertexCache<'_>,
+) {
+    let Source::Scaled(s) = source else {
+        return;
+    };
+    if cache.capacity() == 0 || !r.prove(&tree.vertex_bound().scaled(s)) {
+        return;
+    }
+    let dec = tree.vertex_decoder();
+    r.prefill(cache, tree.vertex_count() as usize, |v| {
+        let x = dec.get(v as usize);
+        [x[0] * s, x[1] * s, x[2] * s]
+    });
+}
+
 /// Words of memory with which a frame of `tree` needs one walk and
 /// transforms each vertex once, whatever the view, with the effects the
 /// tree declares: [`memory_words_for`].
@@ -175,19 +201,12 @@ enum Pass {
     Unsure(i32),
 }
 
-/// `Renderer::load_cached`'s `model` where there is none (q16 vertices):
-/// never called, `proven` is false.
-const NO_MODEL: (fn(u32) -> [f32; 3], bool) = (|_| [0.0; 3], false);
-
 /// How vertices reach the transform.
 #[derive(Clone, Copy, Debug)]
 enum Source {
     /// Decoded to `f32` and multiplied by the frame's vertex scale (the
-    /// renderer has the frame's camera); `true` in a frame where the
-    /// renderer proved that no vertex can fail a per-vertex check
-    /// (`Renderer::prove`): the vertex cache's misses are projected
-    /// without them (`Renderer::load_cached`'s `model`).
-    Scaled(f32, bool),
+    /// renderer has the frame's camera).
+    Scaled(f32),
     /// A q16 tree's `i16` values as stored, with this many fraction bits
     /// (the renderer has the frame's camera with the per-axis scale
     /// folded in: `VertexPath::RAW_Q16_FRAC`).
@@ -221,11 +240,7 @@ fn begin_frame<P: Precision, E: Compiled>(
         }
         _ => {
             r.set_camera(&frame.camera);
-            let s = frame.vertex_scale;
-            // Depth cueing needs each polygon's clip `w`, which the proven
-            // path (screen points only) does not keep.
-            let cue = r.effects().contains(Effects::DEPTH_CUE);
-            Source::Scaled(s, !cue && r.prove(&tree.vertex_bound().scaled(s)))
+            Source::Scaled(frame.vertex_scale)
         }
     };
     (source, fx, turn)
@@ -423,22 +438,13 @@ impl Walk<'_, '_, '_> {
     ) -> Option<usize> {
         let dec = self.tree.vertex_decoder();
         let loaded = match self.source {
-            Source::Scaled(s, proven) => {
-                let decode = move |v: u32| {
-                    let x = dec.get(v as usize);
-                    [x[0] * s, x[1] * s, x[2] * s]
-                };
-                let xform = |v| <P::Path as VertexPath>::transform(r.matrix(), decode(v));
-                let indices = p.vertex_indices();
-                r.load_cached(scratch, self.cache, indices, xform, (&decode, proven))
-            }
-            Source::Q16(frac) => {
-                let xform = |v: u32| {
-                    <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
-                };
-                let indices = p.vertex_indices();
-                r.load_cached(scratch, self.cache, indices, xform, NO_MODEL)
-            }
+            Source::Scaled(s) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
+                let x = dec.get(v as usize);
+                <P::Path as VertexPath>::transform(r.matrix(), [x[0] * s, x[1] * s, x[2] * s])
+            }),
+            Source::Q16(frac) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
+                <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
+            }),
         };
         loaded.map(|(n, _)| n)
     }
@@ -457,35 +463,33 @@ impl Walk<'_, '_, '_> {
     ) -> (Result<Ready, Outcome>, bool) {
         let dec = self.tree.vertex_decoder();
         match self.source {
-            Source::Scaled(s, proven) => {
+            Source::Scaled(s) => {
                 let decode = move |v: u32| {
                     let x = dec.get(v as usize);
                     [x[0] * s, x[1] * s, x[2] * s]
                 };
                 let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
-                self.prepare_from(r, scratch, p, (decode, xf, (decode, proven)), face, reach)
+                self.prepare_from(r, scratch, p, (decode, xf), face, reach)
             }
             Source::Q16(frac) => {
                 let decode = move |v: u32| dec.raw_q16(v as usize);
                 let xf = move |m: &_, x| <P::Path as VertexPath>::transform_q(m, x, frac);
-                self.prepare_from(r, scratch, p, (decode, xf, NO_MODEL), face, reach)
+                self.prepare_from(r, scratch, p, (decode, xf), face, reach)
             }
         }
     }
 
     /// [`Walk::prepare`] for vertices that `decode` reads by index and `xf`
-    /// transforms with the frame's matrix (`model`: see
-    /// [`Renderer::load_cached`]).
+    /// transforms with the frame's matrix.
     #[inline(always)]
     fn prepare_from<P: Precision, E: Compiled, X, const V: usize>(
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
         p: &PolygonAt<'_, '_>,
-        (decode, xf, model): (
+        (decode, xf): (
             impl Fn(u32) -> X,
             impl Fn(&<P::Path as VertexPath>::Matrix, X) -> Option<ClipVert<PathScalar<P>>>,
-            (impl Fn(u32) -> [f32; 3], bool),
         ),
         face: &Face,
         reach: &SpanBounds,
@@ -493,7 +497,7 @@ impl Walk<'_, '_, '_> {
         if self.cache.capacity() > 0 {
             let xform = |v: u32| xf(r.matrix(), decode(v));
             if let Some((n, by_index)) =
-                r.load_cached(scratch, self.cache, p.vertex_indices(), xform, model)
+                r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
             {
                 return (r.prepare_screen(scratch, n, face, reach), by_index);
             }
@@ -548,6 +552,7 @@ where
     let (source, fx, turn) = begin_frame(r, tree, frame);
     let limit = memory.len();
     let (mut cache, _) = take_cache(memory, tree, cacheable(r), limit);
+    prefill(r, tree, source, &mut cache);
     let reach = r.viewport_bounds().intersect(&sink.bounds());
     let mut spans = 0;
     Order::<N>::check_depth(tree)?;
@@ -925,6 +930,7 @@ where
     // smaller list adds (measured on a Cortex-M0, README "Small RAM").
     let most = memory.len() - memory.len() / 4;
     let (mut cache, rest) = take_cache(memory, tree, cacheable(r), most);
+    prefill(r, tree, source, &mut cache);
     let list_words = bytemuck::cast_slice_mut(rest);
     let needs_id = <Band<'_, Framebuffer<'_, F>> as SpanSink>::NEEDS_ID;
     let mut list = DisplayList::new(list_words, needs_id, outlines);
