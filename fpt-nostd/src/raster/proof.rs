@@ -396,6 +396,35 @@ mod tests {
             }
             buf
         }
+        /// The frame in 7-row bands with `memory` (one walk, the cache
+        /// filled before it in a proven frame), as RGB888 bytes.
+        fn banded<P: crate::raster::Precision>(
+            t: &crate::reader::Tree<'_>,
+            frame: &Frame,
+            memory: &mut [u32],
+        ) -> Vec<u8> {
+            use crate::raster::framebuffer::Rgb888Format;
+            use crate::render::BandBuffer;
+            use embedded_graphics::pixelcolor::Rgb888;
+            let (w, h, rows) = (48usize, 40usize, 7u32);
+            let mut out = vec![0xFFu8; 3 * w * h];
+            let mut buf = vec![0u8; 3 * w * rows as usize];
+            let band = BandBuffer::<Rgb888Format> {
+                buf: &mut buf,
+                rows,
+                background: Rgb888::new(1, 2, 3),
+            };
+            let Some(mut r) = TreeRenderer::<P, 16>::new(w as u32, h as u32) else {
+                panic!("renderer")
+            };
+            let res = r.render_banded_in::<8, _>(t, frame, band, memory, |y0, fb| {
+                let start = 3 * y0 as usize * w;
+                let d = fb.data();
+                out[start..start + d.len()].copy_from_slice(d);
+            });
+            assert!(res.is_ok(), "{res:?}");
+            out
+        }
         let (mut proven, mut not, mut drawn) = (0, 0, 0);
         let r = t.bounding_radius();
         for i in 0..60 {
@@ -424,6 +453,11 @@ mod tests {
                 assert_eq!(a, c, "view {i}, {words} words");
                 drawn += usize::from(a.iter().any(|&x| x != 0));
             }
+            let mut m1 = vec![0u32; 4096];
+            let mut m2 = vec![0u32; 4096];
+            let a = banded::<FloatLibm<4>>(&t, &frame, &mut m1);
+            let c = banded::<Config<Checked, Libm, 4>>(&t, &frame, &mut m2);
+            assert!(a == c, "view {i}, bands");
         }
         assert!(proven >= 10 && not >= 10, "{proven} {not}");
         assert!(drawn >= 60, "{drawn} of 120 frames draw something");
