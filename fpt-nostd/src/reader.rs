@@ -86,6 +86,8 @@
 
 use core::fmt;
 
+use crate::raster::proof::VertexBound;
+
 use crate::format::{
     crc32, header as h, le_f32, le_u32, node as nd, polygon as pg, rd, rd_f32, rd_f32x3, rd_f64,
     rd_i16, rd_i32, rd_u16, rd_u32, rd_u8, rec, run as rn, Counts, FormatError, Sections, UpAxis,
@@ -555,6 +557,9 @@ pub struct Tree<'a> {
     effects: u32,
     max_depth: u32,
     radius: f32,
+    /// Bounds of the decoded vertices, computed when the file is read
+    /// (the header's radius is not checked against them).
+    vertex_bound: VertexBound,
     up: UpAxis,
     capacities: Capacities,
     /// The corner normal section (`index_count` records of
@@ -974,6 +979,7 @@ impl<'a> Tree<'a> {
             effects: rd_u32(bytes, h::EFFECTS),
             max_depth: rd_u32(bytes, h::MAX_DEPTH),
             radius,
+            vertex_bound: VertexBound::EMPTY,
             up,
             capacities: Capacities {
                 walk_depth: rd_u32(bytes, h::MAX_DEPTH),
@@ -987,7 +993,7 @@ impl<'a> Tree<'a> {
         if rd_u32(bytes, h::RESERVED32) != 0 {
             return Err(FormatError::BadHeader("reserved"));
         }
-        tree.check_vertices()?;
+        tree.vertex_bound = tree.check_vertices()?;
         if tree.check_polygons()? != tree.capacities.polygon_vertices {
             return Err(FormatError::BadHeader("polygon_vertices"));
         }
@@ -1087,6 +1093,15 @@ impl<'a> Tree<'a> {
     /// Radius of the bounding sphere centred on the origin.
     pub fn bounding_radius(&self) -> f32 {
         self.radius
+    }
+
+    /// Bounds of the vertices as [`Tree::vertex_decoder`] decodes them
+    /// (relative to the origin): per axis and of the squared length,
+    /// computed from every vertex when the file was read. The float
+    /// transform proves from them, once a frame, that its per-vertex
+    /// checks cannot fire ([`crate::raster::proof`]).
+    pub fn vertex_bound(&self) -> VertexBound {
+        self.vertex_bound
     }
 
     /// The vertex encoding.

@@ -61,6 +61,7 @@ pub mod int_path;
 pub mod list;
 pub mod outline;
 pub mod precision;
+pub mod proof;
 pub mod renderer;
 pub mod scan;
 pub mod shade;

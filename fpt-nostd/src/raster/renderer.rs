@@ -39,6 +39,7 @@ use super::edge::{Dda32, Edge};
 use super::gouraud::{fill_smooth, Smooth, SmoothSink};
 use super::outline::draw_outline;
 use super::precision::Precision;
+use super::proof::VertexBound;
 use super::scan::{fill_polygon_in, Bbox, FillRule, Paint, SpanBounds, SpanSink};
 use super::shade::{shade, shade_color, DepthCue, Light, ShadeMode};
 use super::transform::{ScreenPt, VertexPath, Viewport};
@@ -611,6 +612,35 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             n += 1;
         }
         Some((n, all))
+    }
+
+    /// Whether this frame's camera lets every model point within `bound`
+    /// skip the per-vertex checks (`VertexPath::prove`, once a frame):
+    /// then [`Renderer::prefill`] may stand for the walk's transforms.
+    pub(crate) fn prove(&self, bound: &VertexBound) -> bool {
+        P::Path::prove(&self.matrix, self.near, bound)
+    }
+
+    /// Fills `cache` with the screen point of every vertex it holds (the
+    /// first `count` at most, `model` giving each by index), transformed
+    /// and projected without the per-vertex checks
+    /// (`VertexPath::project_proven`), for a frame where
+    /// [`Renderer::prove`] holds for every vertex `model` gives. The same
+    /// points [`Renderer::load_cached`] finds, found before the walk and
+    /// outside it: the walk then finds every cached vertex there, and its
+    /// own code (and register allocation) is that of any other frame.
+    #[inline(never)]
+    pub(crate) fn prefill(
+        &self,
+        cache: &mut VertexCache<'_>,
+        count: usize,
+        model: impl Fn(u32) -> [f32; 3],
+    ) {
+        let (m, near, vp) = (&self.matrix, self.near, &self.viewport);
+        let n = cache.capacity().min(count).min(u32::MAX as usize) as u32;
+        for v in 0..n {
+            cache.set(v, P::Path::project_proven(m, near, model(v), vp));
+        }
     }
 
     /// [`Renderer::prepare_verts`] for points already in

@@ -26,6 +26,7 @@ use core::marker::PhantomData;
 use super::camera::Mat4;
 use super::clip::{ClipNum, ClipVert, GUARD};
 use super::precision::MathFns;
+use super::proof::{prove_float, VertexBound};
 use crate::fixed::{Fx, FxWide};
 
 /// Largest supported viewport side, in pixels.
@@ -182,6 +183,32 @@ pub trait VertexPath {
     fn project_clipped(v: &ClipVert<Self::Scalar>, vp: &Viewport) -> Option<ScreenPt> {
         Self::project(v, vp)
     }
+    /// Whether, for prepared matrix `m` and near threshold `near`, every
+    /// model point within `bound` is proven to pass every check of
+    /// [`VertexPath::transform`], the clip test and the projection, so that
+    /// [`VertexPath::project_proven`] may stand for them this frame
+    /// (checked once a frame: [`super::proof`]). The default proves
+    /// nothing.
+    fn prove(m: &Self::Matrix, near: Self::Scalar, bound: &VertexBound) -> bool {
+        let _ = (m, near, bound);
+        false
+    }
+    /// The screen point of model point `v`: the same as
+    /// [`VertexPath::transform`], the clip test ([`ClipNum::inside`]) and
+    /// [`VertexPath::project_clipped`] give (`None` when one fails), for a
+    /// frame where [`VertexPath::prove`] holds and `v` within its bound,
+    /// where a path may leave the checks out. The default is that chain.
+    #[inline]
+    fn project_proven(
+        m: &Self::Matrix,
+        near: Self::Scalar,
+        v: [f32; 3],
+        vp: &Viewport,
+    ) -> Option<ScreenPt> {
+        Self::transform(m, v)
+            .filter(|c| <Self::Scalar as ClipNum>::inside(c, near))
+            .and_then(|c| Self::project_clipped(&c, vp))
+    }
 }
 
 /// Fixed-point vertex path with `F` fraction bits (see module docs).
@@ -290,8 +317,7 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
         // needs no test of its own: it makes every row non-finite (∞ times
         // an entry is ±∞ or, for a zero entry, NaN), which the output test
         // rejects.
-        let row = |r: &[f32; 4]| r[0] * v[0] + r[1] * v[1] + r[2] * v[2] + r[3];
-        let (x, y, w) = (row(&m.0[0]), row(&m.0[1]), row(&m.0[3]));
+        let ClipVert { x, y, w } = clip_f32(m, v);
         // `|s| ≤ LIMIT` is false for NaN and ±∞: it is the finiteness test.
         let ok = |s: f32| s.abs() <= FLOAT_CLIP_LIMIT;
         (ok(x) && ok(y) && ok(w)).then_some(ClipVert { x, y, w })
@@ -345,6 +371,40 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
             y: floor_to_i32(y),
         })
     }
+
+    fn prove(m: &Mat4, near: f32, bound: &VertexBound) -> bool {
+        prove_float(m, near, bound)
+    }
+
+    /// The transform and projection without a check: in a proven frame
+    /// ([`super::proof`]) `X`, `Y`, `W` are finite with `W ≥ near` and
+    /// `|X|, |Y| ≤ (1 − 2^-8)·W`, so the finiteness and clip tests pass,
+    /// `x/w` and `y/w` lie in `[−1, 1]` (the NDC clamp changes nothing)
+    /// and the screen coordinates are at least 0.5 and below `2^23`,
+    /// where the truncating conversion is the exact floor: the same
+    /// arithmetic as the checked chain, the same point.
+    #[inline(always)]
+    fn project_proven(m: &Mat4, _near: f32, v: [f32; 3], vp: &Viewport) -> Option<ScreenPt> {
+        let c = clip_f32(m, v);
+        let r = M::recip(c.w);
+        let (x, y) = ndc_to_screen(c.x * r, c.y * r, vp);
+        Some(ScreenPt {
+            x: x as i32,
+            y: y as i32,
+        })
+    }
+}
+
+/// Clip `x`, `y`, `w` of model point `v` (rows 0, 1 and 3 of `m`; clip
+/// `z` is never used), unchecked.
+#[inline(always)]
+fn clip_f32(m: &Mat4, v: [f32; 3]) -> ClipVert<f32> {
+    let row = |r: &[f32; 4]| r[0] * v[0] + r[1] * v[1] + r[2] * v[2] + r[3];
+    ClipVert {
+        x: row(&m.0[0]),
+        y: row(&m.0[1]),
+        w: row(&m.0[3]),
+    }
 }
 
 /// The float projection's arithmetic, shared by both of its forms: clip
@@ -360,6 +420,13 @@ fn screen_f32<M: MathFns>(v: &ClipVert<f32>, vp: &Viewport) -> (f32, f32) {
     let lim = GUARD as f32 + 0.5;
     let nx = (v.x * r).clamp(-lim, lim);
     let ny = (v.y * r).clamp(-lim, lim);
+    ndc_to_screen(nx, ny, vp)
+}
+
+/// NDC `nx`, `ny` mapped to sub-pixel screen units, with the half unit
+/// that makes the later floor round to nearest.
+#[inline(always)]
+fn ndc_to_screen(nx: f32, ny: f32, vp: &Viewport) -> (f32, f32) {
     let sw = 0.5 * (vp.width << vp.sub) as f32;
     let sh = 0.5 * (vp.height << vp.sub) as f32;
     ((nx + 1.0) * sw + 0.5, (1.0 - ny) * sh + 0.5)

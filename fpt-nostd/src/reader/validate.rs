@@ -5,10 +5,13 @@
 use super::{finite3_f32, Tree};
 use crate::format::EDGE_SOFT;
 use crate::format::{rd_f32x3, rd_u64, FormatError, VertexFormat, COMPACT_HIDDEN_SHIFT, NO_SWITCH};
+use crate::raster::proof::VertexBound;
 
 impl Tree<'_> {
     /// `f32` vertices finite; every vertex index below the vertex count.
-    pub(super) fn check_vertices(&self) -> Result<(), FormatError> {
+    /// Returns the bounds of the decoded vertices (one more pass over them,
+    /// at load time, so that no frame needs one).
+    pub(super) fn check_vertices(&self) -> Result<VertexBound, FormatError> {
         if self.g.format == VertexFormat::F32 {
             for v in 0..self.counts.vertices {
                 if !finite3_f32(rd_f32x3(self.g.bytes, self.g.vertex_off(v))) {
@@ -16,12 +19,15 @@ impl Tree<'_> {
                 }
             }
         }
+        let dec = self.g.decoder();
+        let bound =
+            (0..self.counts.vertices as usize).fold(VertexBound::EMPTY, |b, v| b.with(dec.get(v)));
         for j in 0..self.counts.indices {
             if self.g.index(j) >= self.counts.vertices {
                 return Err(FormatError::IndexOutOfRange);
             }
         }
-        Ok(())
+        Ok(bound)
     }
 
     /// The polygons tile the index list with at least 3 indices each;

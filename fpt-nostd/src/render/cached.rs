@@ -94,6 +94,32 @@ fn take_cache<'m>(
     (c, rest)
 }
 
+/// In a frame whose camera is proven to keep every vertex of `tree`
+/// inside the clip planes and the viewport ([`crate::raster::proof`]),
+/// fills the cleared `cache` before the walk ([`Renderer::prefill`]): each
+/// cached vertex is transformed without the per-vertex checks, in a loop
+/// of its own; the walk then finds them all cached (the same points). Not
+/// with q16 vertices (paths for cores without an FPU, which prove
+/// nothing) nor depth cueing (no cache).
+fn prefill<P: Precision, E: Compiled>(
+    r: &Renderer<P, E>,
+    tree: &Tree<'_>,
+    source: Source,
+    cache: &mut VertexCache<'_>,
+) {
+    let Source::Scaled(s) = source else {
+        return;
+    };
+    if cache.capacity() == 0 || !r.prove(&tree.vertex_bound().scaled(s)) {
+        return;
+    }
+    let dec = tree.vertex_decoder();
+    r.prefill(cache, tree.vertex_count() as usize, |v| {
+        let x = dec.get(v as usize);
+        [x[0] * s, x[1] * s, x[2] * s]
+    });
+}
+
 /// Words of memory with which a frame of `tree` needs one walk and
 /// transforms each vertex once, whatever the view, with the effects the
 /// tree declares: [`memory_words_for`].
@@ -526,6 +552,7 @@ where
     let (source, fx, turn) = begin_frame(r, tree, frame);
     let limit = memory.len();
     let (mut cache, _) = take_cache(memory, tree, cacheable(r), limit);
+    prefill(r, tree, source, &mut cache);
     let reach = r.viewport_bounds().intersect(&sink.bounds());
     let mut spans = 0;
     Order::<N>::check_depth(tree)?;
@@ -903,6 +930,7 @@ where
     // smaller list adds (measured on a Cortex-M0, README "Small RAM").
     let most = memory.len() - memory.len() / 4;
     let (mut cache, rest) = take_cache(memory, tree, cacheable(r), most);
+    prefill(r, tree, source, &mut cache);
     let list_words = bytemuck::cast_slice_mut(rest);
     let needs_id = <Band<'_, Framebuffer<'_, F>> as SpanSink>::NEEDS_ID;
     let mut list = DisplayList::new(list_words, needs_id, outlines);
