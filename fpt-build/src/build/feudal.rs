@@ -492,7 +492,7 @@ fn make_switch_on(
 /// Both subgroups of a switch node need at least this many members for
 /// the front one to be built on another thread: below, copying its
 /// polygons and starting a thread cost about what building it does.
-const FORK: usize = 128;
+const FORK: usize = 32;
 
 /// Builds the groups in front of (`ft`) and behind (`bt`) a switch node,
 /// the front one on another thread when one is free, the static builder
@@ -503,7 +503,7 @@ const FORK: usize = 128;
 /// in one sequence through both, so it never splits them).
 fn build_both(ft: Table, bt: Table, mode: Mode, ctx: &mut Ctx) -> (Connecting, Connecting) {
     let big = ft.alive_count().min(bt.alive_count()) >= FORK;
-    if mode != Mode::Static || ctx.in_trial() || !big || !ctx.threads.take() {
+    if mode != Mode::Static || !big || !ctx.threads.take() {
         let front = build_group(ft, mode, ctx);
         return (front, build_group(bt, mode, ctx));
     }

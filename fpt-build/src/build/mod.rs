@@ -22,7 +22,7 @@ use crate::geom::{bounds, Plane, Polygon, Relation, Tolerance};
 use crate::split::split;
 use crate::tree::{Connecting, FpTree, Method, Stats};
 use glam::DVec3;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicIsize, AtomicUsize, Ordering};
 use std::sync::Mutex;
 use table::Table;
 
@@ -81,12 +81,16 @@ impl Report for Reporter<'_> {
     }
 }
 
-/// The threads a build may start besides its own: a fixed budget, taken
-/// when a piece of work is handed to another thread and given back when
-/// it is done, so that nested parallel parts never run more threads than
-/// the build was given.
+/// The threads a build may run at once: a budget of tokens, one per
+/// running thread. A thread that hands work to another takes a token for
+/// it ([`Threads::take`]); each of the two gives its token back as soon as
+/// its part is done, so that while one waits for the other, the one still
+/// working can hand work on (else a thread waiting at the top of the tree
+/// would keep the second core idle for the rest of the build). The one
+/// that goes on afterwards takes its token back unconditionally: the count
+/// may go below zero for a moment (one thread too many), never further.
 pub(crate) struct Threads {
-    free: AtomicUsize,
+    free: AtomicIsize,
     /// Work handed to another thread so far, by [`Work`] (the tests check
     /// that each kind is run beside another).
     handed: [AtomicUsize; 3],
@@ -112,7 +116,7 @@ impl Threads {
     /// A budget of `n` threads in all (the caller's included).
     pub fn new(n: usize) -> Threads {
         Threads {
-            free: AtomicUsize::new(n.saturating_sub(1)),
+            free: AtomicIsize::new(n.saturating_sub(1).min(isize::MAX as usize) as isize),
             handed: Default::default(),
         }
     }
@@ -121,12 +125,15 @@ impl Threads {
     /// runs [`Threads::beside`], which gives it back.
     pub fn take(&self) -> bool {
         self.free
-            .fetch_update(Ordering::AcqRel, Ordering::Acquire, |f| f.checked_sub(1))
+            .fetch_update(Ordering::AcqRel, Ordering::Acquire, |f| {
+                (f > 0).then_some(f - 1)
+            })
             .is_ok()
     }
 
-    /// Runs `a` on another thread and `b` on this one, and gives back the
-    /// thread taken with [`Threads::take`]. When no thread can be started
+    /// Runs `a` on another thread and `b` on this one, after a token was
+    /// taken with [`Threads::take`]; each gives its token back when done
+    /// (see [`Threads`]). When no thread can be started
     /// (no memory for its stack), `a` runs here after `b`: the result is
     /// the same, only later. A panic in `a` is passed on.
     pub fn beside<A: Send, B>(
@@ -139,20 +146,23 @@ impl Threads {
         let job = Mutex::new(Some(a));
         let run = || {
             let a = job.lock().unwrap_or_else(|e| e.into_inner()).take();
-            a.map(|a| a())
+            let ra = a.map(|a| a());
+            self.free.fetch_add(1, Ordering::AcqRel);
+            ra
         };
         let (ra, rb) = std::thread::scope(|s| {
             let h = std::thread::Builder::new()
                 .stack_size(STACK)
                 .spawn_scoped(s, &run);
             let rb = b();
+            self.free.fetch_add(1, Ordering::AcqRel);
             let ra = match h {
                 Ok(h) => h.join(),
                 Err(_) => Ok(run()),
             };
             (ra, rb)
         });
-        self.free.fetch_add(1, Ordering::AcqRel);
+        self.free.fetch_sub(1, Ordering::AcqRel);
         match ra {
             // `a` ran exactly once, on the thread or here: the job was
             // there to take (nothing else takes it).
@@ -240,7 +250,7 @@ impl<'a> Ctx<'a> {
     pub fn detach(&self, t: &mut Table) -> (Ctx<'a>, Vec<u32>) {
         let local = (0..t.len() as u32).collect();
         let ids = std::mem::replace(&mut t.ids, local);
-        let child = Ctx {
+        let mut child = Ctx {
             polys: ids
                 .iter()
                 .map(|&id| self.polys[id as usize].clone())
@@ -257,6 +267,17 @@ impl<'a> Ctx<'a> {
             look_group: self.look_group,
             threads: self.threads,
         };
+        if self.trial {
+            // A part of a trial: it may add what the trial has left, and
+            // is cut short as an earlier trial beside it says. If the part
+            // is cut short, the trial's count (with the part's pieces,
+            // `attach`) is over its limit too.
+            let (polys, splits, limit) = self.trial_base;
+            let added = (self.polys.len() - polys).saturating_sub(self.splittings - splits);
+            child.trial = true;
+            child.trial_base = (child.polys.len(), 0, limit.saturating_sub(added));
+            child.cap = self.cap;
+        }
         (child, ids)
     }
 
