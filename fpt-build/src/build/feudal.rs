@@ -495,12 +495,13 @@ fn make_switch_on(
 const FORK: usize = 32;
 
 /// Builds the groups in front of (`ft`) and behind (`bt`) a switch node,
-/// the front one on another thread when one is free, the static builder
-/// is not in a trial, and both groups are large enough ([`FORK`]). The
-/// two are independent: the front one is built on a copy of its polygons
-/// ([`Ctx::detach`]) and its pieces appended afterwards, so the tree is
-/// the one built on one thread (the dynamic builder draws random numbers
-/// in one sequence through both, so it never splits them).
+/// the front one on another thread when one is free and both groups are
+/// large enough ([`FORK`]). The two are independent: the front one is
+/// built on a copy of its polygons ([`Ctx::detach`]) and its pieces
+/// appended afterwards, so the tree is the one built on one thread (the
+/// dynamic builder draws random numbers in one sequence through both, so
+/// it never splits them). In a lookahead trial the front part may add
+/// what the trial has left; if it is cut short, so is the trial.
 fn build_both(ft: Table, bt: Table, mode: Mode, ctx: &mut Ctx) -> (Connecting, Connecting) {
     let big = ft.alive_count().min(bt.alive_count()) >= FORK;
     if mode != Mode::Static || !big || !ctx.threads.take() {

@@ -22,6 +22,12 @@
 //! greedily (stopping as soon as it adds more than the best so far), each
 //! node of the tree runs at most `CANDIDATES + CUTTING + 1` trials, and
 //! large models look ahead only in small groups ([`group_limit`]).
+//!
+//! On two threads, two trials run at once when a thread is free
+//! ([`cheapest`]), and a trial's subgroups may be built on two threads
+//! (`feudal::build_both`); the choice is the one of a single thread. The
+//! relations trials compute are not counted: the count is that of the
+//! tree built, the same however the trials were scheduled.
 
 use super::feudal::{divide, Divide, Mode};
 use super::table::Table;

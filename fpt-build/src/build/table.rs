@@ -27,8 +27,8 @@
 //! the tree, are those of the exact table.
 //!
 //! Rows are counted through a bounding-volume hierarchy ([`super::bvh`]),
-//! so a row costs about √n classifications, and several rows are counted
-//! on all cores at once. Every row computed counts the relations of the
+//! so a row costs about √n classifications, and large batches of rows are
+//! counted on two threads when the build has one free. Every row computed counts the relations of the
 //! paper's table (one per other member), as the paper counts its cost.
 
 use super::bvh::Bvh;
