@@ -96,7 +96,7 @@ impl Watch {
 /// Rows counted per thread at least, when counting on two threads: a
 /// thread is started per call, which on a loaded machine waits for a time
 /// slice, so only large batches are worth it.
-const PER_THREAD: usize = 1024;
+const PER_THREAD: usize = 128;
 
 /// Applies `f` to every row of `rows`, half of them on another thread when
 /// there are many and the build has one free ([`Threads`]).
