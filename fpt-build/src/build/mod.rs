@@ -153,7 +153,7 @@ impl Threads {
         let (ra, rb) = std::thread::scope(|s| {
             let h = std::thread::Builder::new()
                 .stack_size(STACK)
-                .spawn_scoped(s, &run);
+                .spawn_scoped(s, run);
             let rb = b();
             self.free.fetch_add(1, Ordering::AcqRel);
             let ra = match h {
