@@ -9,7 +9,7 @@
 use super::auxiliary::{best_aux, cutting_aux, AuxPlane};
 use super::lookahead;
 use super::table::{Rel, Table, Watch};
-use super::Ctx;
+use super::{Ctx, Work};
 use crate::geom::Plane;
 use crate::tree::{Connecting, Level, Switch};
 use std::cmp::Ordering;
@@ -480,10 +480,45 @@ fn make_switch_on(
     let ft = t.subtable(&front, &front_pieces, ctx);
     let bt = t.subtable(&back, &back_pieces, ctx);
     drop(t);
+    let (front, back) = build_both(ft, bt, mode, ctx);
     Switch {
         plane,
         on,
-        front: build_group(ft, mode, ctx),
-        back: build_group(bt, mode, ctx),
+        front,
+        back,
     }
+}
+
+/// Both subgroups of a switch node need at least this many members for
+/// the front one to be built on another thread: below, copying its
+/// polygons and starting a thread cost about what building it does.
+const FORK: usize = 32;
+
+/// Builds the groups in front of (`ft`) and behind (`bt`) a switch node,
+/// the front one on another thread when one is free and both groups are
+/// large enough ([`FORK`]). The two are independent: the front one is
+/// built on a copy of its polygons ([`Ctx::detach`]) and its pieces
+/// appended afterwards, so the tree is the one built on one thread (the
+/// dynamic builder draws random numbers in one sequence through both, so
+/// it never splits them). In a lookahead trial the front part may add
+/// what the trial has left; if it is cut short, so is the trial.
+fn build_both(ft: Table, bt: Table, mode: Mode, ctx: &mut Ctx) -> (Connecting, Connecting) {
+    let big = ft.alive_count().min(bt.alive_count()) >= FORK;
+    if mode != Mode::Static || !big || !ctx.threads.take() {
+        let front = build_group(ft, mode, ctx);
+        return (front, build_group(bt, mode, ctx));
+    }
+    let mut ft = ft;
+    let (mut part, ids) = ctx.detach(&mut ft);
+    let threads = ctx.threads;
+    let ((mut front, part), back) = threads.beside(
+        Work::Subtree,
+        move || {
+            let front = build_group(ft, mode, &mut part);
+            (front, part)
+        },
+        || build_group(bt, mode, ctx),
+    );
+    ctx.attach(part, &ids, &mut front);
+    (front, back)
 }

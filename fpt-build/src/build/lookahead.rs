@@ -22,10 +22,17 @@
 //! greedily (stopping as soon as it adds more than the best so far), each
 //! node of the tree runs at most `CANDIDATES + CUTTING + 1` trials, and
 //! large models look ahead only in small groups ([`group_limit`]).
+//!
+//! On two threads, two trials run at once when a thread is free
+//! ([`cheapest`]), and a trial's subgroups may be built on two threads
+//! (`feudal::build_both`); the choice is the one of a single thread. The
+//! relations trials compute are not counted: the count is that of the
+//! tree built, the same however the trials were scheduled.
 
 use super::feudal::{divide, Divide, Mode};
 use super::table::Table;
-use super::Ctx;
+use super::{Ctx, Work};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The best member planes tried, by the greedy score.
 pub const CANDIDATES: usize = 4;
@@ -63,15 +70,59 @@ pub fn applies(t: &Table, ctx: &Ctx) -> bool {
 
 /// The index of the option in `options` whose subtree adds the fewest
 /// output polygons (the first on a tie).
+///
+/// When a thread is free, two trials run at once: the later one on a copy
+/// of the group ([`Ctx::detach`]), cut short by the earlier one's count as
+/// soon as that is known ([`Ctx::trial_over`]). Either trial returns its
+/// true count or more than the best count of the trials before it, so the
+/// running minimum, taken in order, picks the option a single thread
+/// picks.
 pub fn cheapest(t: &Table, options: &[Divide], mode: Mode, ctx: &mut Ctx) -> usize {
     let mut best = (usize::MAX, 0);
-    for (i, d) in options.iter().enumerate() {
-        let trial = ctx.begin_trial(best.0.saturating_sub(1));
-        let _ = divide(t.clone(), d.clone(), mode, ctx);
-        let added = ctx.end_trial(trial);
-        if added < best.0 {
-            best = (added, i);
+    let mut i = 0;
+    while i < options.len() {
+        let limit = best.0.saturating_sub(1);
+        if i + 1 < options.len() && ctx.threads.take() {
+            let mut copy = t.clone();
+            let (mut part, _) = ctx.detach(&mut copy);
+            let cap = AtomicUsize::new(best.0);
+            let later = options[i + 1].clone();
+            let threads = ctx.threads;
+            let (second, first) = threads.beside(
+                Work::Trial,
+                || {
+                    part.cap = Some(&cap);
+                    let trial = part.begin_trial(limit);
+                    let _ = divide(copy, later, mode, &mut part);
+                    part.end_trial(trial)
+                },
+                || {
+                    let added = trial(t, &options[i], limit, mode, ctx);
+                    cap.fetch_min(added, Ordering::AcqRel);
+                    added
+                },
+            );
+            for (added, k) in [(first, i), (second, i + 1)] {
+                if added < best.0 {
+                    best = (added, k);
+                }
+            }
+            i += 2;
+        } else {
+            let added = trial(t, &options[i], limit, mode, ctx);
+            if added < best.0 {
+                best = (added, i);
+            }
+            i += 1;
         }
     }
     best.1
+}
+
+/// The output polygons the subtree of `d` adds, or more than `limit` if
+/// it adds more (it is cut short).
+fn trial(t: &Table, d: &Divide, limit: usize, mode: Mode, ctx: &mut Ctx) -> usize {
+    let trial = ctx.begin_trial(limit);
+    let _ = divide(t.clone(), d.clone(), mode, ctx);
+    ctx.end_trial(trial)
 }

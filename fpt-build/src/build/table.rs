@@ -27,12 +27,12 @@
 //! the tree, are those of the exact table.
 //!
 //! Rows are counted through a bounding-volume hierarchy ([`super::bvh`]),
-//! so a row costs about √n classifications, and several rows are counted
-//! on all cores at once. Every row computed counts the relations of the
+//! so a row costs about √n classifications, and large batches of rows are
+//! counted on two threads when the build has one free. Every row computed counts the relations of the
 //! paper's table (one per other member), as the paper counts its cost.
 
 use super::bvh::Bvh;
-use super::Ctx;
+use super::{Ctx, Threads, Work};
 use crate::geom::{Plane, Polygon, Relation, Tolerance};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -93,35 +93,26 @@ impl Watch {
     }
 }
 
-/// Rows counted per thread at least, when counting on several threads: a
+/// Rows counted per thread at least, when counting on two threads: a
 /// thread is started per call, which on a loaded machine waits for a time
 /// slice, so only large batches are worth it.
-const PER_THREAD: usize = 1024;
+const PER_THREAD: usize = 128;
 
-/// The cores to count on (asked once: the question reads files).
-fn threads() -> usize {
-    static THREADS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
-    *THREADS.get_or_init(|| std::thread::available_parallelism().map_or(1, usize::from))
-}
-
-/// Applies `f` to every row of `rows`, on several threads when there are
-/// many.
-fn count_rows<T: Send>(rows: &[usize], f: impl Fn(usize) -> T + Sync) -> Vec<T> {
-    if rows.len() < 2 * PER_THREAD || threads() < 2 {
+/// Applies `f` to every row of `rows`, half of them on another thread when
+/// there are many and the build has one free ([`Threads`]).
+fn count_rows<T: Send>(threads: &Threads, rows: &[usize], f: impl Fn(usize) -> T + Sync) -> Vec<T> {
+    if rows.len() < 2 * PER_THREAD || !threads.take() {
         return rows.iter().map(|&q| f(q)).collect();
     }
-    let chunk = rows.len().div_ceil(threads());
+    let (a, b) = rows.split_at(rows.len() / 2);
     let f = &f;
-    std::thread::scope(|s| {
-        let handles: Vec<_> = rows
-            .chunks(chunk)
-            .map(|part| s.spawn(move || part.iter().map(|&q| f(q)).collect::<Vec<_>>()))
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            .collect()
-    })
+    let (mut ra, rb) = threads.beside(
+        Work::Rows,
+        move || a.iter().map(|&q| f(q)).collect::<Vec<_>>(),
+        || b.iter().map(|&q| f(q)).collect::<Vec<_>>(),
+    );
+    ra.extend(rb);
+    ra
 }
 
 /// Counts with `x` classified against `plane` added (`add`) or taken out.
@@ -218,7 +209,7 @@ impl Table {
             .collect();
         let limit = incremental_limit(self.alive_count);
         let (polys, tol) = (&ctx.polys, ctx.tol);
-        let counts = count_rows(&rows, |q| {
+        let counts = count_rows(ctx.threads, &rows, |q| {
             let plane = polys[self.ids[q] as usize].plane;
             let stamp = self.stamp[q];
             if stamp != NEVER && self.undecided[q] == 0 && self.removed - stamp <= limit {
@@ -255,7 +246,7 @@ impl Table {
             .filter(|&q| self.alive[q] && self.has_row[q] && self.stamp[q] != self.removed)
             .collect();
         let (polys, tol) = (&ctx.polys, ctx.tol);
-        let found = count_rows(&rows, |q| {
+        let found = count_rows(ctx.threads, &rows, |q| {
             let plane = polys[self.ids[q] as usize].plane;
             self.bvh.probe(&plane, q, &self.alive, tol, PROBE)
         });
@@ -421,7 +412,7 @@ impl Table {
                 .copied()
                 .filter(|&q| self.is_exact(origin[q]))
                 .collect();
-            let counts = count_rows(&exact, |q| {
+            let counts = count_rows(ctx.threads, &exact, |q| {
                 let o = origin[q];
                 let plane = polys[t.ids[q] as usize].plane;
                 // A piece's row is its parent's, which did not count the
@@ -447,7 +438,7 @@ impl Table {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::build::{NoProgress, Rng};
+    use crate::build::{NoProgress, Reporter};
     use crate::geom::bounds;
     use glam::DVec3;
 
@@ -502,20 +493,15 @@ mod tests {
         let polys = crate::scenes::torus(30, 14).polygons;
         let (lo, hi) = bounds(&polys);
         let n = polys.len();
-        let mut ctx = Ctx {
+        let reporter = Reporter::new(&mut progress, n);
+        let threads = Threads::new(2);
+        let mut ctx = Ctx::new(
             polys,
-            tol: Tolerance::for_diagonal((hi - lo).length()),
-            relations: 0,
-            splittings: 0,
-            rng: Rng::new(7),
-            weight: vec![1.0; n],
-            placed: 0.0,
-            total: n,
-            progress: &mut progress,
-            trial: false,
-            trial_base: (0, 0, 0),
-            look_group: 0,
-        };
+            Tolerance::for_diagonal((hi - lo).length()),
+            7,
+            &reporter,
+            &threads,
+        );
         let mut t = Table::new((0..n as u32).collect(), &ctx.polys);
         let all: Vec<usize> = (0..n).collect();
         t.compute_rows(&all, &mut ctx);

@@ -346,3 +346,48 @@ fn auxiliary_plane_separates_torus_halves() {
     let b = build(input, true, Method::Bsp, 1, &mut NoProgress);
     assert_eq!(aux_switches(&b.root), 0);
 }
+
+/// The tree, and so its file, is the same byte for byte on one thread and
+/// on two (static and dynamic builds, with and without lookahead, large
+/// groups split between the threads), and its counters too; the two-thread
+/// builds did hand each kind of work to the other thread (else this would
+/// compare two one-thread builds), the one-thread builds none.
+#[test]
+fn two_threads_build_the_one_thread_tree() {
+    use crate::serialize::serialize;
+    let scenes = [
+        crate::scenes::vise(),
+        crate::scenes::house(),
+        crate::scenes::torus(80, 40),
+    ];
+    let mut handed = [0; 3];
+    for scene in &scenes {
+        for method in [Method::Static, Method::Dynamic] {
+            let run = |n: usize| {
+                let threads = Threads::new(n);
+                let tree = build_in(
+                    scene.polygons.clone(),
+                    scene.closed,
+                    method,
+                    DEFAULT_SEED,
+                    &mut NoProgress,
+                    &threads,
+                );
+                let bytes = serialize(&tree, &Default::default()).expect("serializes");
+                let kinds = [Work::Subtree, Work::Trial, Work::Rows].map(|w| threads.handed(w));
+                (tree, bytes, kinds)
+            };
+            let (one, one_bytes, one_handed) = run(1);
+            let (two, two_bytes, two_handed) = run(2);
+            let what = format!("{} {method:?}", scene.name);
+            assert_eq!(one_handed, [0; 3], "{what}");
+            assert!(one_bytes == two_bytes, "{what}: the files differ");
+            assert_eq!(one.stats.splittings, two.stats.splittings, "{what}");
+            assert_eq!(one.stats.relations, two.stats.relations, "{what}");
+            for (h, k) in handed.iter_mut().zip(two_handed) {
+                *h += k;
+            }
+        }
+    }
+    assert!(handed.iter().all(|&k| k > 0), "handed {handed:?}");
+}
