@@ -45,6 +45,8 @@
 use core::fmt;
 use core::marker::PhantomData;
 
+use crate::raster::shade::HAS_FPU;
+
 /// A set of effects (see the module docs). Unknown bits are ignored.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Effects(u32);
@@ -228,8 +230,16 @@ pub type AllEffects = Pipeline<0xff>;
 /// lighting are switched one by one; depth cueing, outlines and smooth
 /// shading together ([`EXTRAS`]). Two-sided lighting and clipping are
 /// not (an untaken test each, within 0.4 % measured), nor dithering (a
-/// sink type: off is already compiled out).
-pub const SWITCHED: Effects = Effects::CULLING.with(Effects::LIGHTING).with(EXTRAS);
+/// sink type: off is already compiled out). On a core without an FPU none:
+/// there the copy is about three times larger (software floating point)
+/// and flash the tighter limit (eight copies overflowed the Cortex-M0
+/// firmware's 256 KiB by 120 KB); a pipeline type may still switch some
+/// ([`Compiled::SWITCHED`]).
+pub const SWITCHED: Effects = if HAS_FPU {
+    Effects::CULLING.with(Effects::LIGHTING).with(EXTRAS)
+} else {
+    Effects::NONE
+};
 
 /// The effects `for_frame` switches as one: depth cueing, outlines and
 /// smooth shading are taken out of a frame's code when every one of them
