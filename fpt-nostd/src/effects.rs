@@ -29,8 +29,9 @@
 //!   its code is not even in the binary.
 //!
 //! **Off is compiled out**: a frame whose effects leave out a switched
-//! effect ([`Compiled::SWITCHED`], default [`SWITCHED`]: culling, lighting,
-//! and the [`EXTRAS`] depth cueing, outlines and smooth shading as one) is
+//! effect ([`Compiled::SWITCHED`], default [`SWITCHED`]: with an FPU
+//! culling, lighting, and the [`EXTRAS`] depth cueing, outlines and smooth
+//! shading as one; without one, none) is
 //! drawn by the walk-and-fill compiled for [`Without`] that effect, whose
 //! set is that of the pipeline built without it: off runs the very code of
 //! compiled out, plus one test a frame (`for_frame`; which set a frame
