@@ -7,10 +7,11 @@
 use cortex_m_semihosting::hprintln;
 
 use fpt_frames::effects::{
-    bare_pipeline, on_off, render_effect, EffectTarget, EFFECT_SCENE, EFFECT_VIEW, MONO_BYTES,
+    bare_pipeline, on_off, render_effect, Bare, EffectTarget, EFFECT_SCENE, EFFECT_VIEW,
+    MONO_BYTES,
 };
 use fpt_frames::{FramePrecision, FrameRenderer, VIEWS};
-use fpt_nostd::effects::{AllEffects, Compiled, Effects, Pipeline};
+use fpt_nostd::effects::{AllEffects, Compiled, Effects};
 use fpt_nostd::raster::{Camera, Mat4, Renderer};
 use fpt_nostd::reader::Tree;
 
@@ -88,14 +89,14 @@ fn bare(
     const OUTLINE: u32 = bare_pipeline(Effects::OUTLINE);
     const SMOOTH: u32 = bare_pipeline(Effects::SMOOTH);
     match i {
-        0 => run::<Pipeline<CULL>>(clock, r, tree, fx, buf, mono),
-        1 => run::<Pipeline<TWO>>(clock, r, tree, fx, buf, mono),
-        2 => run::<Pipeline<CLIP>>(clock, r, tree, fx, buf, mono),
-        3 => run::<Pipeline<LIGHT>>(clock, r, tree, fx, buf, mono),
-        4 => run::<Pipeline<CUE>>(clock, r, tree, fx, buf, mono),
-        5 => run::<Pipeline<DITHER>>(clock, r, tree, fx, buf, mono),
-        6 => run::<Pipeline<OUTLINE>>(clock, r, tree, fx, buf, mono),
-        _ => run::<Pipeline<SMOOTH>>(clock, r, tree, fx, buf, mono),
+        0 => run::<Bare<CULL>>(clock, r, tree, fx, buf, mono),
+        1 => run::<Bare<TWO>>(clock, r, tree, fx, buf, mono),
+        2 => run::<Bare<CLIP>>(clock, r, tree, fx, buf, mono),
+        3 => run::<Bare<LIGHT>>(clock, r, tree, fx, buf, mono),
+        4 => run::<Bare<CUE>>(clock, r, tree, fx, buf, mono),
+        5 => run::<Bare<DITHER>>(clock, r, tree, fx, buf, mono),
+        6 => run::<Bare<OUTLINE>>(clock, r, tree, fx, buf, mono),
+        _ => run::<Bare<SMOOTH>>(clock, r, tree, fx, buf, mono),
     }
 }
 

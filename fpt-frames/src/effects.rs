@@ -57,15 +57,46 @@ pub fn on_off(base: Effects, e: Effects) -> (Effects, Effects) {
 }
 
 /// The bits of a pipeline with every effect but `e`: the `BITS` of
-/// [`fpt_nostd::effects::Pipeline`] for the `bare` run.
+/// [`Bare`] for the `bare` run.
 pub const fn bare_pipeline(e: Effects) -> u32 {
     Effects::ALL.without(e).bits()
+}
+
+/// The pipeline of a `bare` run: the effects with bits `BITS`, as
+/// [`fpt_nostd::effects::Pipeline`], but switching only
+/// [`fpt_nostd::effects::EXTRAS`] ([`Compiled::SWITCHED`]): two copies of
+/// the walk-and-fill, not up to eight, for the firmware's flash. The code a
+/// `bare` run executes is the same as through a `Pipeline` (the scene
+/// declares culling and lighting, which a `bare` run leaves on unless it
+/// measures them; `tests/tests/all/effects_pipeline.rs` checks it with
+/// [`fpt_nostd::effects::compiled_for`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Bare<const BITS: u32>;
+
+impl<const BITS: u32> Compiled for Bare<BITS> {
+    const SET: Effects = Effects::from_bits(BITS);
+    const SWITCHED: Effects = fpt_nostd::effects::EXTRAS;
+}
+
+/// Whether pipeline `E` draws into the `BinaryColor` target: the pipelines
+/// of the `dither` measurement (every effect, or every one but dithering).
+/// Only those hold the copies of the walk-and-fill for it.
+const fn mono_pipeline<E: Compiled>() -> bool {
+    E::SET.with(Effects::DITHER).bits() == Effects::ALL.bits()
+}
+
+/// Whether pipeline `E` draws into the RGB565 target: all but the one
+/// without dithering, which only the `dither` measurement uses.
+const fn rgb_pipeline<E: Compiled>() -> bool {
+    E::SET.contains(Effects::DITHER)
 }
 
 /// Draws the effect scene's view with `effects` through `renderer` (whose
 /// type fixes the compiled-in stages) and `scratch` into `target`; returns
 /// the checksum. `probe` sees one start (before the frame set-up) and one
-/// stop (before the checksum).
+/// stop (before the checksum). [`FrameError::Target`]: a target the
+/// pipeline is not for (the `BinaryColor` one is only for the pipelines
+/// of the `dither` measurement, the RGB565 one for all others).
 pub fn render_effect<E: Compiled, Pr: Probe>(
     renderer: &mut Renderer<FramePrecision, E>,
     scratch: &mut Scratch<FramePrecision, MAX_VERTS>,
@@ -90,6 +121,11 @@ pub fn render_effect<E: Compiled, Pr: Probe>(
     let mut crc = PixelCrc::new();
     match target {
         EffectTarget::Rgb565(buf) => {
+            // A constant: the code below is not compiled for such a pipeline.
+            if !const { rgb_pipeline::<E>() } {
+                probe.stop();
+                return Err(FrameError::Target);
+            }
             // A failure ends the measurement as well.
             let mut fb =
                 Rgb565Framebuffer::new(buf, WIDTH, HEIGHT).inspect_err(|_| probe.stop())?;
@@ -100,10 +136,16 @@ pub fn render_effect<E: Compiled, Pr: Probe>(
             crc.update(fb.data());
         }
         EffectTarget::Mono { buf, dither } => {
+            if !const { mono_pipeline::<E>() } {
+                probe.stop();
+                return Err(FrameError::Target);
+            }
             let mut fb =
                 BinaryFramebuffer::new(buf, WIDTH, HEIGHT).inspect_err(|_| probe.stop())?;
             fb.fill_all(BinaryColor::Off);
-            let drawn = if dither {
+            // Only a pipeline with the stage dithers (and only those hold
+            // the copy that does).
+            let drawn = if const { E::SET.contains(Effects::DITHER) } && dither {
                 draw(
                     renderer,
                     scratch,

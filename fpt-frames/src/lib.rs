@@ -184,6 +184,9 @@ pub enum FrameError {
     UnknownConfig,
     /// [`WALK_DEPTH`] or [`MAX_VERTS`] is smaller than the tree needs.
     Capacity(CapacityError),
+    /// An effect measurement's target that its pipeline is not built for
+    /// ([`effects::render_effect`]).
+    Target,
 }
 
 impl From<CapacityError> for FrameError {
@@ -221,6 +224,7 @@ impl fmt::Display for FrameError {
             FrameError::Buffer(e) => write!(f, "frame buffer: {e:?}"),
             FrameError::UnknownConfig => f.write_str("unknown accuracy configuration"),
             FrameError::Capacity(e) => write!(f, "{e}"),
+            FrameError::Target => f.write_str("no code for this effect target"),
         }
     }
 }

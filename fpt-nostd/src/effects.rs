@@ -28,10 +28,25 @@
 //!   pipeline built without a stage (`Pipeline<{ Effects::ALL.without(Effects::OUTLINE).bits() }>`)
 //!   its code is not even in the binary.
 //!
+//! **Off is compiled out**: a frame whose effects leave out a switched
+//! effect ([`Compiled::SWITCHED`], default [`SWITCHED`]: with an FPU
+//! culling, lighting, and the [`EXTRAS`] depth cueing, outlines and smooth
+//! shading as one; without one, none) is
+//! drawn by the walk-and-fill compiled for [`Without`] that effect, whose
+//! set is that of the pipeline built without it: off runs the very code of
+//! compiled out, plus one test a frame (`for_frame`; which set a frame
+//! picks: [`compiled_for`]). The price is code size: each switched effect
+//! a pipeline compiles in doubles its copies of the walk-and-fill (a
+//! pipeline of every effect holds eight per sink type and draw entry;
+//! README, "Scene effects").
+//!
 //! The firmware measures all three (on, off, compiled out) per effect; the
 //! README has the figures.
 
 use core::fmt;
+use core::marker::PhantomData;
+
+use crate::raster::shade::HAS_FPU;
 
 /// A set of effects (see the module docs). Unknown bits are ignored.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -187,6 +202,14 @@ impl fmt::Debug for Effects {
 pub trait Compiled {
     /// The compiled-in effects.
     const SET: Effects;
+    /// The compiled-in effects that, when off for a frame, have the frame
+    /// drawn by a copy of the walk-and-fill compiled without them (see
+    /// "Off is compiled out" in the module docs): each one of `SET`, or
+    /// [`EXTRAS`] as one, doubles the copies a pipeline holds. Default
+    /// [`SWITCHED`]; a pipeline type short of flash may switch fewer
+    /// ([`Effects::NONE`]: one copy, and an effect that is off runs its
+    /// flag tests). [`EXTRAS`] switch only when all are in it.
+    const SWITCHED: Effects = SWITCHED;
 }
 
 /// A pipeline containing the effects with bits `BITS`.
@@ -199,6 +222,134 @@ impl<const BITS: u32> Compiled for Pipeline<BITS> {
 
 /// Every stage compiled in: the default pipeline.
 pub type AllEffects = Pipeline<0xff>;
+
+/// The effects whose `off` runs a copy compiled without them, by default
+/// ([`Compiled::SWITCHED`]): every effect whose off path is a test in the
+/// walk's per-polygon code, where a pipeline that merely turns it off was
+/// measured to cost up to 2.8 % more than the pipeline built without it
+/// (session 11, `bench_city`; README, "Scene effects"). Culling and
+/// lighting are switched one by one; depth cueing, outlines and smooth
+/// shading together ([`EXTRAS`]). Two-sided lighting and clipping are
+/// not (an untaken test each, within 0.4 % measured), nor dithering (a
+/// sink type: off is already compiled out). On a core without an FPU none:
+/// there the copy is about three times larger (software floating point)
+/// and flash the tighter limit (eight copies overflowed the Cortex-M0
+/// firmware's 256 KiB by 120 KB); a pipeline type may still switch some
+/// ([`Compiled::SWITCHED`]).
+pub const SWITCHED: Effects = if HAS_FPU {
+    Effects::CULLING.with(Effects::LIGHTING).with(EXTRAS)
+} else {
+    Effects::NONE
+};
+
+/// The effects `for_frame` switches as one: depth cueing, outlines and
+/// smooth shading are taken out of a frame's code when every one of them
+/// that the pipeline compiles is off (the usual case: few scenes declare
+/// any), so that they cost two copies of the walk-and-fill, not eight.
+pub const EXTRAS: Effects = Effects::DEPTH_CUE
+    .with(Effects::OUTLINE)
+    .with(Effects::SMOOTH);
+
+/// Pipeline `E` without the effects with bits `BITS`: what a frame of `E`
+/// with those effects off is drawn by (`for_frame`). Its
+/// [`Compiled::SET`] equals that of the [`Pipeline`] built without them,
+/// so the two compile to the same walk-and-fill.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Without<E, const BITS: u32>(PhantomData<E>);
+
+impl<E: Compiled, const BITS: u32> Compiled for Without<E, BITS> {
+    const SET: Effects = E::SET.without(Effects::from_bits(BITS));
+    const SWITCHED: Effects = E::SWITCHED;
+}
+
+/// Code generic over the pipeline it is compiled for: the frame's
+/// walk-and-fill, handed to `for_frame`.
+pub(crate) trait ForPipeline {
+    /// What the code returns.
+    type Output;
+    /// Runs the code compiled for pipeline `X` (whose set is within the
+    /// renderer's: every `X` that `for_frame` picks is).
+    fn run<X: Compiled>(self) -> Self::Output;
+}
+
+/// Runs `code` compiled for pipeline `E` without every effect of
+/// `E::SWITCHED` that the frame's effects `active` leave out (an
+/// [`EXTRAS`] effect only with all the others of `E`'s extras): a frame
+/// with such an effect off runs the very code of the pipeline built
+/// without it, plus one test a frame per switched effect. A copy is made
+/// only for the effects `E` compiles in and switches (the condition is a
+/// constant, so the other arm is never instantiated).
+#[inline(always)]
+pub(crate) fn for_frame<E: Compiled, C: ForPipeline>(active: Effects, code: C) -> C::Output {
+    // One step per effect, or group of effects switched as one ([`EXTRAS`]),
+    // culling's first; each leaves its effects in the type or takes them
+    // out, and hands over to the next.
+    let code = step::<_, { EXTRAS.bits() }>(code, active);
+    let code = step::<_, 0x20>(code, active);
+    let code = step::<_, 0x08>(code, active);
+    let code = step::<_, 0x04>(code, active);
+    let code = step::<_, 0x02>(code, active);
+    let code = step::<_, 0x01>(code, active);
+    code.run::<E>()
+}
+
+/// The compiled set of the code that draws a frame of pipeline `E` whose
+/// effects are `active` ([`crate::raster::Renderer::effects`]): `E`'s set
+/// without the switched effects that are off ([`Compiled::SWITCHED`]). Two
+/// pipelines with the same answer run the same code: with an effect off,
+/// [`AllEffects`] runs the code of the pipeline built without it.
+///
+/// ```
+/// use fpt_nostd::effects::{compiled_for, AllEffects, Effects, Pipeline};
+/// let fx = Effects::defaults(true).without(Effects::CULLING);
+/// const NO_CULLING: u32 = Effects::ALL.without(Effects::CULLING).bits();
+/// assert_eq!(compiled_for::<AllEffects>(fx), compiled_for::<Pipeline<NO_CULLING>>(fx));
+/// assert!(!compiled_for::<AllEffects>(fx).contains(Effects::CULLING));
+/// ```
+pub fn compiled_for<E: Compiled>(active: Effects) -> Effects {
+    /// Code that returns what it is compiled for.
+    struct Set;
+    impl ForPipeline for Set {
+        type Output = Effects;
+        fn run<X: Compiled>(self) -> Effects {
+            X::SET
+        }
+    }
+    for_frame::<E, _>(active.and(E::SET), Set)
+}
+
+/// One step of `for_frame`: the effects with bits `B`, switched as one
+/// when the pipeline switches all of them.
+struct Switch<C, const B: u32> {
+    next: C,
+    active: Effects,
+}
+
+/// [`Switch`] for effect bit `B` before `next`.
+#[inline(always)]
+fn step<C, const B: u32>(next: C, active: Effects) -> Switch<C, B> {
+    Switch { next, active }
+}
+
+impl<C: ForPipeline, const B: u32> ForPipeline for Switch<C, B> {
+    type Output = C::Output;
+
+    #[inline(always)]
+    fn run<X: Compiled>(self) -> C::Output {
+        // Taken out when every effect of the step that the pipeline
+        // compiles is off: the bits it does not compile are out already.
+        let step = Effects::from_bits(B);
+        if const {
+            X::SWITCHED.contains(Effects::from_bits(B))
+                && X::SET.and(Effects::from_bits(B)).bits() != 0
+        } && self.active.and(X::SET).and(step) == Effects::NONE
+        {
+            self.next.run::<Without<X, B>>()
+        } else {
+            self.next.run::<X>()
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests {
@@ -243,5 +394,73 @@ mod tests {
         assert!(!e.contains(Effects::DITHER) && e.contains(Effects::OUTLINE));
         assert_eq!(<AllEffects as Compiled>::SET, Effects::ALL);
         assert_eq!(<Pipeline<8> as Compiled>::SET, Effects::LIGHTING);
+    }
+
+    /// The code `for_frame` runs, seen through what it is compiled for.
+    struct Picked;
+
+    impl ForPipeline for Picked {
+        type Output = (Effects, &'static str);
+
+        fn run<X: Compiled>(self) -> (Effects, &'static str) {
+            (X::SET, core::any::type_name::<X>())
+        }
+    }
+
+    /// The pipeline `for_frame` picks for a frame of `E` with `active`.
+    fn picked<E: Compiled>(active: Effects) -> (Effects, &'static str) {
+        for_frame::<E, _>(active, Picked)
+    }
+
+    #[test]
+    fn an_effect_that_is_off_runs_the_pipeline_built_without_it() {
+        let base = Effects::defaults(true); // culling, clipping, lighting
+        let lean = Effects::ALL.without(EXTRAS);
+        const NO_CULL: u32 = Effects::ALL.without(Effects::CULLING).bits();
+        const NO_LIGHT: u32 = Effects::ALL.without(Effects::LIGHTING).bits();
+        const NO_SMOOTH: u32 = Effects::ALL.without(Effects::SMOOTH).bits();
+        // The scene's own effects: the extras (all off) taken out.
+        let (set, name) = picked::<AllEffects>(base);
+        assert_eq!(set, lean);
+        assert!(name.contains("Without"), "{name}");
+        // All effects with culling off runs the set of the pipeline built
+        // without culling, as that pipeline does; the same for lighting.
+        for (off, bare) in [
+            (Effects::CULLING, picked::<Pipeline<NO_CULL>> as fn(_) -> _),
+            (Effects::LIGHTING, picked::<Pipeline<NO_LIGHT>>),
+            (Effects::SMOOTH, picked::<Pipeline<NO_SMOOTH>>),
+        ] {
+            let fx = base.without(off);
+            assert_eq!(picked::<AllEffects>(fx).0, lean.without(off), "{off}");
+            assert_eq!(bare(fx).0, lean.without(off), "{off}");
+        }
+        // Both off: both taken out.
+        let none = Effects::CLIPPING;
+        assert_eq!(picked::<AllEffects>(none).0, Effects::ALL.without(SWITCHED));
+        // Every switched effect on: the pipeline itself, not a copy.
+        let (set, name) = picked::<AllEffects>(Effects::ALL);
+        assert_eq!(set, Effects::ALL);
+        assert!(!name.contains("Without"), "{name}");
+        // One extra on keeps all three; unswitched effects stay compiled
+        // in when off.
+        let outline = base.with(Effects::OUTLINE).without(Effects::CLIPPING);
+        assert_eq!(picked::<AllEffects>(outline).0, Effects::ALL);
+        // A pipeline without culling makes no copy for it: culling off (as
+        // always there) picks the pipeline itself.
+        let (set, name) = picked::<Pipeline<NO_CULL>>(Effects::ALL.without(Effects::CULLING));
+        assert_eq!(set, Effects::ALL.without(Effects::CULLING));
+        assert!(!name.contains("Without"), "{name}");
+    }
+
+    #[test]
+    fn a_pipeline_may_switch_no_effect() {
+        /// Every effect compiled in, none switched.
+        struct Fixed;
+        impl Compiled for Fixed {
+            const SET: Effects = Effects::ALL;
+            const SWITCHED: Effects = Effects::NONE;
+        }
+        assert_eq!(picked::<Fixed>(Effects::NONE).0, Effects::ALL);
+        assert_eq!(<Without<Fixed, 1> as Compiled>::SWITCHED, Effects::NONE);
     }
 }

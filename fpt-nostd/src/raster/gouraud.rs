@@ -76,7 +76,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// for a clipped polygon, which is drawn flat. Out of line, to keep the
     /// walk's loop small (see the README on what the flat path still pays).
     #[inline(never)]
-    pub(crate) fn smooth_plane<const N: usize>(
+    pub(crate) fn smooth_plane<X: Compiled, const N: usize>(
         &self,
         scratch: &Scratch<P, N>,
         ready: &Ready,
@@ -96,7 +96,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
                 mode,
                 color: face.color,
                 cue: self
-                    .effects()
+                    .effects_as::<X>()
                     .contains(Effects::DEPTH_CUE)
                     .then_some((cue, ready.depth)),
             };

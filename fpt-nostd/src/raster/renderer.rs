@@ -22,7 +22,10 @@
 //! Effects ([`crate::effects`]): the renderer's stages clipping, lighting,
 //! depth cueing and outlines are each tested once per polygon against the
 //! active [`Effects`] and the pipeline type `E` ([`Compiled`]): a stage `E`
-//! leaves out is compiled out. Without clipping, a polygon that would need
+//! leaves out is compiled out. The tree walks call the stages with a
+//! second pipeline type `X`, the one the frame's code is compiled for
+//! (`Renderer::effects_as`; [`crate::effects`], "Off is compiled out"):
+//! a stage outside `X` is compiled out of that code too. Without clipping, a polygon that would need
 //! it (crossing the near plane or the guard band) is dropped whole
 //! (invisible), so no input can overflow either way. Culling and two-sided
 //! lighting belong to the walk ([`crate::render::draw_frame`]); dithering
@@ -300,6 +303,15 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         self.active.and(E::SET)
     }
 
+    /// [`Renderer::effects`] as the code compiled for pipeline `X` sees
+    /// them: an effect outside `X`'s set is compiled out of that code (the
+    /// walk-and-fill copies of [`crate::effects`]'s dispatch; `X = E` for
+    /// the renderer's own).
+    #[inline(always)]
+    pub(crate) fn effects_as<X: Compiled>(&self) -> Effects {
+        self.active.and(E::SET.and(X::SET))
+    }
+
     /// Draws, before the culling walk of a closed tree, the culled
     /// polygons that the sub-pixel snap winds toward the viewer (see
     /// [`crate::render`], "Slivers"): no background pixel inside the
@@ -505,13 +517,13 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// `fill_ready` would take another path (Gouraud, outlines, or see
     /// [`TriangleBand::new`]).
     #[inline]
-    pub(crate) fn triangle_band<K: SpanSink, const N: usize>(
+    pub(crate) fn triangle_band<X: Compiled, K: SpanSink, const N: usize>(
         &self,
         _scratch: &Scratch<P, N>,
         sink: &K,
     ) -> Option<TriangleBand> {
-        let smooth = E::SET.contains(Effects::SMOOTH) && self.smooth.is_some();
-        if smooth || self.effects().contains(Effects::OUTLINE) {
+        let smooth = E::SET.and(X::SET).contains(Effects::SMOOTH) && self.smooth.is_some();
+        if smooth || self.effects_as::<X>().contains(Effects::OUTLINE) {
             return None;
         }
         let sub = self.viewport.sub_bits();
@@ -532,8 +544,10 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         sink: &mut K,
     ) -> Outcome {
         let reach = self.viewport_bounds().intersect(&sink.bounds());
-        match self.prepare(scratch, loaded, face, &reach) {
-            Ok(ready) => self.fill_ready(scratch, &ready, face.id, face.hidden_edges, sink),
+        match self.prepare::<E, N>(scratch, loaded, face, &reach) {
+            Ok(ready) => {
+                self.fill_ready::<E, K, N>(scratch, &ready, face.id, face.hidden_edges, sink)
+            }
             Err(outcome) => outcome,
         }
     }
@@ -551,20 +565,20 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// projects the polygon `verts` and shades it: everything but the
     /// fill, for rows `reach`.
     #[inline(always)]
-    pub(crate) fn prepare_verts<X, I, const N: usize>(
+    pub(crate) fn prepare_verts<X: Compiled, T, I, const N: usize>(
         &mut self,
         scratch: &mut Scratch<P, N>,
         verts: I,
-        xf: impl Fn(&PathMatrix<P>, X) -> Option<ClipVert<Scalar<P>>>,
+        xf: impl Fn(&PathMatrix<P>, T) -> Option<ClipVert<Scalar<P>>>,
         face: &Face,
         reach: &SpanBounds,
     ) -> Result<Ready, Outcome>
     where
-        I: IntoIterator<Item = X>,
+        I: IntoIterator<Item = T>,
     {
         let m = self.matrix;
         let loaded = self.load(scratch, verts, |v| xf(&m, v));
-        self.prepare(scratch, loaded, face, reach)
+        self.prepare::<X, N>(scratch, loaded, face, reach)
     }
 
     /// Loads a polygon's screen points through `cache` into
@@ -647,7 +661,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// `scratch.screen[..n]` (from [`Renderer::load_cached`]: every one
     /// inside the clip planes). Not for depth cueing, which needs clip `w`.
     #[inline]
-    pub(crate) fn prepare_screen<const N: usize>(
+    pub(crate) fn prepare_screen<X: Compiled, const N: usize>(
         &mut self,
         scratch: &Scratch<P, N>,
         n: usize,
@@ -657,14 +671,14 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         if n < 3 {
             return Err(Outcome::Invisible);
         }
-        self.shade_ready(&scratch.screen[..n.min(N)], face, 0.0, false, reach)
+        self.shade_ready::<X>(&scratch.screen[..n.min(N)], face, 0.0, false, reach)
     }
 
     /// Everything of the pipeline before the fill: clipping, projection
     /// into `scratch.screen`, the row range, shading. `Err` is the
     /// polygon's outcome when there is nothing to fill (for rows `reach`).
     #[inline(always)]
-    fn prepare<const N: usize>(
+    fn prepare<X: Compiled, const N: usize>(
         &mut self,
         scratch: &mut Scratch<P, N>,
         loaded: Result<Loaded, SkipReason>,
@@ -678,7 +692,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         if n < 3 {
             return Err(Outcome::Invisible);
         }
-        let fx = self.effects();
+        let fx = self.effects_as::<X>();
         // Mean eye depth, before clipping changes the vertices.
         let depth = if fx.contains(Effects::DEPTH_CUE) {
             let sum: f32 = scratch.clip_a[..n.min(N)]
@@ -718,13 +732,13 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             }
         }
         let m = clipped.len();
-        self.shade_ready(&scratch.screen[..m], face, depth, was_clipped, reach)
+        self.shade_ready::<X>(&scratch.screen[..m], face, depth, was_clipped, reach)
     }
 
     /// The row range and the shaded colour of projected points `pts`;
     /// `Err(Drawn { spans: 0 })` when the polygon misses rows `reach`.
     #[inline(always)]
-    fn shade_ready(
+    fn shade_ready<X: Compiled>(
         &self,
         pts: &[ScreenPt],
         face: &Face,
@@ -746,7 +760,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         // Projected points are within ±SCREEN_LIMIT: the 32-bit row bounds
         // apply (and a 64-bit variable shift is not cheap on a 32-bit core).
         let sub = self.viewport.sub_bits();
-        let fx = self.effects();
+        let fx = self.effects_as::<X>();
         let (first, end) = if fx.contains(Effects::OUTLINE) {
             // Outline pixels are the rows holding the vertices (`y >> sub`),
             // which may be one above the first row the fill samples.
@@ -780,7 +794,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// draws its outline when that effect is on: the pipeline's last stage,
     /// which band rendering replays per band from the display list.
     #[inline(always)]
-    pub(crate) fn fill_ready<K: SpanSink, const N: usize>(
+    pub(crate) fn fill_ready<X: Compiled, K: SpanSink, const N: usize>(
         &self,
         scratch: &mut Scratch<P, N>,
         ready: &Ready,
@@ -794,7 +808,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         let sub = self.viewport.sub_bits();
         let vp = self.viewport_bounds();
         let (edges, active) = (&mut scratch.edges, &mut scratch.active);
-        let plane = if E::SET.contains(Effects::SMOOTH) {
+        let plane = if E::SET.and(X::SET).contains(Effects::SMOOTH) {
             self.smooth.as_ref()
         } else {
             None
@@ -816,7 +830,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             Ok(spans) => spans,
             Err(_) => return Outcome::Skipped(SkipReason::ClipCapacity),
         };
-        if self.effects().contains(Effects::OUTLINE) {
+        if self.effects_as::<X>().contains(Effects::OUTLINE) {
             let ink = sink.color(&Paint {
                 rgb: self.outline,
                 id,

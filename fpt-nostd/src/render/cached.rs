@@ -46,11 +46,12 @@
 //! first walk) and every span filled.
 
 use core::cell::Cell;
+use core::marker::PhantomData;
 
 use super::probe::{Phase, Probe};
 use super::slivers::{self, turns_toward};
 use super::{face_of, walk_effects, BandBuffer, FaceIds, Frame, RenderError, WalkFx};
-use crate::effects::{Compiled, Effects};
+use crate::effects::{for_frame, Compiled, Effects, ForPipeline};
 use crate::format::VertexFormat;
 use crate::order::{memo_words, Class, Order, OrderError, MEMO};
 use crate::raster::carry::{Ring, Start, CARRY, WORDS as CARRY_WORDS};
@@ -213,20 +214,23 @@ enum Source {
     Q16(u32),
 }
 
-/// Starts a frame: zeroes the counters, settles the effects
+/// Starts a frame of the code compiled for pipeline `X` (`active`: the
+/// effects [`Renderer::begin_tree`] settled, see [`frame_effects`]): zeroes
+/// the counters, says what the walk needs of the effects
 /// ([`walk_effects`], once a frame for every walk of it), sets the
 /// renderer's camera for `frame` and says how vertices reach it: raw q16
 /// values when the tree stores them and the path prefers them; and how a
 /// face toward the viewer winds when the culling walk of a closed tree
 /// draws slivers first (asked for with `Renderer::set_slivers`; 0: no
 /// sliver pass, [`slivers`]).
-fn begin_frame<P: Precision, E: Compiled>(
+fn begin_frame<P: Precision, E: Compiled, X: Compiled>(
     r: &mut Renderer<P, E>,
     tree: &Tree<'_>,
     frame: &Frame,
+    active: Effects,
 ) -> (Source, WalkFx, i32) {
     r.reset_stats();
-    let fx = walk_effects(tree, r);
+    let fx = walk_effects::<X>(tree, active);
     let turn = if r.slivers() && fx.cull && tree.is_closed() {
         slivers::front_turn(frame)
     } else {
@@ -254,7 +258,7 @@ impl Walk<'_, '_, '_> {
     /// else). `count`: add each polygon's outcome to the counters.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn run<P: Precision, E: Compiled, Pr: Probe, const N: usize, const V: usize>(
+    fn run<P: Precision, E: Compiled, X: Compiled, Pr: Probe, const N: usize, const V: usize>(
         &mut self,
         order: &mut Order<'_, N>,
         r: &mut Renderer<P, E>,
@@ -332,7 +336,8 @@ impl Walk<'_, '_, '_> {
                 if sliver {
                     face.hidden_edges = u64::MAX;
                 }
-                self.draw(r, scratch, (&p, &face, pass), probe, count, &reach, &mut f);
+                let polygon = (&p, &face, pass);
+                self.draw::<P, E, X, Pr, V>(r, scratch, polygon, probe, count, &reach, &mut f);
                 probe.enter(Phase::Post);
             }
         }
@@ -351,7 +356,7 @@ impl Walk<'_, '_, '_> {
     /// while `f` asks for it), counting it once (slivers apart).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn draw<P: Precision, E: Compiled, Pr: Probe, const V: usize>(
+    fn draw<P: Precision, E: Compiled, X: Compiled, Pr: Probe, const V: usize>(
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
@@ -372,7 +377,7 @@ impl Walk<'_, '_, '_> {
         let clipped = r.stats_mut().clipped;
         loop {
             probe.enter(Phase::Xform);
-            let (ready, by_index) = self.prepare(r, scratch, p, face, &reach());
+            let (ready, by_index) = self.prepare::<P, E, X, V>(r, scratch, p, face, &reach());
             if let Pass::Unsure(t) = pass {
                 let sliver = ready.as_ref().is_ok_and(|ready| {
                     turns_toward(scratch.screen().get(..ready.n).unwrap_or(&[]), t)
@@ -404,9 +409,9 @@ impl Walk<'_, '_, '_> {
                 // Every vertex cached: the polygon's index stands for its
                 // points.
                 Ok(ready) => {
-                    let smooth = E::SET.contains(Effects::SMOOTH) && self.fx.smooth;
+                    let smooth = X::SET.contains(Effects::SMOOTH) && self.fx.smooth;
                     if smooth {
-                        let plane = r.smooth_plane(scratch, &ready, self.tree, p, face);
+                        let plane = r.smooth_plane::<X, V>(scratch, &ready, self.tree, p, face);
                         r.set_smooth(plane);
                     }
                     let poly = by_index.then(|| p.id());
@@ -453,7 +458,7 @@ impl Walk<'_, '_, '_> {
     /// planes (`true`: every vertex is cached, and its indices are in
     /// `scratch.active`), else per polygon.
     #[inline(always)]
-    fn prepare<P: Precision, E: Compiled, const V: usize>(
+    fn prepare<P: Precision, E: Compiled, X: Compiled, const V: usize>(
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
@@ -469,12 +474,12 @@ impl Walk<'_, '_, '_> {
                     [x[0] * s, x[1] * s, x[2] * s]
                 };
                 let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
-                self.prepare_from(r, scratch, p, (decode, xf), face, reach)
+                self.prepare_from::<P, E, X, _, V>(r, scratch, p, (decode, xf), face, reach)
             }
             Source::Q16(frac) => {
                 let decode = move |v: u32| dec.raw_q16(v as usize);
                 let xf = move |m: &_, x| <P::Path as VertexPath>::transform_q(m, x, frac);
-                self.prepare_from(r, scratch, p, (decode, xf), face, reach)
+                self.prepare_from::<P, E, X, _, V>(r, scratch, p, (decode, xf), face, reach)
             }
         }
     }
@@ -482,14 +487,14 @@ impl Walk<'_, '_, '_> {
     /// [`Walk::prepare`] for vertices that `decode` reads by index and `xf`
     /// transforms with the frame's matrix.
     #[inline(always)]
-    fn prepare_from<P: Precision, E: Compiled, X, const V: usize>(
+    fn prepare_from<P: Precision, E: Compiled, X: Compiled, T, const V: usize>(
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
         p: &PolygonAt<'_, '_>,
         (decode, xf): (
-            impl Fn(u32) -> X,
-            impl Fn(&<P::Path as VertexPath>::Matrix, X) -> Option<ClipVert<PathScalar<P>>>,
+            impl Fn(u32) -> T,
+            impl Fn(&<P::Path as VertexPath>::Matrix, T) -> Option<ClipVert<PathScalar<P>>>,
         ),
         face: &Face,
         reach: &SpanBounds,
@@ -499,17 +504,20 @@ impl Walk<'_, '_, '_> {
             if let Some((n, by_index)) =
                 r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
             {
-                return (r.prepare_screen(scratch, n, face, reach), by_index);
+                return (r.prepare_screen::<X, V>(scratch, n, face, reach), by_index);
             }
         }
         let verts = p.vertex_indices().map(decode);
-        (r.prepare_verts(scratch, verts, xf, face, reach), false)
+        (
+            r.prepare_verts::<X, T, _, V>(scratch, verts, xf, face, reach),
+            false,
+        )
     }
 }
 
 /// Fills one prepared polygon into `sink` (the probe sees the fill).
 #[inline(always)]
-fn fill<P: Precision, E: Compiled, K: SpanSink, Pr: Probe, const V: usize>(
+fn fill<P: Precision, E: Compiled, X: Compiled, K: SpanSink, Pr: Probe, const V: usize>(
     r: &mut Renderer<P, E>,
     scratch: &mut Scratch<P, V>,
     ready: &Ready,
@@ -518,7 +526,7 @@ fn fill<P: Precision, E: Compiled, K: SpanSink, Pr: Probe, const V: usize>(
     probe: &Pr,
 ) -> u64 {
     probe.enter(Phase::Fill);
-    match r.fill_ready(scratch, ready, face.id, face.hidden_edges, sink) {
+    match r.fill_ready::<X, K, V>(scratch, ready, face.id, face.hidden_edges, sink) {
         Outcome::Drawn { spans } => spans as u64,
         _ => 0,
     }
@@ -526,14 +534,25 @@ fn fill<P: Precision, E: Compiled, K: SpanSink, Pr: Probe, const V: usize>(
 
 /// Whether this frame may use the vertex cache: depth cueing needs each
 /// polygon's clip `w`, which the cache does not keep.
-fn cacheable<P: Precision, E: Compiled>(r: &Renderer<P, E>) -> bool {
-    !r.effects().contains(Effects::DEPTH_CUE)
+fn cacheable<P: Precision, E: Compiled, X: Compiled>(r: &Renderer<P, E>) -> bool {
+    !r.effects_as::<X>().contains(Effects::DEPTH_CUE)
+}
+
+/// The frame's effects, settled for `tree` by [`Renderer::begin_tree`]:
+/// what [`for_frame`] picks the frame's code by.
+#[inline(always)]
+fn frame_effects<P: Precision, E: Compiled>(r: &mut Renderer<P, E>, tree: &Tree<'_>) -> Effects {
+    r.begin_tree(Effects::from_bits(tree.effects()))
 }
 
 /// A full frame into `sink`, each vertex transformed once through a cache
-/// in `memory` (see the module docs).
+/// in `memory` (see the module docs), drawn by the walk-and-fill compiled
+/// without the switched effects that are off for the frame
+/// ([`for_frame`]). `MEMORY`: whether the caller may give memory at all
+/// (`false`: `memory` is ignored, and the code without a cache is compiled
+/// without its tests, as when it was inlined into a caller passing none).
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn draw_direct<P, E, K, Pr, const N: usize, const V: usize>(
+pub(crate) fn draw_direct<P, E, K, Pr, const N: usize, const V: usize, const MEMORY: bool>(
     tree: &Tree<'_>,
     frame: &Frame,
     r: &mut Renderer<P, E>,
@@ -549,9 +568,112 @@ where
     K: SpanSink,
     Pr: Probe,
 {
-    let (source, fx, turn) = begin_frame(r, tree, frame);
+    let active = frame_effects(r, tree);
+    let code = Direct::<'_, '_, '_, P, E, K, Pr, N, V, MEMORY> {
+        tree,
+        frame,
+        r,
+        scratch,
+        ids,
+        memory,
+        sink,
+        probe,
+        active,
+    };
+    for_frame::<E, _>(active, code)
+}
+
+/// The arguments of [`draw_direct`], handed to the code [`for_frame`]
+/// picks.
+struct Direct<
+    'x,
+    't,
+    'p,
+    P: Precision,
+    E: Compiled,
+    K,
+    Pr,
+    const N: usize,
+    const V: usize,
+    const MEMORY: bool,
+> {
+    tree: &'x Tree<'t>,
+    frame: &'x Frame,
+    r: &'x mut Renderer<P, E>,
+    scratch: &'x mut Scratch<P, V>,
+    ids: FaceIds,
+    memory: &'x mut [u32],
+    sink: &'x mut K,
+    probe: &'p Pr,
+    active: Effects,
+}
+
+impl<P, E, K, Pr, const N: usize, const V: usize, const MEMORY: bool> ForPipeline
+    for Direct<'_, '_, '_, P, E, K, Pr, N, V, MEMORY>
+where
+    P: Precision,
+    E: Compiled,
+    K: SpanSink,
+    Pr: Probe,
+{
+    type Output = Result<RenderStats, OrderError>;
+
+    #[inline(always)]
+    fn run<X: Compiled>(self) -> Self::Output {
+        let Direct {
+            tree,
+            frame,
+            r,
+            scratch,
+            ids,
+            memory,
+            sink,
+            probe,
+            active,
+        } = self;
+        let memory = if MEMORY { memory } else { &mut [] };
+        direct_as::<P, E, X, K, Pr, N, V>(
+            tree,
+            frame,
+            r,
+            scratch,
+            (ids, memory),
+            sink,
+            probe,
+            active,
+        )
+    }
+}
+
+/// [`draw_direct`] compiled for pipeline `X`. Out of line: a frame of
+/// `E` with an effect off and a frame of the pipeline built without it
+/// run one and the same function body (compiled twice, identically), not
+/// copies inlined into different callers. The references are parameters,
+/// not fields of one struct, so that the compiler knows they do not alias
+/// (it reloaded the renderer's fields after every span otherwise: +3.8 %
+/// on `bench_city`).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn direct_as<P, E, X, K, Pr, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    (ids, memory): (FaceIds, &mut [u32]),
+    sink: &mut K,
+    probe: &Pr,
+    active: Effects,
+) -> Result<RenderStats, OrderError>
+where
+    P: Precision,
+    E: Compiled,
+    X: Compiled,
+    K: SpanSink,
+    Pr: Probe,
+{
+    let (source, fx, turn) = begin_frame::<P, E, X>(r, tree, frame, active);
     let limit = memory.len();
-    let (mut cache, _) = take_cache(memory, tree, cacheable(r), limit);
+    let (mut cache, _) = take_cache(memory, tree, cacheable::<P, E, X>(r), limit);
     prefill(r, tree, source, &mut cache);
     let reach = r.viewport_bounds().intersect(&sink.bounds());
     let mut spans = 0;
@@ -565,7 +687,7 @@ where
         cache: &mut cache,
         turn,
     };
-    walk.run::<P, E, Pr, N, V>(
+    walk.run::<P, E, X, Pr, N, V>(
         &mut order,
         r,
         scratch,
@@ -573,7 +695,7 @@ where
         true,
         || reach,
         |r, s, ready, _, face, _| {
-            spans += fill(r, s, ready, face, sink, probe);
+            spans += fill::<P, E, X, K, Pr, V>(r, s, ready, face, sink, probe);
             Step::Next
         },
     );
@@ -591,7 +713,7 @@ where
 /// list, and the triangles this band cuts are kept for it
 /// ([`crate::raster::carry`]).
 #[allow(clippy::too_many_arguments)]
-fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
+fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
     r: &Renderer<P, E>,
     scratch: &mut Scratch<P, V>,
     tree: &Tree<'_>,
@@ -632,7 +754,7 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
     // Triangles by polygon (most records) go straight to the triangle
     // fill with the band's bounds found once here: what `fill_ready`
     // does for each, without its per-record checks.
-    let tri = r.triangle_band(scratch, sink);
+    let tri = r.triangle_band::<X, K, V>(scratch, sink);
     // Kept triangles carry their colour, not their id: only for sinks
     // that paint without ids.
     let carry = tri.filter(|_| CARRY && !K::NEEDS_ID && !words.is_empty());
@@ -753,7 +875,9 @@ fn replay<P: Precision, E: Compiled, K: SpanSink, const V: usize>(
             clipped: e.clipped,
             depth: 0.0,
         };
-        if let Outcome::Drawn { spans: s } = r.fill_ready(scratch, &ready, e.id, e.hidden, sink) {
+        if let Outcome::Drawn { spans: s } =
+            r.fill_ready::<X, K, V>(scratch, &ready, e.id, e.hidden, sink)
+        {
             spans += s as u64;
         }
     }
@@ -807,7 +931,7 @@ where
         buf: Some(buf),
         emit,
     };
-    let out = bands::<P, E, F, Pr, N, V>(
+    let out = bands::<P, E, F, _, Pr, N, V>(
         tree,
         frame,
         r,
@@ -874,7 +998,7 @@ where
     F: PixelFormat,
     S: BandStore<'b, F>,
 {
-    bands::<P, E, F, super::NoProbe, N, V>(
+    bands::<P, E, F, S, super::NoProbe, N, V>(
         tree,
         frame,
         r,
@@ -886,28 +1010,133 @@ where
     )
 }
 
-/// [`draw_bands`] but for stopping the probe on an error.
+/// [`draw_bands`] but for stopping the probe on an error: the frame's
+/// effects settled, the bands drawn by the code compiled without the
+/// switched effects that are off ([`for_frame`]).
 #[allow(clippy::too_many_arguments)]
-fn bands<'b, P, E, F, Pr, const N: usize, const V: usize>(
+fn bands<'b, P, E, F, S, Pr, const N: usize, const V: usize>(
     tree: &Tree<'_>,
     frame: &Frame,
     r: &mut Renderer<P, E>,
     scratch: &mut Scratch<P, V>,
     (ids, memory): (FaceIds, &mut [u32]),
     (rows, background): (u32, F::Color),
-    store: &mut impl BandStore<'b, F>,
+    store: &mut S,
     probe: &Pr,
 ) -> Result<RenderStats, RenderError>
 where
     P: Precision,
     E: Compiled,
     F: PixelFormat,
+    S: BandStore<'b, F>,
     Pr: Probe,
 {
     // The caller has started the probe (before its own set-up).
     probe.enter(Phase::Xform);
-    let (source, fx, turn) = begin_frame(r, tree, frame);
-    let outlines = r.effects().contains(Effects::OUTLINE);
+    let active = frame_effects(r, tree);
+    let code = Bands::<'_, '_, '_, 'b, P, E, F, S, Pr, N, V> {
+        tree,
+        frame,
+        r,
+        scratch,
+        ids,
+        memory,
+        rows,
+        background,
+        store,
+        probe,
+        active,
+        band: PhantomData,
+    };
+    for_frame::<E, _>(active, code)
+}
+
+/// The arguments of [`bands`], handed to the code [`for_frame`] picks.
+struct Bands<'x, 't, 'p, 'b, P, E, F, S, Pr, const N: usize, const V: usize>
+where
+    P: Precision,
+    E: Compiled,
+    F: PixelFormat,
+{
+    tree: &'x Tree<'t>,
+    frame: &'x Frame,
+    r: &'x mut Renderer<P, E>,
+    scratch: &'x mut Scratch<P, V>,
+    ids: FaceIds,
+    memory: &'x mut [u32],
+    rows: u32,
+    background: F::Color,
+    store: &'x mut S,
+    probe: &'p Pr,
+    active: Effects,
+    /// The lifetime of the bands' storage (`S: BandStore<'b, F>`).
+    band: PhantomData<&'b ()>,
+}
+
+impl<'b, P, E, F, S, Pr, const N: usize, const V: usize> ForPipeline
+    for Bands<'_, '_, '_, 'b, P, E, F, S, Pr, N, V>
+where
+    P: Precision,
+    E: Compiled,
+    F: PixelFormat,
+    S: BandStore<'b, F>,
+    Pr: Probe,
+{
+    type Output = Result<RenderStats, RenderError>;
+
+    #[inline(always)]
+    fn run<X: Compiled>(self) -> Self::Output {
+        let Bands {
+            tree,
+            frame,
+            r,
+            scratch,
+            ids,
+            memory,
+            rows,
+            background,
+            store,
+            probe,
+            active,
+            band: _,
+        } = self;
+        bands_as::<P, E, X, F, S, Pr, N, V>(
+            tree,
+            frame,
+            r,
+            scratch,
+            (ids, memory),
+            (rows, background),
+            store,
+            (probe, active),
+        )
+    }
+}
+
+/// [`bands`] compiled for pipeline `X`; out of line and with its
+/// references as parameters, as [`direct_as`].
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn bands_as<'b, P, E, X, F, S, Pr, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    (ids, memory): (FaceIds, &mut [u32]),
+    (rows, background): (u32, F::Color),
+    store: &mut S,
+    (probe, active): (&Pr, Effects),
+) -> Result<RenderStats, RenderError>
+where
+    P: Precision,
+    E: Compiled,
+    X: Compiled,
+    F: PixelFormat,
+    S: BandStore<'b, F>,
+    Pr: Probe,
+{
+    let (source, fx, turn) = begin_frame::<P, E, X>(r, tree, frame, active);
+    let outlines = r.effects_as::<X>().contains(Effects::OUTLINE);
     // A frame that walks the tree more than once tests each plane once:
     // the facing memo comes first (a few dozen words), when the memory
     // has room for it beside a cache and the walk uses memos (`MEMO`:
@@ -929,7 +1158,7 @@ where
     // of its polygons in every walk, which costs more than the walk a
     // smaller list adds (measured on a Cortex-M0, README "Small RAM").
     let most = memory.len() - memory.len() / 4;
-    let (mut cache, rest) = take_cache(memory, tree, cacheable(r), most);
+    let (mut cache, rest) = take_cache(memory, tree, cacheable::<P, E, X>(r), most);
     prefill(r, tree, source, &mut cache);
     let list_words = bytemuck::cast_slice_mut(rest);
     let needs_id = <Band<'_, Framebuffer<'_, F>> as SpanSink>::NEEDS_ID;
@@ -950,7 +1179,7 @@ where
         ring.clear();
         // The list does not keep colour planes: with smooth shading every
         // band is filled as its walk goes (one walk per band).
-        let smooth = E::SET.contains(Effects::SMOOTH) && fx.smooth;
+        let smooth = X::SET.contains(Effects::SMOOTH) && fx.smooth;
         let cut = Cell::new(if smooth { y + rows } else { h });
         // The list overflowed for band `y` alone: the rest of this walk
         // fills it directly.
@@ -974,7 +1203,7 @@ where
             y1: cut.get(),
             ..screen
         };
-        walk.run::<P, E, Pr, N, V>(
+        walk.run::<P, E, X, Pr, N, V>(
             &mut order,
             r,
             scratch,
@@ -983,7 +1212,8 @@ where
             reach,
             |r, s, ready, poly, face, cache| {
                 if direct {
-                    spans += fill(r, s, ready, face, &mut Band::new(&mut fb, y), probe);
+                    let band = &mut Band::new(&mut fb, y);
+                    spans += fill::<P, E, X, _, Pr, V>(r, s, ready, face, band, probe);
                     return Step::Next;
                 }
                 let e = Entry {
@@ -1024,7 +1254,7 @@ where
                 // this polygon (prepared again: the replay used the scratch)
                 // and the rest of the walk straight into it.
                 probe.enter(Phase::Fill);
-                spans += replay(
+                spans += replay::<P, E, X, _, V>(
                     r,
                     s,
                     tree,
@@ -1056,7 +1286,8 @@ where
             let (view, words) = list.replay_parts();
             let carry = (&mut ring, words, keep);
             let band = (y, y + rows);
-            spans += replay(r, scratch, tree, &view, &cache, band, &mut sink, carry);
+            spans +=
+                replay::<P, E, X, _, V>(r, scratch, tree, &view, &cache, band, &mut sink, carry);
         }
         probe.stop();
         if !store.emit(y, fb) {
@@ -1076,7 +1307,8 @@ where
             let (view, words) = list.replay_parts();
             let carry = (&mut ring, words, keep);
             let band = (y0, y0 + rows);
-            spans += replay(r, scratch, tree, &view, &cache, band, &mut sink, carry);
+            spans +=
+                replay::<P, E, X, _, V>(r, scratch, tree, &view, &cache, band, &mut sink, carry);
             probe.stop();
             if !store.emit(y0, fb) {
                 return Ok(stats.unwrap_or_default());

@@ -45,7 +45,7 @@ pub fn draw_frame<P: Precision, const N: usize, const V: usize, E: Compiled, K: 
     sink: &mut K,
 ) -> Result<RenderStats, RenderError> {
     check_capacities::<N, V>(tree)?;
-    Ok(cached::draw_direct::<P, E, K, NoProbe, N, V>(
+    Ok(cached::draw_direct::<P, E, K, NoProbe, N, V, false>(
         tree,
         frame,
         renderer,
@@ -75,17 +75,15 @@ pub(crate) struct WalkFx {
     pub(crate) smooth: bool,
 }
 
-/// Settles the renderer's effects for `tree` ([`Renderer::begin_tree`])
-/// and returns what the walk needs of them. Shared by [`draw_frame`] and
-/// the loops of `render::cached`. (The walk itself is built by each
-/// caller: handing a walk back by value would copy its whole stack every
-/// frame.)
-#[inline]
-pub(crate) fn walk_effects<P: Precision, E: Compiled>(
-    tree: &Tree<'_>,
-    renderer: &mut Renderer<P, E>,
-) -> WalkFx {
-    let fx = renderer.begin_tree(Effects::from_bits(tree.effects()));
+/// What the walk of a frame needs from the effects `fx` (the renderer's,
+/// settled for the frame by [`Renderer::begin_tree`]) in the code compiled
+/// for pipeline `X` ([`crate::effects`]'s dispatch): an effect outside
+/// `X`'s set is off there at compile time. Shared by the loops of
+/// `render::cached`. (The walk itself is built by each caller: handing a
+/// walk back by value would copy its whole stack every frame.)
+#[inline(always)]
+pub(crate) fn walk_effects<X: Compiled>(tree: &Tree<'_>, fx: Effects) -> WalkFx {
+    let fx = fx.and(X::SET);
     WalkFx {
         cull: fx.contains(Effects::CULLING),
         two_sided: fx.contains(Effects::TWO_SIDED),

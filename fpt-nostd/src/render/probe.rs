@@ -92,7 +92,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
         probe: &Pr,
     ) -> Result<RenderStats, RenderError> {
         check_capacities::<N, V>(tree)?;
-        Ok(cached::draw_direct::<P, E, K, Pr, N, V>(
+        Ok(cached::draw_direct::<P, E, K, Pr, N, V, true>(
             tree,
             frame,
             &mut self.renderer,

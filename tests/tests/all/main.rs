@@ -4,6 +4,7 @@
 //! `declared_modules` fails when a file is missing from the list.
 
 mod camera_scales;
+mod effects_dispatch;
 mod effects_golden;
 mod effects_pipeline;
 mod firmware_crc;
