@@ -29,9 +29,10 @@
 //!   its code is not even in the binary.
 //!
 //! **Off is compiled out**: a frame whose effects leave out a switched
-//! effect ([`Compiled::SWITCHED`], default [`SWITCHED`]: with an FPU
-//! culling, lighting, and the [`EXTRAS`] depth cueing, outlines and smooth
-//! shading as one; without one, none) is
+//! effect ([`Compiled::SWITCHED`], default [`DEFAULT_SWITCHED`]: on a
+//! microcontroller with an FPU culling, lighting, and the [`EXTRAS`] depth
+//! cueing, outlines and smooth shading as one; without one, and on hosted
+//! targets, none; [`Switched`] switches them anywhere) is
 //! drawn by the walk-and-fill compiled for [`Without`] that effect, whose
 //! set is that of the pipeline built without it: off runs the very code of
 //! compiled out, plus one test a frame (`for_frame`; which set a frame
@@ -206,10 +207,11 @@ pub trait Compiled {
     /// drawn by a copy of the walk-and-fill compiled without them (see
     /// "Off is compiled out" in the module docs): each one of `SET`, or
     /// [`EXTRAS`] as one, doubles the copies a pipeline holds. Default
-    /// [`SWITCHED`]; a pipeline type short of flash may switch fewer
+    /// [`DEFAULT_SWITCHED`]; a pipeline type short of flash may switch fewer
     /// ([`Effects::NONE`]: one copy, and an effect that is off runs its
-    /// flag tests). [`EXTRAS`] switch only when all are in it.
-    const SWITCHED: Effects = SWITCHED;
+    /// flag tests), and [`Switched`] switches [`SWITCHED`] on any target.
+    /// [`EXTRAS`] switch only when all are in it.
+    const SWITCHED: Effects = DEFAULT_SWITCHED;
 }
 
 /// A pipeline containing the effects with bits `BITS`.
@@ -222,6 +224,32 @@ impl<const BITS: u32> Compiled for Pipeline<BITS> {
 
 /// Every stage compiled in: the default pipeline.
 pub type AllEffects = Pipeline<0xff>;
+
+/// A pipeline containing the effects with bits `BITS` that switches
+/// [`SWITCHED`] whatever the target: [`Pipeline`] with the switching a
+/// microcontroller with an FPU gets by default, for hosted code that wants
+/// it too (the tests that check that off draws what compiled out draws,
+/// through the code a microcontroller runs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Switched<const BITS: u32>;
+
+impl<const BITS: u32> Compiled for Switched<BITS> {
+    const SET: Effects = Effects::from_bits(BITS);
+    const SWITCHED: Effects = SWITCHED;
+}
+
+/// What a pipeline switches by default ([`Compiled::SWITCHED`]): on a
+/// microcontroller (`target_os = "none"`) [`SWITCHED`]; on a hosted
+/// target nothing. The host draws the same pictures either way (an effect
+/// that is off draws what compiled out draws, tested); it only takes no
+/// copies: the host simulator instantiates many pipelines, and with eight
+/// copies of the walk-and-fill each its library took more than 16 CPU
+/// minutes to compile (session 12), against about 3 without.
+pub const DEFAULT_SWITCHED: Effects = if cfg!(target_os = "none") {
+    SWITCHED
+} else {
+    Effects::NONE
+};
 
 /// The effects whose `off` runs a copy compiled without them, by default
 /// ([`Compiled::SWITCHED`]): every effect whose off path is a test in the
@@ -297,14 +325,15 @@ pub(crate) fn for_frame<E: Compiled, C: ForPipeline>(active: Effects, code: C) -
 /// effects are `active` ([`crate::raster::Renderer::effects`]): `E`'s set
 /// without the switched effects that are off ([`Compiled::SWITCHED`]). Two
 /// pipelines with the same answer run the same code: with an effect off,
-/// [`AllEffects`] runs the code of the pipeline built without it.
+/// [`AllEffects`] runs, on a microcontroller, the code of the pipeline
+/// built without it ([`Switched`] does so on any target).
 ///
 /// ```
-/// use fpt_nostd::effects::{compiled_for, AllEffects, Effects, Pipeline};
+/// use fpt_nostd::effects::{compiled_for, Effects, Switched};
 /// let fx = Effects::defaults(true).without(Effects::CULLING);
 /// const NO_CULLING: u32 = Effects::ALL.without(Effects::CULLING).bits();
-/// assert_eq!(compiled_for::<AllEffects>(fx), compiled_for::<Pipeline<NO_CULLING>>(fx));
-/// assert!(!compiled_for::<AllEffects>(fx).contains(Effects::CULLING));
+/// assert_eq!(compiled_for::<Switched<0xff>>(fx), compiled_for::<Switched<NO_CULLING>>(fx));
+/// assert!(!compiled_for::<Switched<0xff>>(fx).contains(Effects::CULLING));
 /// ```
 pub fn compiled_for<E: Compiled>(active: Effects) -> Effects {
     /// Code that returns what it is compiled for.
@@ -420,36 +449,46 @@ mod tests {
         const NO_LIGHT: u32 = Effects::ALL.without(Effects::LIGHTING).bits();
         const NO_SMOOTH: u32 = Effects::ALL.without(Effects::SMOOTH).bits();
         // The scene's own effects: the extras (all off) taken out.
-        let (set, name) = picked::<AllEffects>(base);
+        let (set, name) = picked::<Switched<0xff>>(base);
         assert_eq!(set, lean);
         assert!(name.contains("Without"), "{name}");
         // All effects with culling off runs the set of the pipeline built
         // without culling, as that pipeline does; the same for lighting.
         for (off, bare) in [
-            (Effects::CULLING, picked::<Pipeline<NO_CULL>> as fn(_) -> _),
-            (Effects::LIGHTING, picked::<Pipeline<NO_LIGHT>>),
-            (Effects::SMOOTH, picked::<Pipeline<NO_SMOOTH>>),
+            (Effects::CULLING, picked::<Switched<NO_CULL>> as fn(_) -> _),
+            (Effects::LIGHTING, picked::<Switched<NO_LIGHT>>),
+            (Effects::SMOOTH, picked::<Switched<NO_SMOOTH>>),
         ] {
             let fx = base.without(off);
-            assert_eq!(picked::<AllEffects>(fx).0, lean.without(off), "{off}");
+            assert_eq!(picked::<Switched<0xff>>(fx).0, lean.without(off), "{off}");
             assert_eq!(bare(fx).0, lean.without(off), "{off}");
         }
         // Both off: both taken out.
         let none = Effects::CLIPPING;
-        assert_eq!(picked::<AllEffects>(none).0, Effects::ALL.without(SWITCHED));
+        assert_eq!(
+            picked::<Switched<0xff>>(none).0,
+            Effects::ALL.without(SWITCHED)
+        );
         // Every switched effect on: the pipeline itself, not a copy.
-        let (set, name) = picked::<AllEffects>(Effects::ALL);
+        let (set, name) = picked::<Switched<0xff>>(Effects::ALL);
         assert_eq!(set, Effects::ALL);
         assert!(!name.contains("Without"), "{name}");
         // One extra on keeps all three; unswitched effects stay compiled
         // in when off.
         let outline = base.with(Effects::OUTLINE).without(Effects::CLIPPING);
-        assert_eq!(picked::<AllEffects>(outline).0, Effects::ALL);
+        assert_eq!(picked::<Switched<0xff>>(outline).0, Effects::ALL);
         // A pipeline without culling makes no copy for it: culling off (as
         // always there) picks the pipeline itself.
-        let (set, name) = picked::<Pipeline<NO_CULL>>(Effects::ALL.without(Effects::CULLING));
+        let (set, name) = picked::<Switched<NO_CULL>>(Effects::ALL.without(Effects::CULLING));
         assert_eq!(set, Effects::ALL.without(Effects::CULLING));
         assert!(!name.contains("Without"), "{name}");
+        // The default pipeline switches on microcontrollers only.
+        let expect = if cfg!(target_os = "none") {
+            lean
+        } else {
+            Effects::ALL
+        };
+        assert_eq!(picked::<AllEffects>(base).0, expect);
     }
 
     #[test]

@@ -5,7 +5,7 @@
 
 use embedded_graphics::pixelcolor::Rgb565;
 use fpt_frames::effects::{bare_pipeline, Bare, EFFECT_SCENE};
-use fpt_nostd::effects::{compiled_for, AllEffects, Compiled, Effects, Pipeline, SWITCHED};
+use fpt_nostd::effects::{compiled_for, Compiled, Effects, Switched, SWITCHED};
 use fpt_nostd::raster::{DefaultPrecision, DepthCue, Framebuffer, Libm, Orbit, Rgb565BeFormat};
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{memory_words, BandBuffer, BandBuffers, BandTransfer, Frame, TreeRenderer};
@@ -24,27 +24,27 @@ fn every_switched_effect_off_picks_the_code_of_the_pipeline_without_it() {
         [
             (
                 Effects::CULLING,
-                compiled_for::<Pipeline<CULL>>(fx),
+                compiled_for::<Switched<CULL>>(fx),
                 compiled_for::<Bare<CULL>>(fx),
             ),
             (
                 Effects::LIGHTING,
-                compiled_for::<Pipeline<LIGHT>>(fx),
+                compiled_for::<Switched<LIGHT>>(fx),
                 compiled_for::<Bare<LIGHT>>(fx),
             ),
             (
                 Effects::DEPTH_CUE,
-                compiled_for::<Pipeline<CUE>>(fx),
+                compiled_for::<Switched<CUE>>(fx),
                 compiled_for::<Bare<CUE>>(fx),
             ),
             (
                 Effects::OUTLINE,
-                compiled_for::<Pipeline<OUTLINE>>(fx),
+                compiled_for::<Switched<OUTLINE>>(fx),
                 compiled_for::<Bare<OUTLINE>>(fx),
             ),
             (
                 Effects::SMOOTH,
-                compiled_for::<Pipeline<SMOOTH>>(fx),
+                compiled_for::<Switched<SMOOTH>>(fx),
                 compiled_for::<Bare<SMOOTH>>(fx),
             ),
         ]
@@ -62,7 +62,7 @@ fn every_switched_effect_off_picks_the_code_of_the_pipeline_without_it() {
         };
         for &on in with {
             let fx = on.without(e);
-            let all = compiled_for::<AllEffects>(fx);
+            let all = compiled_for::<Switched<0xff>>(fx);
             assert!(!all.contains(e), "{e} off in {fx}: {all}");
             let (_, pipeline, bare) = sets(fx).into_iter().find(|s| s.0 == e).expect("effect");
             assert_eq!(all, pipeline, "{e} off in {fx}");
@@ -73,14 +73,14 @@ fn every_switched_effect_off_picks_the_code_of_the_pipeline_without_it() {
         }
     }
     // On, it stays compiled in; the unswitched ones stay in when off.
-    assert_eq!(compiled_for::<AllEffects>(Effects::ALL), Effects::ALL);
+    assert_eq!(compiled_for::<Switched<0xff>>(Effects::ALL), Effects::ALL);
     let fx = Effects::ALL
         .without(Effects::TWO_SIDED)
         .without(Effects::CLIPPING);
-    assert_eq!(compiled_for::<AllEffects>(fx), Effects::ALL);
+    assert_eq!(compiled_for::<Switched<0xff>>(fx), Effects::ALL);
     // One extra on keeps the other two compiled in.
     let fx = Effects::ALL.without(Effects::DEPTH_CUE);
-    assert_eq!(compiled_for::<AllEffects>(fx), Effects::ALL);
+    assert_eq!(compiled_for::<Switched<0xff>>(fx), Effects::ALL);
 }
 
 /// Everything one pipeline draws of the effect scene with `fx`, through
@@ -190,15 +190,15 @@ fn off_and_compiled_out_draw_alike_through_every_entry() {
         &orbit.camera::<Libm>(1.25).with_model(&fpt_frames::Z_UP),
     );
     let cases: [(Effects, fn(&Tree<'_>, &Frame, Effects) -> Vec<Vec<u16>>); 5] = [
-        (Effects::CULLING, pictures::<Pipeline<CULL>>),
-        (Effects::LIGHTING, pictures::<Pipeline<LIGHT>>),
-        (Effects::DEPTH_CUE, pictures::<Pipeline<CUE>>),
-        (Effects::OUTLINE, pictures::<Pipeline<OUTLINE>>),
-        (Effects::SMOOTH, pictures::<Pipeline<SMOOTH>>),
+        (Effects::CULLING, pictures::<Switched<CULL>>),
+        (Effects::LIGHTING, pictures::<Switched<LIGHT>>),
+        (Effects::DEPTH_CUE, pictures::<Switched<CUE>>),
+        (Effects::OUTLINE, pictures::<Switched<OUTLINE>>),
+        (Effects::SMOOTH, pictures::<Switched<SMOOTH>>),
     ];
     for (e, bare) in cases {
-        let on = pictures::<AllEffects>(&tree, &frame, base.with(e));
-        let off = pictures::<AllEffects>(&tree, &frame, base.without(e));
+        let on = pictures::<Switched<0xff>>(&tree, &frame, base.with(e));
+        let off = pictures::<Switched<0xff>>(&tree, &frame, base.without(e));
         // Every entry draws the same picture.
         assert!(off.iter().all(|p| *p == off[0]), "{e}: entries differ");
         assert!(on.iter().all(|p| *p == on[0]), "{e} on: entries differ");
