@@ -7,8 +7,7 @@
 use cortex_m_semihosting::hprintln;
 
 use fpt_frames::effects::{
-    bare_pipeline, on_off, render_effect, Bare, EffectTarget, EFFECT_SCENE, EFFECT_VIEW,
-    MONO_BYTES,
+    bare_pipeline, on_off, render_effect, Bare, EffectTarget, EFFECT_SCENE, EFFECT_VIEW, MONO_BYTES,
 };
 use fpt_frames::{FramePrecision, FrameRenderer, VIEWS};
 use fpt_nostd::effects::{AllEffects, Compiled, Effects};

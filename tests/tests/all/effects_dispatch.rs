@@ -179,6 +179,9 @@ fn pictures<E: Compiled>(tree: &Tree<'_>, frame: &Frame, fx: Effects) -> Vec<Vec
     out
 }
 
+/// A pipeline's [`pictures`].
+type Pictures = fn(&Tree<'_>, &Frame, Effects) -> Vec<Vec<u16>>;
+
 #[test]
 fn off_and_compiled_out_draw_alike_through_every_entry() {
     let bytes = scene_tree(EFFECT_SCENE).expect("scene");
@@ -189,7 +192,7 @@ fn off_and_compiled_out_draw_alike_through_every_entry() {
         &tree,
         &orbit.camera::<Libm>(1.25).with_model(&fpt_frames::Z_UP),
     );
-    let cases: [(Effects, fn(&Tree<'_>, &Frame, Effects) -> Vec<Vec<u16>>); 5] = [
+    let cases: [(Effects, Pictures); 5] = [
         (Effects::CULLING, pictures::<Switched<CULL>>),
         (Effects::LIGHTING, pictures::<Switched<LIGHT>>),
         (Effects::DEPTH_CUE, pictures::<Switched<CUE>>),
