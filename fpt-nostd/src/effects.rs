@@ -313,11 +313,11 @@ pub(crate) fn for_frame<E: Compiled, C: ForPipeline>(active: Effects, code: C) -
     // culling's first; each leaves its effects in the type or takes them
     // out, and hands over to the next.
     let code = step::<_, { EXTRAS.bits() }>(code, active);
-    let code = step::<_, 0x20>(code, active);
-    let code = step::<_, 0x08>(code, active);
-    let code = step::<_, 0x04>(code, active);
-    let code = step::<_, 0x02>(code, active);
-    let code = step::<_, 0x01>(code, active);
+    let code = step::<_, { Effects::DITHER.bits() }>(code, active);
+    let code = step::<_, { Effects::LIGHTING.bits() }>(code, active);
+    let code = step::<_, { Effects::CLIPPING.bits() }>(code, active);
+    let code = step::<_, { Effects::TWO_SIDED.bits() }>(code, active);
+    let code = step::<_, { Effects::CULLING.bits() }>(code, active);
     code.run::<E>()
 }
 
