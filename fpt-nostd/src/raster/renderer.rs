@@ -585,9 +585,11 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// `scratch.screen[..n]` and its vertex indices into
     /// `scratch.active[..n]`; a vertex not cached yet is transformed with
     /// `xform` (given its index) and projected, once a frame; a vertex
-    /// beyond the cache's capacity is transformed and projected here
+    /// beyond an indexed cache's capacity is transformed and projected here
     /// without being kept. Returns `n` and whether every vertex is cached
-    /// (so that the indices stand for the points). `None` when the polygon
+    /// for the rest of the frame (so that the indices stand for the points;
+    /// never with a tagged cache, whose entries a later polygon may take
+    /// over: [`VertexCache::is_tagged`]). `None` when the polygon
     /// must take the per-polygon path instead: a vertex is [`Slot::Slow`]
     /// (outside a clip plane, not finite or far off screen), or the polygon
     /// has more than `N` vertices. Every path gives the same points (see
@@ -605,9 +607,11 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
                 .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
                 .and_then(|c| P::Path::project_clipped(&c, &self.viewport))
         };
-        let cap = cache.capacity();
+        // A tagged cache takes every vertex (and keeps none for sure).
+        let tagged = cache.is_tagged();
+        let cap = if tagged { usize::MAX } else { cache.capacity() };
         let mut n = 0;
-        let mut all = true;
+        let mut all = !tagged;
         for v in indices {
             let p = if v as usize >= cap {
                 all = false;
@@ -620,8 +624,8 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
                 }
             };
             *scratch.screen.get_mut(n)? = p;
-            // Cached vertices have indices below the cache's capacity, at
-            // most 2^16 (`render::cached`); the others are not read back.
+            // Read back only when `all`: then every index is below an
+            // indexed cache's capacity, at most 2^16 (`render::cached`).
             *scratch.active.get_mut(n)? = v as u16;
             n += 1;
         }

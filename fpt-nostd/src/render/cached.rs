@@ -76,11 +76,15 @@ const MAX_CACHED: usize = 1 << 16;
 
 /// The vertex cache over the first words of `memory`, cleared: one slot
 /// per vertex of `tree`, at most [`MAX_CACHED`] and `limit`; none when
-/// `cache` is false. Returns it and the words left.
+/// `cache` is false. When `tagged` and those words cannot hold every
+/// vertex, a tagged cache over them instead ([`VertexCache::tagged`]: a
+/// vertex shared by polygons drawn close together is still transformed
+/// once; for a full frame, which records nothing for later). Returns it
+/// and the words left.
 fn take_cache<'m>(
     memory: &'m mut [u32],
     tree: &Tree<'_>,
-    cache: bool,
+    (cache, tagged): (bool, bool),
     limit: usize,
 ) -> (VertexCache<'m>, &'m mut [u32]) {
     let want = if cache {
@@ -90,7 +94,11 @@ fn take_cache<'m>(
     };
     let slots = want.min(MAX_CACHED).min(limit).min(memory.len());
     let (c, rest) = memory.split_at_mut(slots);
-    let mut c = VertexCache::new(c);
+    let mut c = if tagged && slots < want {
+        VertexCache::tagged(c)
+    } else {
+        VertexCache::new(c)
+    };
     c.clear();
     (c, rest)
 }
@@ -111,7 +119,8 @@ fn prefill<P: Precision, E: Compiled>(
     let Source::Scaled(s) = source else {
         return;
     };
-    if cache.capacity() == 0 || !r.prove(&tree.vertex_bound().scaled(s)) {
+    // A tagged cache holds only some vertices: nothing to fill ahead.
+    if cache.capacity() == 0 || cache.is_tagged() || !r.prove(&tree.vertex_bound().scaled(s)) {
         return;
     }
     let dec = tree.vertex_decoder();
@@ -673,7 +682,7 @@ where
 {
     let (source, fx, turn) = begin_frame::<P, E, X>(r, tree, frame, active);
     let limit = memory.len();
-    let (mut cache, _) = take_cache(memory, tree, cacheable::<P, E, X>(r), limit);
+    let (mut cache, _) = take_cache(memory, tree, (cacheable::<P, E, X>(r), true), limit);
     prefill(r, tree, source, &mut cache);
     let reach = r.viewport_bounds().intersect(&sink.bounds());
     let mut spans = 0;
@@ -702,7 +711,7 @@ where
     let mut stats = r.stats();
     stats.spans = spans;
     stats.walks = 1;
-    stats.memory_used = cache.capacity() as u32;
+    stats.memory_used = cache.words() as u32;
     Ok(stats)
 }
 
@@ -1158,7 +1167,9 @@ where
     // of its polygons in every walk, which costs more than the walk a
     // smaller list adds (measured on a Cortex-M0, README "Small RAM").
     let most = memory.len() - memory.len() / 4;
-    let (mut cache, rest) = take_cache(memory, tree, cacheable::<P, E, X>(r), most);
+    // Indexed only: the display list records polygons by vertex index
+    // for the replay, which a tagged cache may have evicted by then.
+    let (mut cache, rest) = take_cache(memory, tree, (cacheable::<P, E, X>(r), false), most);
     prefill(r, tree, source, &mut cache);
     let list_words = bytemuck::cast_slice_mut(rest);
     let needs_id = <Band<'_, Framebuffer<'_, F>> as SpanSink>::NEEDS_ID;
@@ -1323,6 +1334,6 @@ where
     stats.spans = spans;
     stats.walks = walks;
     list.note_spare_used(ring.most() * CARRY_WORDS);
-    stats.memory_used = (memo_n + cache.capacity() + list.peak().div_ceil(2)) as u32;
+    stats.memory_used = (memo_n + cache.words() + list.peak().div_ceil(2)) as u32;
     Ok(stats)
 }
