@@ -589,7 +589,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// without being kept. Returns `n` and whether every vertex is cached
     /// for the rest of the frame (so that the indices stand for the points;
     /// never with a tagged cache, whose entries a later polygon may take
-    /// over: [`VertexCache::is_tagged`]). `None` when the polygon
+    /// over: [`VertexCache::is_tagged`], [`Renderer::load_tagged`]). `None` when the polygon
     /// must take the per-polygon path instead: a vertex is [`Slot::Slow`]
     /// (outside a clip plane, not finite or far off screen), or the polygon
     /// has more than `N` vertices. Every path gives the same points (see
@@ -602,34 +602,67 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         indices: impl Iterator<Item = u32>,
         xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
     ) -> Option<(usize, bool)> {
+        if cache.is_tagged() {
+            return self.load_tagged(scratch, cache, indices, xform);
+        }
         let project = |v: u32| {
             xform(v)
                 .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
                 .and_then(|c| P::Path::project_clipped(&c, &self.viewport))
         };
-        // A tagged cache takes every vertex (and keeps none for sure).
-        let tagged = cache.is_tagged();
-        let cap = if tagged { usize::MAX } else { cache.capacity() };
+        let cap = cache.capacity();
         let mut n = 0;
-        let mut all = !tagged;
+        let mut all = true;
         for v in indices {
             let p = if v as usize >= cap {
                 all = false;
                 project(v)?
             } else {
-                match cache.get(v) {
+                match cache.get_indexed(v) {
                     Slot::Point(p) => p,
                     Slot::Slow => return None,
-                    Slot::Unset => cache.insert(v, project(v))?,
+                    Slot::Unset => cache.insert_indexed(v, project(v))?,
                 }
             };
             *scratch.screen.get_mut(n)? = p;
-            // Read back only when `all`: then every index is below an
-            // indexed cache's capacity, at most 2^16 (`render::cached`).
+            // Cached vertices have indices below the cache's capacity, at
+            // most 2^16 (`render::cached`); the others are not read back.
             *scratch.active.get_mut(n)? = v as u16;
             n += 1;
         }
         Some((n, all))
+    }
+
+    /// [`Renderer::load_cached`] through a tagged cache: every vertex goes
+    /// through it, and none is reported cached for the rest of the frame
+    /// (a later polygon may take its entry over), so `scratch.active` is
+    /// not written. Out of line: the walk-and-fill function that inlines
+    /// `load_cached` keeps the indexed loop's code (and register
+    /// allocation) as it was, plus one test a polygon.
+    #[inline(never)]
+    fn load_tagged<const N: usize>(
+        &self,
+        scratch: &mut Scratch<P, N>,
+        cache: &mut VertexCache<'_>,
+        indices: impl Iterator<Item = u32>,
+        xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
+    ) -> Option<(usize, bool)> {
+        let project = |v: u32| {
+            xform(v)
+                .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
+                .and_then(|c| P::Path::project_clipped(&c, &self.viewport))
+        };
+        let mut n = 0;
+        for v in indices {
+            let p = match cache.get_tagged(v) {
+                Slot::Point(p) => p,
+                Slot::Slow => return None,
+                Slot::Unset => cache.insert_tagged(v, project(v))?,
+            };
+            *scratch.screen.get_mut(n)? = p;
+            n += 1;
+        }
+        Some((n, false))
     }
 
     /// Whether this frame's camera lets every model point within `bound`

@@ -166,33 +166,28 @@ impl<'m> VertexCache<'m> {
     /// vertex.
     #[inline]
     pub fn get(&self, v: u32) -> Slot {
-        let word = if self.is_tagged() {
-            match self.entries.get((v & self.mask) as usize) {
-                Some(&[tag, w]) if tag == v => Some(w),
-                Some(_) => Some(UNSET),
-                None => None,
-            }
+        if self.is_tagged() {
+            self.get_tagged(v)
         } else {
-            self.slots.get(v as usize).copied()
-        };
-        match word {
-            None | Some(SLOW) => Slot::Slow,
-            Some(UNSET) => Slot::Unset,
-            Some(w) => Slot::Point(unpack(w)),
+            self.get_indexed(v)
         }
     }
 
-    /// The word to store for vertex `v` (evicting whatever its tagged
-    /// entry held), or `None` beyond an indexed cache's capacity.
+    /// [`VertexCache::get`] of the indexed layout (for callers that
+    /// branch on the layout once, not per vertex).
     #[inline]
-    fn slot_mut(&mut self, v: u32) -> Option<&mut u32> {
-        if self.is_tagged() {
-            let e = self.entries.get_mut((v & self.mask) as usize)?;
-            e[0] = v;
-            Some(&mut e[1])
-        } else {
-            self.slots.get_mut(v as usize)
-        }
+    pub(crate) fn get_indexed(&self, v: u32) -> Slot {
+        slot_of(self.slots.get(v as usize).copied())
+    }
+
+    /// [`VertexCache::get`] of the tagged layout.
+    #[inline]
+    pub(crate) fn get_tagged(&self, v: u32) -> Slot {
+        slot_of(match self.entries.get((v & self.mask) as usize) {
+            Some(&[tag, w]) if tag == v => Some(w),
+            Some(_) => Some(UNSET),
+            None => None,
+        })
     }
 
     /// Records vertex `v`'s screen point (`None`: not cacheable). A point
@@ -200,25 +195,58 @@ impl<'m> VertexCache<'m> {
     /// an indexed cache's capacity is ignored.
     #[inline]
     pub fn set(&mut self, v: u32, p: Option<ScreenPt>) {
-        if let Some(slot) = self.slot_mut(v) {
-            *slot = p.and_then(pack).unwrap_or(SLOW);
-        }
+        let _ = self.insert(v, p);
     }
 
     /// [`VertexCache::set`], returning the point when the slot now holds
     /// it (`None`: the vertex takes the per-polygon path).
     #[inline]
     pub fn insert(&mut self, v: u32, p: Option<ScreenPt>) -> Option<ScreenPt> {
-        let slot = self.slot_mut(v)?;
-        match p.and_then(pack) {
-            Some(w) => {
-                *slot = w;
-                p
-            }
-            None => {
-                *slot = SLOW;
-                None
-            }
+        if self.is_tagged() {
+            self.insert_tagged(v, p)
+        } else {
+            self.insert_indexed(v, p)
+        }
+    }
+
+    /// [`VertexCache::insert`] of the indexed layout.
+    #[inline]
+    pub(crate) fn insert_indexed(&mut self, v: u32, p: Option<ScreenPt>) -> Option<ScreenPt> {
+        store(self.slots.get_mut(v as usize)?, p)
+    }
+
+    /// [`VertexCache::insert`] of the tagged layout: `v` takes its entry
+    /// over from whatever vertex held it.
+    #[inline]
+    pub(crate) fn insert_tagged(&mut self, v: u32, p: Option<ScreenPt>) -> Option<ScreenPt> {
+        let e = self.entries.get_mut((v & self.mask) as usize)?;
+        e[0] = v;
+        store(&mut e[1], p)
+    }
+}
+
+/// The [`Slot`] a stored word stands for (`None`: beyond the storage).
+#[inline]
+fn slot_of(word: Option<u32>) -> Slot {
+    match word {
+        None | Some(SLOW) => Slot::Slow,
+        Some(UNSET) => Slot::Unset,
+        Some(w) => Slot::Point(unpack(w)),
+    }
+}
+
+/// Stores `p` into `slot` (as [`Slot::Slow`] when it is `None` or does
+/// not fit 16 bits); returns it when stored as a point.
+#[inline]
+fn store(slot: &mut u32, p: Option<ScreenPt>) -> Option<ScreenPt> {
+    match p.and_then(pack) {
+        Some(w) => {
+            *slot = w;
+            p
+        }
+        None => {
+            *slot = SLOW;
+            None
         }
     }
 }
