@@ -602,15 +602,12 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         indices: impl Iterator<Item = u32>,
         xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
     ) -> Option<(usize, bool)> {
-        if cache.is_tagged() {
-            return self.load_tagged(scratch, cache, indices, xform);
-        }
         let project = |v: u32| {
             xform(v)
                 .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
                 .and_then(|c| P::Path::project_clipped(&c, &self.viewport))
         };
-        let cap = cache.capacity();
+        let cap = cache.indexed_len();
         let mut n = 0;
         let mut all = true;
         for v in indices {
@@ -638,15 +635,16 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// (a later polygon may take its entry over), so `scratch.active` is
     /// not written. Out of line: the walk-and-fill function that inlines
     /// `load_cached` keeps the indexed loop's code (and register
-    /// allocation) as it was, plus one test a polygon.
+    /// allocation) as it was, plus one test a polygon; cold, so that the
+    /// indexed path stays the straight one (when every vertex fits).
     #[inline(never)]
-    fn load_tagged<const N: usize>(
+    pub(crate) fn load_tagged<const N: usize>(
         &self,
         scratch: &mut Scratch<P, N>,
         cache: &mut VertexCache<'_>,
         indices: impl Iterator<Item = u32>,
         xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
-    ) -> Option<(usize, bool)> {
+    ) -> Option<usize> {
         let project = |v: u32| {
             xform(v)
                 .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
@@ -662,7 +660,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             *scratch.screen.get_mut(n)? = p;
             n += 1;
         }
-        Some((n, false))
+        Some(n)
     }
 
     /// Whether this frame's camera lets every model point within `bound`
@@ -689,8 +687,9 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     ) {
         let (m, near, vp) = (&self.matrix, self.near, &self.viewport);
         let n = cache.capacity().min(count).min(u32::MAX as usize) as u32;
+        // Only for an indexed cache (`render::cached::prefill`).
         for v in 0..n {
-            cache.set(v, P::Path::project_proven(m, near, model(v), vp));
+            let _ = cache.insert_indexed(v, P::Path::project_proven(m, near, model(v), vp));
         }
     }
 

@@ -92,14 +92,15 @@ const NO_TAG: u32 = u32::MAX;
 /// One slot per vertex index, or tagged entries (see the module docs).
 #[derive(Debug)]
 pub struct VertexCache<'m> {
-    /// Indexed layout: the slot of vertex `v` is `slots[v]` (empty when
-    /// tagged).
+    /// Indexed layout: the slot of vertex `v` is `slots[v]`. Tagged: the
+    /// tag and the slot of the vertices `v` with `v & mask == i` at
+    /// `slots[2i]` and `slots[2i + 1]`.
     slots: &'m mut [u32],
-    /// Tagged layout: `[tag, slot]` of the vertices `v` with
-    /// `v & mask == i` at `entries[i]` (empty when indexed).
-    entries: &'m mut [[u32; 2]],
-    /// `entries.len() − 1` (a power of two less one) when tagged.
+    /// Tagged: the number of entries less one (a power of two less one),
+    /// the layout's only per-vertex parameter.
     mask: u32,
+    /// Whether the layout is tagged.
+    tagged: bool,
 }
 
 impl<'m> VertexCache<'m> {
@@ -109,8 +110,8 @@ impl<'m> VertexCache<'m> {
     pub const fn new(slots: &'m mut [u32]) -> Self {
         VertexCache {
             slots,
-            entries: &mut [],
             mask: 0,
+            tagged: false,
         }
     }
 
@@ -126,14 +127,10 @@ impl<'m> VertexCache<'m> {
         // The largest power of two not above `pairs`.
         let n = 1usize << (usize::BITS - 1 - pairs.leading_zeros());
         let (used, _) = words.split_at_mut(2 * n);
-        match bytemuck::try_cast_slice_mut::<u32, [u32; 2]>(used) {
-            Ok(entries) => VertexCache {
-                slots: &mut [],
-                mask: (n - 1) as u32,
-                entries,
-            },
-            // `used` has an even length: not reached.
-            Err(_) => VertexCache::new(&mut []),
+        VertexCache {
+            slots: used,
+            mask: (n - 1) as u32,
+            tagged: true,
         }
     }
 
@@ -142,23 +139,43 @@ impl<'m> VertexCache<'m> {
     /// recorded by index for a later read.
     #[inline]
     pub fn is_tagged(&self) -> bool {
-        !self.entries.is_empty()
+        self.tagged
     }
 
     /// Vertices it can hold at once (slots, or tagged entries).
     pub fn capacity(&self) -> usize {
-        self.slots.len().max(self.entries.len())
+        if self.tagged {
+            self.slots.len() / 2
+        } else {
+            self.slots.len()
+        }
+    }
+
+    /// Vertices with a slot of their own (indices `0..indexed_len()`): the
+    /// capacity of an indexed cache, 0 for a tagged one.
+    #[inline]
+    pub(crate) fn indexed_len(&self) -> usize {
+        if self.tagged {
+            0
+        } else {
+            self.slots.len()
+        }
     }
 
     /// Words of the storage it uses.
     pub fn words(&self) -> usize {
-        self.slots.len() + 2 * self.entries.len()
+        self.slots.len()
     }
 
     /// Forgets every vertex (a new frame or camera).
     pub fn clear(&mut self) {
-        self.slots.fill(UNSET);
-        self.entries.fill([NO_TAG, UNSET]);
+        if self.tagged {
+            for e in self.slots.chunks_exact_mut(2) {
+                e.copy_from_slice(&[NO_TAG, UNSET]);
+            }
+        } else {
+            self.slots.fill(UNSET);
+        }
     }
 
     /// The slot of vertex `v`: indexed, [`Slot::Slow`] beyond the
@@ -183,7 +200,8 @@ impl<'m> VertexCache<'m> {
     /// [`VertexCache::get`] of the tagged layout.
     #[inline]
     pub(crate) fn get_tagged(&self, v: u32) -> Slot {
-        slot_of(match self.entries.get((v & self.mask) as usize) {
+        let i = 2 * (v & self.mask) as usize;
+        slot_of(match self.slots.get(i..i + 2) {
             Some(&[tag, w]) if tag == v => Some(w),
             Some(_) => Some(UNSET),
             None => None,
@@ -219,9 +237,12 @@ impl<'m> VertexCache<'m> {
     /// over from whatever vertex held it.
     #[inline]
     pub(crate) fn insert_tagged(&mut self, v: u32, p: Option<ScreenPt>) -> Option<ScreenPt> {
-        let e = self.entries.get_mut((v & self.mask) as usize)?;
-        e[0] = v;
-        store(&mut e[1], p)
+        let i = 2 * (v & self.mask) as usize;
+        let [tag, slot] = self.slots.get_mut(i..i + 2)? else {
+            return None;
+        };
+        *tag = v;
+        store(slot, p)
     }
 }
 

@@ -508,12 +508,17 @@ impl Walk<'_, '_, '_> {
         face: &Face,
         reach: &SpanBounds,
     ) -> (Result<Ready, Outcome>, bool) {
-        if self.cache.capacity() > 0 {
+        if self.cache.indexed_len() > 0 {
             let xform = |v: u32| xf(r.matrix(), decode(v));
             if let Some((n, by_index)) =
                 r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
             {
                 return (r.prepare_screen::<X, V>(scratch, n, face, reach), by_index);
+            }
+        } else if self.cache.is_tagged() {
+            let xform = |v: u32| xf(r.matrix(), decode(v));
+            if let Some(n) = r.load_tagged(scratch, self.cache, p.vertex_indices(), xform) {
+                return (r.prepare_screen::<X, V>(scratch, n, face, reach), false);
             }
         }
         let verts = p.vertex_indices().map(decode);
