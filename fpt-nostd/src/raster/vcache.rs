@@ -321,4 +321,96 @@ mod tests {
         let c = VertexCache::new(&mut none);
         assert_eq!((c.capacity(), c.get(0)), (0, Slot::Slow));
     }
+
+    #[test]
+    fn tagged_layout_uses_a_power_of_two_of_pairs() {
+        for (len, cap) in [
+            (0, 0),
+            (1, 0),
+            (2, 1),
+            (3, 1),
+            (4, 2),
+            (7, 2),
+            (8, 4),
+            (900, 256),
+        ] {
+            let mut w = [7u32; 900];
+            let mut c = VertexCache::tagged(&mut w[..len]);
+            c.clear();
+            assert_eq!((c.capacity(), c.words()), (cap, 2 * cap), "{len} words");
+            assert_eq!(c.is_tagged(), cap > 0, "{len} words");
+            // Every vertex misses after a clear, whatever the old words.
+            for v in [0, 1, 5, 1000, u32::MAX - 1] {
+                let want = if cap > 0 { Slot::Unset } else { Slot::Slow };
+                assert_eq!(c.get(v), want, "{len} words, vertex {v}");
+            }
+        }
+        // The words beyond the entries are left alone.
+        let mut w = [5u32; 7];
+        VertexCache::tagged(&mut w).clear();
+        assert_eq!(w[4..], [5, 5, 5]);
+        assert!(w[..4] != [5, 5, 5, 5]);
+    }
+
+    #[test]
+    fn tagged_hits_misses_and_evictions() {
+        let mut w = [0u32; 8];
+        let mut c = VertexCache::tagged(&mut w);
+        c.clear();
+        let p = |x| Some(ScreenPt { x, y: -x });
+        // Vertices 1, 5, 9 share entry 1 of 4; 2 has its own.
+        assert_eq!(c.insert(1, p(10)), p(10));
+        assert_eq!(c.insert(2, p(20)), p(20));
+        assert_eq!(c.get(1), Slot::Point(ScreenPt { x: 10, y: -10 }));
+        assert_eq!(c.get(5), Slot::Unset);
+        assert_eq!(c.insert(5, p(50)), p(50));
+        assert_eq!(
+            (c.get(1), c.get(5)),
+            (Slot::Unset, Slot::Point(ScreenPt { x: 50, y: -50 }))
+        );
+        // A vertex that must take the per-polygon path is remembered as
+        // such (and evicts too), as is a point beyond 16 bits.
+        assert_eq!(c.insert(9, None), None);
+        assert_eq!((c.get(9), c.get(5)), (Slot::Slow, Slot::Unset));
+        assert_eq!(c.insert(5, p(1 << 16)), None);
+        assert_eq!(c.get(5), Slot::Slow);
+        assert_eq!(c.get(2), Slot::Point(ScreenPt { x: 20, y: -20 }));
+        // The tag is the whole index: a vertex 2^32 apart cannot exist, but
+        // one a multiple of the entries apart never reads another's point.
+        for v in (2..1000).step_by(4) {
+            assert!(v == 2 || c.get(v) == Slot::Unset, "vertex {v}");
+        }
+        // A new frame forgets everything.
+        c.clear();
+        assert!((0..16).all(|v| c.get(v) == Slot::Unset));
+    }
+
+    #[test]
+    fn both_layouts_give_back_the_very_point_stored() {
+        // Points at the edges of the packed range, and the sentinels' own
+        // coordinates' neighbours.
+        let pts = [
+            (0, 0),
+            (-32767, -32767),
+            (32767, 32767),
+            (-32767, 32767),
+            (1, -32767),
+            (-32767, 1),
+            (-1, -1),
+        ];
+        let mut a = [0u32; 16];
+        let mut b = [0u32; 4];
+        let mut indexed = VertexCache::new(&mut a);
+        let mut tagged = VertexCache::tagged(&mut b);
+        indexed.clear();
+        tagged.clear();
+        for (v, &(x, y)) in pts.iter().enumerate() {
+            let p = ScreenPt { x, y };
+            let v = v as u32;
+            assert_eq!(indexed.insert(v, Some(p)), Some(p));
+            assert_eq!(tagged.insert(v, Some(p)), Some(p));
+            assert_eq!(indexed.get(v), Slot::Point(p));
+            assert_eq!(tagged.get(v), Slot::Point(p));
+        }
+    }
 }

@@ -140,8 +140,11 @@ where
             }
         }
     }
-    // The full frame with a vertex cache of any size.
-    for words in [1, need / 5, need] {
+    // The full frame with a vertex cache of any size: below the tree's
+    // vertex count a tagged cache (1 word: none; 2: one entry, evicted by
+    // nearly every vertex), then indexed.
+    let verts = tree.vertex_count() as usize;
+    for words in [1, 2, 3, 64, need / 5, verts - 1, verts, need] {
         let mut memory = vec![0u32; words];
         let mut cached = vec![F::Word::default(); fast.len()];
         let mut fb = Framebuffer::<F>::new(&mut cached, W, H).expect("fb");
