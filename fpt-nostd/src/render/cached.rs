@@ -30,7 +30,11 @@
 //!
 //! * The cache takes one word per vertex of the tree, up to three
 //!   quarters of the memory (and 2^16 vertices); vertices beyond it are
-//!   transformed per polygon, as without a cache.
+//!   transformed per polygon, as without a cache. A full frame, which
+//!   records nothing for later, instead makes the words it has a tagged
+//!   cache when they cannot hold every vertex ([`VertexCache::tagged`]):
+//!   a vertex shared by polygons drawn close together in the walk is
+//!   still transformed once.
 //! * The list takes the rest. A walk records the polygons touching rows
 //!   `[y, cut)`, `cut` starting at the frame's bottom; when a record does
 //!   not fit, `cut` moves up by a sixth of the bands still covered (in
