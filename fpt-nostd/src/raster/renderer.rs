@@ -587,9 +587,11 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// `xform` (given its index) and projected, once a frame; a vertex
     /// beyond an indexed cache's capacity is transformed and projected here
     /// without being kept. Returns `n` and whether every vertex is cached
-    /// for the rest of the frame (so that the indices stand for the points;
-    /// never with a tagged cache, whose entries a later polygon may take
-    /// over: [`VertexCache::is_tagged`], [`Renderer::load_tagged`]). `None` when the polygon
+    /// for the rest of the frame (so that the indices stand for the points).
+    /// A tagged cache has no indexed slots, so here every vertex is beyond
+    /// it: the walk loads through [`Renderer::load_tagged`] instead (and
+    /// never by index: a later polygon may take a tagged entry over).
+    /// `None` when the polygon
     /// must take the per-polygon path instead: a vertex is [`Slot::Slow`]
     /// (outside a clip plane, not finite or far off screen), or the polygon
     /// has more than `N` vertices. Every path gives the same points (see
@@ -635,8 +637,8 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// (a later polygon may take its entry over), so `scratch.active` is
     /// not written. Out of line: the walk-and-fill function that inlines
     /// `load_cached` keeps the indexed loop's code (and register
-    /// allocation) as it was, plus one test a polygon; cold, so that the
-    /// indexed path stays the straight one (when every vertex fits).
+    /// allocation) nearly as it was, plus one test a polygon (README, "What
+    /// a frame is made of", session 13: the placements measured).
     #[inline(never)]
     pub(crate) fn load_tagged<const N: usize>(
         &self,
