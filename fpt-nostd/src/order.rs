@@ -449,18 +449,20 @@ impl<'a, const N: usize> Order<'a, N> {
         }
     }
 
-    /// Stores frame `top` back.
+    /// Stores the progress of frame `top` back (its level and phase: the
+    /// rest of a frame never changes once pushed).
     #[inline(always)]
     fn put(&mut self, top: usize, f: Frame) {
         if let Some(slot) = self.stack.get_mut(top) {
-            *slot = f;
+            slot.j = f.j;
+            slot.phase = f.phase;
         }
     }
 
     /// Starts the class of level `j` of `f` on the way down (`down`) or
     /// up: backward faces of `B_j` (down) or `F_j` (up), with the forward
     /// faces of the other bunch for an open volume; false if nothing passes.
-    #[inline]
+    #[inline(always)]
     fn start_level(&mut self, f: &Frame, j: u32, down: bool) -> bool {
         // F_j and B_j of level j (0-based) are bunches fb + 2j and fb + 2j + 1.
         let fj = f.first_bunch.wrapping_add(j.wrapping_mul(2));
@@ -475,11 +477,20 @@ impl<'a, const N: usize> Order<'a, N> {
         if a.0 >= a.1 && b.0 >= b.1 {
             return false; // both bunches empty: the common case, made cheap
         }
+        self.begin(a, Pick::Backward, b)
+    }
+
+    /// Starts a class of the runs `a` (picked by `pick`) and the runs `b`
+    /// (forward faces) in the walk's own hand-out; false if nothing passes.
+    /// Out of line: the walk's loop over the tree calls it only for a class
+    /// that has runs, and keeps its own registers for the empty ones.
+    #[inline(never)]
+    fn begin(&mut self, a: (u32, u32), pick: Pick, b: (u32, u32)) -> bool {
         let segs = [
-            Seg::new(&self.w, a, Pick::Backward),
+            Seg::new(&self.w, a, pick),
             Seg::new(&self.w, b, Pick::Forward),
         ];
-        self.at.start(self.w.runs, &self.face, segs)
+        self.at.start_walk(self.w.runs, &self.face, segs)
     }
 
     /// Starts the class of the on-plane bunch of `f`'s switch; false if
@@ -496,8 +507,7 @@ impl<'a, const N: usize> Order<'a, N> {
         } else {
             Pick::All
         };
-        let segs = [Seg::new(&self.w, runs, pick), Seg::EMPTY];
-        self.at.start(self.w.runs, &self.face, segs)
+        self.begin(runs, pick, (0, 0))
     }
 
     /// The next range of polygon ids back to front, whole runs where it
@@ -506,10 +516,10 @@ impl<'a, const N: usize> Order<'a, N> {
     /// iterating the classes and their ids would give it, in the same
     /// order. Mixing both is allowed: after `next_range` stopped inside a
     /// class, [`Iterator::next`] returns the rest of that class.
-    #[inline]
+    #[inline(never)]
     pub fn next_range(&mut self) -> Option<core::ops::Range<u32>> {
         loop {
-            if let Some(r) = self.at.next_range(self.w.runs, &self.face) {
+            if let Some(r) = self.at.next_range_walk(self.w.runs, &self.face) {
                 return Some(r);
             }
             if !self.advance() {
@@ -528,8 +538,7 @@ impl<'a, const N: usize> Order<'a, N> {
         }
         if self.prelude_runs != 0 {
             let runs = (0, core::mem::take(&mut self.prelude_runs));
-            let seg = Seg::new(&self.w, runs, Pick::Forward);
-            if self.at.start(self.w.runs, &self.face, [seg, Seg::EMPTY]) {
+            if self.begin(runs, Pick::Forward, (0, 0)) {
                 return true;
             }
         }

@@ -174,6 +174,52 @@ impl Seg {
         None
     }
 
+    /// [`Seg::take`] for the walk's own hand-out ([`Cursor::next_range_walk`]):
+    /// the passing runs that follow the first one are contiguous ids and
+    /// join its range, so that one range handed out (a call into the walk
+    /// and back for the renderer) covers every run that passes in a row.
+    /// The first run that then fails is used up with them (tested once,
+    /// never emitted). The ids and their order are [`Seg::take`]'s.
+    #[inline(always)]
+    fn take_walk(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<(u32, u32)> {
+        if self.is_empty() {
+            return None;
+        }
+        let want = match self.pick {
+            Pick::Backward => true,
+            Pick::Forward => false,
+            Pick::All => return self.take(runs, face),
+        };
+        let lo = (self.run as usize).wrapping_mul(RUN_LEN);
+        let hi = (self.run_end as usize).wrapping_mul(RUN_LEN);
+        let recs = runs.get(lo..hi).unwrap_or(&[]);
+        let mut start = self.start;
+        let mut run = self.run;
+        // The first passing run's start, once one passed.
+        let mut first: Option<u32> = None;
+        for r in recs.chunks_exact(RUN_LEN) {
+            let Ok(r) = <&[u8; RUN_LEN]>::try_from(r) else {
+                break;
+            };
+            let end = le_u32(r, rn::END);
+            let passes = face.backward_at(run, r) == want;
+            run = run.wrapping_add(1);
+            match (passes, first) {
+                (true, None) => first = Some(start),
+                (false, Some(from)) => {
+                    self.run = run;
+                    self.start = end;
+                    return Some((from, start));
+                }
+                _ => {}
+            }
+            start = end;
+        }
+        self.run = self.run_end;
+        self.start = start;
+        first.map(|from| (from, start))
+    }
+
     /// Polygons left (an upper bound on what passes).
     fn left(&self, runs: &[u8]) -> u32 {
         match self.run_end.checked_sub(1).filter(|_| !self.is_empty()) {
@@ -216,6 +262,46 @@ impl Cursor {
         self.segs = segs;
         self.cur = 0;
         self.settle(runs, face)
+    }
+
+    /// [`Cursor::start`] for the walk's own hand-out (inlined into the
+    /// out-of-line start of a class, `Order::begin`), settling with
+    /// [`Seg::take_walk`].
+    #[inline(always)]
+    pub(super) fn start_walk(&mut self, runs: &[u8], face: &Facing<'_>, segs: [Seg; 2]) -> bool {
+        self.next = 0;
+        self.end = 0;
+        self.segs = segs;
+        self.cur = 0;
+        self.settle_walk(runs, face)
+    }
+
+    /// [`Cursor::settle`] with [`Seg::take_walk`]: `next..end` becomes the
+    /// next passing runs in a row.
+    #[inline(always)]
+    fn settle_walk(&mut self, runs: &[u8], face: &Facing<'_>) -> bool {
+        while let Some(seg) = self.segs.get_mut(self.cur) {
+            if let Some((start, end)) = seg.take_walk(runs, face) {
+                self.next = start;
+                self.end = end;
+                return true;
+            }
+            self.cur += 1;
+        }
+        false
+    }
+
+    /// [`Cursor::next_range`] for the walk's own hand-out
+    /// ([`super::Order::next_range`]): the rest of the current range, else
+    /// the next passing runs in a row ([`Seg::take_walk`]).
+    #[inline(always)]
+    pub(super) fn next_range_walk(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<Range<u32>> {
+        if self.next >= self.end && !self.settle_walk(runs, face) {
+            return None;
+        }
+        let r = self.next..self.end;
+        self.next = self.end;
+        Some(r)
     }
 
     /// Makes `next..end` the next passing run; false when there is none.
