@@ -529,8 +529,10 @@ impl<'a, const N: usize> Order<'a, N> {
     }
 
     /// Moves to the next class that has a passing run (its hand-out in
-    /// `self.at`); false at the end of the walk.
-    #[inline(never)]
+    /// `self.at`); false at the end of the walk. Inlined into
+    /// [`Order::next_range`] (out of line), which nearly every hand-out of
+    /// a class goes through: one call a range, not two.
+    #[inline(always)]
     fn advance(&mut self) -> bool {
         if self.root_pending {
             self.root_pending = false;

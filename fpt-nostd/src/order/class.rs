@@ -192,15 +192,16 @@ impl Seg {
         };
         let lo = (self.run as usize).wrapping_mul(RUN_LEN);
         let hi = (self.run_end as usize).wrapping_mul(RUN_LEN);
-        let recs = runs.get(lo..hi).unwrap_or(&[]);
+        let mut recs = runs.get(lo..hi).unwrap_or(&[]);
         let mut start = self.start;
         let mut run = self.run;
         // The first passing run's start, once one passed.
         let mut first: Option<u32> = None;
-        for r in recs.chunks_exact(RUN_LEN) {
-            let Ok(r) = <&[u8; RUN_LEN]>::try_from(r) else {
-                break;
-            };
+        // Record by record off the front (a length test each), rather than
+        // `chunks_exact`, whose set-up divides the length: a class has one
+        // or two runs, mostly.
+        while let Some((r, rest)) = recs.split_first_chunk::<RUN_LEN>() {
+            recs = rest;
             let end = le_u32(r, rn::END);
             let passes = face.backward_at(run, r) == want;
             run = run.wrapping_add(1);
