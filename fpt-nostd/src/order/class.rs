@@ -208,6 +208,8 @@ impl Seg {
             match (passes, first) {
                 (true, None) => first = Some(start),
                 (false, Some(from)) => {
+                    // Used up with the runs before it: tested, never
+                    // emitted.
                     self.run = run;
                     self.start = end;
                     return Some((from, start));
@@ -267,14 +269,27 @@ impl Cursor {
 
     /// [`Cursor::start`] for the walk's own hand-out (inlined into the
     /// out-of-line start of a class, `Order::begin`), settling with
-    /// [`Seg::take_walk`].
+    /// [`Seg::take_walk`]. The segments are scanned as locals and the
+    /// cursor written once, at the end: written first and read back, as
+    /// [`Cursor::start`] does, they went through memory for every run.
     #[inline(always)]
     pub(super) fn start_walk(&mut self, runs: &[u8], face: &Facing<'_>, segs: [Seg; 2]) -> bool {
-        self.next = 0;
-        self.end = 0;
-        self.segs = segs;
-        self.cur = 0;
-        self.settle_walk(runs, face)
+        let [mut s0, mut s1] = segs;
+        let (found, cur) = match s0.take_walk(runs, face) {
+            Some(r) => (Some(r), 0),
+            None => (s1.take_walk(runs, face), 1),
+        };
+        let (next, end, cur) = match found {
+            Some((next, end)) => (next, end, cur),
+            None => (0, 0, 2),
+        };
+        *self = Cursor {
+            next,
+            end,
+            segs: [s0, s1],
+            cur,
+        };
+        found.is_some()
     }
 
     /// [`Cursor::settle`] with [`Seg::take_walk`]: `next..end` becomes the
