@@ -562,8 +562,18 @@ impl<'a, const N: usize> Order<'a, N> {
                         }
                     }
                     if f.switch == NO_SWITCH {
+                        // A leaf: straight on to the way up, without
+                        // storing the frame and reading it back (half the
+                        // nodes of a feudal tree).
                         f.phase = UP;
-                        self.put(top, f);
+                        while f.j > 0 {
+                            f.j -= 1;
+                            if self.start_level(&f, f.j, false) {
+                                self.put(top, f);
+                                return true;
+                            }
+                        }
+                        self.len = top;
                         continue;
                     }
                     // The back group is farther when the eye is in front.
