@@ -38,7 +38,9 @@
 //!   facing test (3 multiplications, 3 additions, read straight from the
 //!   contiguous run section), and a passing run is handed out whole as a
 //!   range of ids ([`Class::next_range`]), so a flat face split into many
-//!   polygons costs one test;
+//!   polygons costs one test; the walk's own hand-out
+//!   ([`Order::next_range`]) joins the runs that pass in a row into one
+//!   range;
 //! - per **bunch** visited: two offsets read; an empty one (common: most
 //!   levels have only `F_j` or only `B_j`, and a closed volume looks at one
 //!   of the two per pass) costs no class;
@@ -511,8 +513,10 @@ impl<'a, const N: usize> Order<'a, N> {
     }
 
     /// The next range of polygon ids back to front, whole runs where it
-    /// can, ignoring class boundaries: what a renderer needs, without a
-    /// [`Class`] built and copied per class. Every id comes exactly as
+    /// can (and every run that passes in a row within a bunch joined into
+    /// one range: their ids are contiguous), ignoring class boundaries:
+    /// what a renderer needs, without a [`Class`] built and copied per
+    /// class, and with one call per range. Every id comes exactly as
     /// iterating the classes and their ids would give it, in the same
     /// order. Mixing both is allowed: after `next_range` stopped inside a
     /// class, [`Iterator::next`] returns the rest of that class.

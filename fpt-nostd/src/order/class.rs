@@ -406,7 +406,9 @@ impl<'a> Class<'a> {
     }
 
     /// The next range of polygon ids of this class (a whole run, or what is
-    /// left of it after [`Iterator::next`]); `None` at the end. Every id of
+    /// left of it after [`Iterator::next`]; the first range of a class from
+    /// [`super::Order`] may join several runs that pass in a row, as
+    /// [`super::Order::next_range`] does); `None` at the end. Every id of
     /// the range belongs to the class.
     #[inline]
     pub fn next_range(&mut self) -> Option<Range<u32>> {
