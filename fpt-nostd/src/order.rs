@@ -38,7 +38,9 @@
 //!   facing test (3 multiplications, 3 additions, read straight from the
 //!   contiguous run section), and a passing run is handed out whole as a
 //!   range of ids ([`Class::next_range`]), so a flat face split into many
-//!   polygons costs one test;
+//!   polygons costs one test; the walk's own hand-out
+//!   ([`Order::next_range`]) joins the runs that pass in a row into one
+//!   range;
 //! - per **bunch** visited: two offsets read; an empty one (common: most
 //!   levels have only `F_j` or only `B_j`, and a closed volume looks at one
 //!   of the two per pass) costs no class;
@@ -449,18 +451,20 @@ impl<'a, const N: usize> Order<'a, N> {
         }
     }
 
-    /// Stores frame `top` back.
+    /// Stores the progress of frame `top` back (its level and phase: the
+    /// rest of a frame never changes once pushed).
     #[inline(always)]
     fn put(&mut self, top: usize, f: Frame) {
         if let Some(slot) = self.stack.get_mut(top) {
-            *slot = f;
+            slot.j = f.j;
+            slot.phase = f.phase;
         }
     }
 
     /// Starts the class of level `j` of `f` on the way down (`down`) or
     /// up: backward faces of `B_j` (down) or `F_j` (up), with the forward
     /// faces of the other bunch for an open volume; false if nothing passes.
-    #[inline]
+    #[inline(always)]
     fn start_level(&mut self, f: &Frame, j: u32, down: bool) -> bool {
         // F_j and B_j of level j (0-based) are bunches fb + 2j and fb + 2j + 1.
         let fj = f.first_bunch.wrapping_add(j.wrapping_mul(2));
@@ -475,11 +479,20 @@ impl<'a, const N: usize> Order<'a, N> {
         if a.0 >= a.1 && b.0 >= b.1 {
             return false; // both bunches empty: the common case, made cheap
         }
+        self.begin(a, Pick::Backward, b)
+    }
+
+    /// Starts a class of the runs `a` (picked by `pick`) and the runs `b`
+    /// (forward faces) in the walk's own hand-out; false if nothing passes.
+    /// Out of line: the walk's loop over the tree calls it only for a class
+    /// that has runs, and keeps its own registers for the empty ones.
+    #[inline(never)]
+    fn begin(&mut self, a: (u32, u32), pick: Pick, b: (u32, u32)) -> bool {
         let segs = [
-            Seg::new(&self.w, a, Pick::Backward),
+            Seg::new(&self.w, a, pick),
             Seg::new(&self.w, b, Pick::Forward),
         ];
-        self.at.start(self.w.runs, &self.face, segs)
+        self.at.start_walk(self.w.runs, &self.face, segs)
     }
 
     /// Starts the class of the on-plane bunch of `f`'s switch; false if
@@ -496,20 +509,21 @@ impl<'a, const N: usize> Order<'a, N> {
         } else {
             Pick::All
         };
-        let segs = [Seg::new(&self.w, runs, pick), Seg::EMPTY];
-        self.at.start(self.w.runs, &self.face, segs)
+        self.begin(runs, pick, (0, 0))
     }
 
     /// The next range of polygon ids back to front, whole runs where it
-    /// can, ignoring class boundaries: what a renderer needs, without a
-    /// [`Class`] built and copied per class. Every id comes exactly as
+    /// can (and every run that passes in a row within a bunch joined into
+    /// one range: their ids are contiguous), ignoring class boundaries:
+    /// what a renderer needs, without a [`Class`] built and copied per
+    /// class, and with one call per range. Every id comes exactly as
     /// iterating the classes and their ids would give it, in the same
     /// order. Mixing both is allowed: after `next_range` stopped inside a
     /// class, [`Iterator::next`] returns the rest of that class.
-    #[inline]
+    #[inline(never)]
     pub fn next_range(&mut self) -> Option<core::ops::Range<u32>> {
         loop {
-            if let Some(r) = self.at.next_range(self.w.runs, &self.face) {
+            if let Some(r) = self.at.next_range_walk(self.w.runs, &self.face) {
                 return Some(r);
             }
             if !self.advance() {
@@ -519,8 +533,10 @@ impl<'a, const N: usize> Order<'a, N> {
     }
 
     /// Moves to the next class that has a passing run (its hand-out in
-    /// `self.at`); false at the end of the walk.
-    #[inline(never)]
+    /// `self.at`); false at the end of the walk. Inlined into
+    /// [`Order::next_range`] (out of line), which nearly every hand-out of
+    /// a class goes through: one call a range, not two.
+    #[inline(always)]
     fn advance(&mut self) -> bool {
         if self.root_pending {
             self.root_pending = false;
@@ -528,8 +544,7 @@ impl<'a, const N: usize> Order<'a, N> {
         }
         if self.prelude_runs != 0 {
             let runs = (0, core::mem::take(&mut self.prelude_runs));
-            let seg = Seg::new(&self.w, runs, Pick::Forward);
-            if self.at.start(self.w.runs, &self.face, [seg, Seg::EMPTY]) {
+            if self.begin(runs, Pick::Forward, (0, 0)) {
                 return true;
             }
         }
@@ -551,8 +566,18 @@ impl<'a, const N: usize> Order<'a, N> {
                         }
                     }
                     if f.switch == NO_SWITCH {
+                        // A leaf: straight on to the way up, without
+                        // storing the frame and reading it back (half the
+                        // nodes of a feudal tree).
                         f.phase = UP;
-                        self.put(top, f);
+                        while f.j > 0 {
+                            f.j -= 1;
+                            if self.start_level(&f, f.j, false) {
+                                self.put(top, f);
+                                return true;
+                            }
+                        }
+                        self.len = top;
                         continue;
                     }
                     // The back group is farther when the eye is in front.

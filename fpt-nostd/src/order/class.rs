@@ -174,6 +174,55 @@ impl Seg {
         None
     }
 
+    /// [`Seg::take`] for the walk's own hand-out ([`Cursor::next_range_walk`]):
+    /// the passing runs that follow the first one are contiguous ids and
+    /// join its range, so that one range handed out (a call into the walk
+    /// and back for the renderer) covers every run that passes in a row.
+    /// The first run that then fails is used up with them (tested once,
+    /// never emitted). The ids and their order are [`Seg::take`]'s.
+    #[inline(always)]
+    fn take_walk(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<(u32, u32)> {
+        if self.is_empty() {
+            return None;
+        }
+        let want = match self.pick {
+            Pick::Backward => true,
+            Pick::Forward => false,
+            Pick::All => return self.take(runs, face),
+        };
+        let lo = (self.run as usize).wrapping_mul(RUN_LEN);
+        let hi = (self.run_end as usize).wrapping_mul(RUN_LEN);
+        let mut recs = runs.get(lo..hi).unwrap_or(&[]);
+        let mut start = self.start;
+        let mut run = self.run;
+        // The first passing run's start, once one passed.
+        let mut first: Option<u32> = None;
+        // Record by record off the front (a length test each), rather than
+        // `chunks_exact`, whose set-up divides the length: a class has one
+        // or two runs, mostly.
+        while let Some((r, rest)) = recs.split_first_chunk::<RUN_LEN>() {
+            recs = rest;
+            let end = le_u32(r, rn::END);
+            let passes = face.backward_at(run, r) == want;
+            run = run.wrapping_add(1);
+            match (passes, first) {
+                (true, None) => first = Some(start),
+                (false, Some(from)) => {
+                    // Used up with the runs before it: tested, never
+                    // emitted.
+                    self.run = run;
+                    self.start = end;
+                    return Some((from, start));
+                }
+                _ => {}
+            }
+            start = end;
+        }
+        self.run = self.run_end;
+        self.start = start;
+        first.map(|from| (from, start))
+    }
+
     /// Polygons left (an upper bound on what passes).
     fn left(&self, runs: &[u8]) -> u32 {
         match self.run_end.checked_sub(1).filter(|_| !self.is_empty()) {
@@ -216,6 +265,59 @@ impl Cursor {
         self.segs = segs;
         self.cur = 0;
         self.settle(runs, face)
+    }
+
+    /// [`Cursor::start`] for the walk's own hand-out (inlined into the
+    /// out-of-line start of a class, `Order::begin`), settling with
+    /// [`Seg::take_walk`]. The segments are scanned as locals and the
+    /// cursor written once, at the end: written first and read back, as
+    /// [`Cursor::start`] does, they went through memory for every run.
+    #[inline(always)]
+    pub(super) fn start_walk(&mut self, runs: &[u8], face: &Facing<'_>, segs: [Seg; 2]) -> bool {
+        let [mut s0, mut s1] = segs;
+        let (found, cur) = match s0.take_walk(runs, face) {
+            Some(r) => (Some(r), 0),
+            None => (s1.take_walk(runs, face), 1),
+        };
+        let (next, end, cur) = match found {
+            Some((next, end)) => (next, end, cur),
+            None => (0, 0, 2),
+        };
+        *self = Cursor {
+            next,
+            end,
+            segs: [s0, s1],
+            cur,
+        };
+        found.is_some()
+    }
+
+    /// [`Cursor::settle`] with [`Seg::take_walk`]: `next..end` becomes the
+    /// next passing runs in a row.
+    #[inline(always)]
+    fn settle_walk(&mut self, runs: &[u8], face: &Facing<'_>) -> bool {
+        while let Some(seg) = self.segs.get_mut(self.cur) {
+            if let Some((start, end)) = seg.take_walk(runs, face) {
+                self.next = start;
+                self.end = end;
+                return true;
+            }
+            self.cur += 1;
+        }
+        false
+    }
+
+    /// [`Cursor::next_range`] for the walk's own hand-out
+    /// ([`super::Order::next_range`]): the rest of the current range, else
+    /// the next passing runs in a row ([`Seg::take_walk`]).
+    #[inline(always)]
+    pub(super) fn next_range_walk(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<Range<u32>> {
+        if self.next >= self.end && !self.settle_walk(runs, face) {
+            return None;
+        }
+        let r = self.next..self.end;
+        self.next = self.end;
+        Some(r)
     }
 
     /// Makes `next..end` the next passing run; false when there is none.
@@ -304,7 +406,9 @@ impl<'a> Class<'a> {
     }
 
     /// The next range of polygon ids of this class (a whole run, or what is
-    /// left of it after [`Iterator::next`]); `None` at the end. Every id of
+    /// left of it after [`Iterator::next`]; the first range of a class from
+    /// [`super::Order`] may join several runs that pass in a row, as
+    /// [`super::Order::next_range`] does); `None` at the end. Every id of
     /// the range belongs to the class.
     #[inline]
     pub fn next_range(&mut self) -> Option<Range<u32>> {
