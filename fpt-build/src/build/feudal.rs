@@ -55,7 +55,7 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
         make_switch(table, s, mode, ctx)
     } else {
         let look = lookahead::applies(&table, ctx);
-        let k = if look { lookahead::CANDIDATES } else { 1 };
+        let k = if look { ctx.look.candidates } else { 1 };
         let splitters = choose_splitters(&mut table, ctx, k);
         let s = splitters.first().copied().unwrap_or(0);
         let [f, b, c] = table.counts(s);
@@ -71,6 +71,17 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
             a => {
                 options.extend(splitters.into_iter().map(Divide::Member));
                 options.extend(a.map(Divide::Aux));
+            }
+        }
+        if look && ctx.look.alternatives > 0 {
+            let alternatives = choose_alternatives(&mut table, ctx, ctx.look.alternatives);
+            for s in alternatives {
+                if !options
+                    .iter()
+                    .any(|o| matches!(o, Divide::Member(m) if *m == s))
+                {
+                    options.push(Divide::Member(s));
+                }
             }
         }
         if look {
@@ -405,6 +416,25 @@ fn choose_splitters(t: &mut Table, ctx: &Ctx, k: usize) -> Vec<usize> {
         return (0..t.len()).find(|&q| t.is_alive(q)).into_iter().collect();
     }
     best
+}
+
+/// The best `k` members by a score that weighs a cut as
+/// [`lookahead::ALT_WEIGHT`] polygons of imbalance, best first: candidates
+/// for the lookahead besides [`choose_splitters`]' (see `lookahead.rs`).
+fn choose_alternatives(t: &mut Table, ctx: &Ctx, k: usize) -> Vec<usize> {
+    let w = lookahead::ALT_WEIGHT;
+    best_by(
+        t,
+        ctx,
+        k,
+        |[f, b, c]| Some((c.saturating_mul(w).saturating_add(f.abs_diff(b)), c)),
+        |[f, b, c], u| {
+            Some((
+                c.saturating_mul(w).saturating_add(balance_bound(f, b, u)),
+                c,
+            ))
+        },
+    )
 }
 
 /// A way to divide a group that no plane separates.

@@ -7,9 +7,11 @@
 //! two subgroups that peel off into levels or are separated without a cut,
 //! where the best-scored plane leaves a knot that costs dozens of splits
 //! below. What the microcontroller pays for is every output polygon (drawn
-//! in each view, stored in the file), so in groups of up to
-//! [`GROUP`] members the builder builds the whole subtree of each of the
-//! best [`CANDIDATES`] member planes, of the best auxiliary plane that cuts
+//! in each view, stored in the file), so in groups small enough
+//! ([`Look::group`]) the builder builds the whole subtree of each of the
+//! best few member planes ([`Look::candidates`] by the greedy score and
+//! [`Look::alternatives`] by one that weighs cuts less, [`ALT_WEIGHT`]),
+//! of the best auxiliary plane that cuts
 //! nothing and of the best [`CUTTING`] that cut some, with
 //! the greedy rule below it, counts the output polygons each one adds, and
 //! keeps the cheapest (the greedy choice on a tie). The trial subtrees are
@@ -18,10 +20,11 @@
 //! built again, with the lookahead in its own subgroups.
 //!
 //! Every candidate is a valid plane, so the order stays exact whatever is
-//! chosen. The cost is bounded: a trial builds at most [`GROUP`] members
-//! greedily (stopping as soon as it adds more than the best so far), each
-//! node of the tree runs at most `CANDIDATES + CUTTING + 1` trials, and
-//! large models look ahead only in small groups ([`group_limit`]).
+//! chosen. The cost is bounded: a trial builds at most [`Look::group`]
+//! members greedily (stopping as soon as it adds more than the best so
+//! far, or at once when an earlier one added nothing), each node of the
+//! tree runs at most `candidates + alternatives + CUTTING + 1` trials, and
+//! larger models look ahead less ([`look_for`]).
 //!
 //! On two threads, two trials run at once when a thread is free
 //! ([`cheapest`]), and a trial's subgroups may be built on two threads
@@ -34,38 +37,83 @@ use super::table::Table;
 use super::{Ctx, Work};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// The best member planes tried, by the greedy score.
-pub const CANDIDATES: usize = 4;
-
-/// Groups of up to this many alive members look ahead.
-pub const GROUP: usize = 512;
+/// What a build looks ahead with ([`look_for`]): the largest group that
+/// looks ahead, the best member planes tried by the greedy score, and the
+/// best member planes tried by the [`ALT_WEIGHT`] score besides them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Look {
+    /// Groups of up to this many alive members look ahead.
+    pub group: usize,
+    /// The best member planes tried, by the greedy score.
+    pub candidates: usize,
+    /// The best member planes by the [`ALT_WEIGHT`] score tried as well
+    /// (those not already among the candidates).
+    pub alternatives: usize,
+}
 
 /// Auxiliary planes that cut members tried (`auxiliary::cutting_aux`).
 pub const CUTTING: usize = 2;
 
-/// In models of more than [`LARGE_MODEL`] input polygons, only groups of
-/// up to this many members look ahead: rocker-arm (20,088 triangles) has
-/// thousands of split groups, and looking ahead in those of up to 512
-/// members took its build from 6 s to 85 s; up to 64, to about 12 s.
-pub const LARGE_GROUP: usize = 64;
+/// The weight of a cut against imbalance in the alternatives' score (the
+/// greedy one is `feudal::SPLIT_WEIGHT`, 8). Neither weight is best on
+/// every model (`fpt bench-build`: rabbit 227 splits at 8, 204 at 4;
+/// socket 133 and 175), and the trial of the subtree, not the score,
+/// decides: so the lookahead tries the best planes of both.
+pub const ALT_WEIGHT: u32 = 4;
 
-/// Models of more input polygons than this look ahead in groups of up to
-/// [`LARGE_GROUP`] members only.
-pub const LARGE_MODEL: usize = 4096;
+/// Models of up to this many input polygons look ahead the widest
+/// ([`SMALL`]): the curved shared models (450–2,300 polygons) build in
+/// seconds with it.
+pub const SMALL_MODEL: usize = 4096;
 
-/// The largest group that looks ahead in a build of `n` input polygons.
-pub fn group_limit(n: usize) -> usize {
-    if n > LARGE_MODEL {
-        LARGE_GROUP
+/// Models of up to this many input polygons (and more than
+/// [`SMALL_MODEL`]) look ahead in groups as large, with fewer candidates
+/// ([`MEDIUM`]): fandisk (5,750 triangles) goes from 1,690 splittings to
+/// 1,483, its build from about 1.2 to 5 CPU seconds.
+pub const MEDIUM_MODEL: usize = 8192;
+
+/// The lookahead of models of up to [`SMALL_MODEL`] polygons: eight
+/// greedy candidates and two alternatives, against four and none before
+/// (`fpt build` on the shared models: 1,973 splittings → 1,882, about
+/// 1.5× the CPU time).
+pub const SMALL: Look = Look {
+    group: 512,
+    candidates: 8,
+    alternatives: 2,
+};
+
+/// The lookahead of models of up to [`MEDIUM_MODEL`] polygons.
+pub const MEDIUM: Look = Look {
+    group: 512,
+    candidates: 4,
+    alternatives: 0,
+};
+
+/// The lookahead of larger models: only groups of up to 64 members.
+/// rocker-arm (20,088 triangles) has thousands of split groups, and
+/// looking ahead in those of up to 512 members took its build from 6 s to
+/// 85 s; up to 64, to about 12 s (eight candidates there: 24 s).
+pub const LARGE: Look = Look {
+    group: 64,
+    candidates: 4,
+    alternatives: 0,
+};
+
+/// The lookahead of a build of `n` input polygons.
+pub fn look_for(n: usize) -> Look {
+    if n <= SMALL_MODEL {
+        SMALL
+    } else if n <= MEDIUM_MODEL {
+        MEDIUM
     } else {
-        GROUP
+        LARGE
     }
 }
 
 /// Whether the choice in the group of `t` looks ahead: small enough groups,
 /// and not inside a trial (trials are greedy).
 pub fn applies(t: &Table, ctx: &Ctx) -> bool {
-    !ctx.in_trial() && t.alive_count() <= ctx.look_group
+    !ctx.in_trial() && t.alive_count() <= ctx.look.group
 }
 
 /// The index of the option in `options` whose subtree adds the fewest
@@ -80,7 +128,8 @@ pub fn applies(t: &Table, ctx: &Ctx) -> bool {
 pub fn cheapest(t: &Table, options: &[Divide], mode: Mode, ctx: &mut Ctx) -> usize {
     let mut best = (usize::MAX, 0);
     let mut i = 0;
-    while i < options.len() {
+    // Nothing adds fewer than none: a later option could not win.
+    while i < options.len() && best.0 > 0 {
         let limit = best.0.saturating_sub(1);
         if i + 1 < options.len() && ctx.threads.take() {
             let mut copy = t.clone();

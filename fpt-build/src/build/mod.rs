@@ -200,8 +200,8 @@ pub(crate) struct Ctx<'a> {
     /// earlier trial added (set when it finishes); this trial is cut short
     /// once it adds as many (it could not win).
     cap: Option<&'a AtomicUsize>,
-    /// The largest group that looks ahead (`lookahead.rs`).
-    pub look_group: usize,
+    /// How this build looks ahead (`lookahead.rs`).
+    pub look: lookahead::Look,
     /// The threads this build may still start.
     pub threads: &'a Threads,
 }
@@ -235,7 +235,7 @@ impl<'a> Ctx<'a> {
             trial: false,
             trial_base: (0, 0, 0),
             cap: None,
-            look_group: lookahead::group_limit(n),
+            look: lookahead::look_for(n),
             threads,
         }
     }
@@ -264,7 +264,7 @@ impl<'a> Ctx<'a> {
             trial: false,
             trial_base: (0, 0, 0),
             cap: None,
-            look_group: self.look_group,
+            look: self.look,
             threads: self.threads,
         };
         if self.trial {
