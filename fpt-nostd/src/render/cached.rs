@@ -1181,6 +1181,9 @@ where
         // band is filled as its walk goes (one walk per band).
         let smooth = X::SET.contains(Effects::SMOOTH) && fx.smooth;
         let cut = Cell::new(if smooth { y + rows } else { h });
+        // The records a band, counted as the walk pushes them, for the
+        // band index (a pass over the records less).
+        list.tally_bands(y, rows, cut.get());
         // The list overflowed for band `y` alone: the rest of this walk
         // fills it directly.
         let mut direct = smooth;
