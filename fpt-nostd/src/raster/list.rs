@@ -1059,6 +1059,74 @@ mod tests {
         assert!(l.record(0).is_some());
     }
 
+    /// The tally the pushes keep gives the very index the counting pass
+    /// gives (records of every kind, rows above, across and below the
+    /// indexed bands), and a retain or other bands fall back to counting.
+    #[test]
+    fn tallied_index_equals_the_counted_one() {
+        let pts = [ScreenPt { x: 1, y: 2 }; 3];
+        let rows = [
+            (20, 23),
+            (0, 40),
+            (5, 5),
+            (33, 34),
+            (2, 9),
+            (15, 17),
+            (60, 90),
+            (0, 300),
+            (47, 48),
+            (48, 49),
+            (3, 260),
+        ];
+        let fill = |l: &mut DisplayList<'_>| {
+            for (i, &(first, end)) in rows.iter().enumerate() {
+                let p = match i % 3 {
+                    0 => Points::Polygon(i as u16),
+                    1 => Points::Indices(&[1, 2, 3]),
+                    _ => Points::Inline(&pts),
+                };
+                assert!(l.push(&entry(first, end), p));
+            }
+        };
+        for (y, band, cut) in [(8, 8, 48), (0, 16, 240), (4, 4, 44), (0, 1, 32)] {
+            let mut a = [0u16; 1024];
+            let mut b = [0u16; 1024];
+            let mut tallied = DisplayList::new(&mut a, false, false);
+            tallied.tally_bands(y, band, cut);
+            assert!(tallied.tally.on);
+            fill(&mut tallied);
+            let mut counted = DisplayList::new(&mut b, false, false);
+            fill(&mut counted);
+            assert!(!counted.tally.on);
+            assert!(tallied.index_bands(y, band, cut));
+            assert!(counted.index_bands(y, band, cut));
+            for y0 in (y..cut).step_by(band as usize) {
+                // The scan's records but the empty one (5, 5), which the
+                // index leaves out.
+                let mut want = scan(&counted, y0, y0 + band);
+                want.retain(|&at| counted.rows_at(at.into()).is_some_and(|(f, e, _)| e > f));
+                assert_eq!(counted.band(y0).unwrap(), &want[..], "band {y0}");
+                assert_eq!(tallied.band(y0).unwrap(), &want[..], "band {y0}");
+            }
+            assert_eq!(tallied.peak(), counted.peak());
+        }
+        // Not a power of two, too many bands, or a retain: no tally.
+        let mut a = [0u16; 1024];
+        let mut l = DisplayList::new(&mut a, false, false);
+        l.tally_bands(0, 12, 240);
+        assert!(!l.tally.on);
+        l.tally_bands(0, 1, 240);
+        assert!(!l.tally.on);
+        l.tally_bands(0, 16, 240);
+        fill(&mut l);
+        l.retain_rows_below(40);
+        assert!(!l.tally.on);
+        assert!(l.index_bands(0, 16, 48));
+        for y0 in [16, 32] {
+            assert_eq!(l.band(y0).unwrap(), &scan(&l, y0, y0 + 16)[..]);
+        }
+    }
+
     #[test]
     fn retain_keeps_order() {
         let mut buf = [0u16; 64];
