@@ -467,6 +467,30 @@ impl<'m> DisplayList<'m> {
     /// The record at word `at` (0 for the first), or `None` at the end.
     #[inline]
     pub fn record(&self, at: usize) -> Option<Record> {
+        // The common record (by polygon, fewer than 255 rows, no optional
+        // words: 4 words) decoded straight: the replay reads one for
+        // every band a polygon touches.
+        if self.extra == 0 && at + 4 <= self.len {
+            if let Some(&[w0, w1, w2, _]) = self.buf.get(at..at + 4) {
+                if w0 >> 14 == BY_POLYGON && w2 >> 8 != LONG_ROWS {
+                    let first = i32::from(w0 & 0x3fff);
+                    return Some(Record {
+                        entry: Entry {
+                            first,
+                            end: first + i32::from(w2 >> 8),
+                            rgb: Rgb888::new(w1 as u8, (w1 >> 8) as u8, w2 as u8),
+                            id: 0,
+                            hidden: 0,
+                            clipped: false,
+                        },
+                        n: 0,
+                        kind: Kind::Polygon,
+                        body: at + 3,
+                        next: at + 4,
+                    });
+                }
+            }
+        }
         let h = self.head(at)?;
         // The optional words sit right before the points: the outline
         // mask, then the id.
