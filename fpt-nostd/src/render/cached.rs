@@ -839,9 +839,10 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
                     rgb: e.rgb,
                     id: e.id,
                 });
-                if !(keep && ring.has_room(words)) {
+                if !(keep && e.end > y1 && ring.has_room(words)) {
                     // Nothing can be kept (the last band of the walk, a
-                    // full ring, or a core without the carry): the plain
+                    // triangle whose rows end in this band, a full ring, or
+                    // a core without the carry): the plain
                     // triangle fill, cheaper than the set-up that keeps
                     // (measured: with it here, socket's bands in 3,675
                     // words cost 1 % more than before the carry).
