@@ -59,7 +59,7 @@ use crate::raster::clip::ClipVert;
 use crate::raster::int_path::q16_camera;
 use crate::raster::list::{DisplayList, Entry, Kind, Points};
 use crate::raster::renderer::Ready;
-use crate::raster::transform::VertexPath;
+use crate::raster::transform::{ScreenPt, VertexPath};
 use crate::raster::vcache::{Slot, VertexCache};
 use crate::raster::{
     Band, Face, Framebuffer, Outcome, Paint, PixelFormat, Precision, RenderStats, Renderer,
@@ -1258,6 +1258,19 @@ where
                 // this polygon (prepared again: the replay used the scratch)
                 // and the rest of the walk straight into it.
                 probe.enter(Phase::Fill);
+                // The replay uses the scratch, where this polygon's points
+                // are: on cores with an FPU they are kept aside and put
+                // back for its fill, so that the walk's callback never asks
+                // for a polygon again (the walk's loop without that path
+                // measured 3 % cheaper on socket's 16-row bands); the
+                // Cortex-M0 prepares it again (no stack for the copy).
+                let mut kept = [ScreenPt::default(); V];
+                let n = ready.n.min(V);
+                if CARRY {
+                    if let (Some(k), Some(p)) = (kept.get_mut(..n), s.screen().get(..n)) {
+                        k.copy_from_slice(p);
+                    }
+                }
                 spans += replay::<P, E, X, _, V>(
                     r,
                     s,
@@ -1270,7 +1283,15 @@ where
                 );
                 list.clear();
                 direct = true;
-                Step::Again
+                if !CARRY {
+                    return Step::Again;
+                }
+                if let (Some(p), Some(k)) = (s.screen_mut().get_mut(..n), kept.get(..n)) {
+                    p.copy_from_slice(k);
+                }
+                let band = &mut Band::new(&mut fb, y);
+                spans += fill::<P, E, X, _, Pr, V>(r, s, ready, face, band, probe);
+                Step::Next
             },
         );
         if stats.is_none() {
