@@ -593,6 +593,11 @@ impl<'m> DisplayList<'m> {
     /// take 2^16 words or more, the entries being `u16`): the replay scans,
     /// as without an index. Any push or retain drops the index.
     ///
+    /// When the pushes kept a tally of the same bands
+    /// ([`DisplayList::tally_bands`]), the counts come from it and the
+    /// records are read once (to place them), else twice (to count them
+    /// first).
+    ///
     /// Out of line: it runs once a walk, and kept apart it adds nothing to
     /// the stack frame of the band loop that calls it.
     #[inline(never)]
