@@ -39,6 +39,7 @@
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
+use super::carry::CARRY;
 use super::transform::ScreenPt;
 
 /// One recorded polygon's fixed part.
@@ -122,6 +123,38 @@ pub struct DisplayList<'m> {
     in_group: usize,
     /// The band index, when built and still valid ([`DisplayList::index_bands`]).
     index: Option<BandIndex>,
+    /// The records a band, counted as they are pushed ([`DisplayList::tally_bands`]).
+    tally: Tally,
+}
+
+/// Bands a list counts its records in as they are pushed: enough for the
+/// usual frames (240 rows in 16-row bands are 15 bands, in 8-row bands 30);
+/// none on cores without an FPU, which rarely have room for the band index
+/// (see [`CARRY`]) and whose stack is the tightest.
+const TALLY: usize = if CARRY { 32 } else { 0 };
+
+/// Records a band ([`TALLY`] bands of `1 << shift` rows from row `y`,
+/// rows clamped to `cut`), counted by [`DisplayList::push`] for
+/// [`DisplayList::index_bands`], which then skips its counting pass (a
+/// decode of every record: about a third of the index's cost).
+#[derive(Clone, Copy, Debug)]
+struct Tally {
+    /// Whether the counts are those of the records in the list.
+    on: bool,
+    y: i32,
+    cut: i32,
+    shift: u32,
+    counts: [u16; TALLY],
+}
+
+impl Tally {
+    const OFF: Tally = Tally {
+        on: false,
+        y: 0,
+        cut: 0,
+        shift: 0,
+        counts: [0; TALLY],
+    };
 }
 
 /// Where the band index sits in the free words between the records and
@@ -164,6 +197,7 @@ impl<'m> DisplayList<'m> {
             groups: 0,
             in_group: 0,
             index: None,
+            tally: Tally::OFF,
         }
     }
 
@@ -173,6 +207,51 @@ impl<'m> DisplayList<'m> {
         self.groups = 0;
         self.in_group = 0;
         self.index = None;
+        self.tally.on = false;
+    }
+
+    /// Counts, from now on, the records pushed per band of `rows` rows
+    /// from row `y` up to row `cut`, for [`DisplayList::index_bands`] of
+    /// the same bands (called on an empty list; only for power-of-two
+    /// band heights and at most [`TALLY`] bands; anything else, or a
+    /// [`DisplayList::retain_rows_below`], leaves the index to count).
+    pub fn tally_bands(&mut self, y: i32, rows: i32, cut: i32) {
+        let bands = if rows > 0 {
+            (cut - y + rows - 1) / rows
+        } else {
+            0
+        };
+        self.tally.on = self.len == 0
+            && TALLY > 0
+            && rows > 0
+            && (rows as u32).is_power_of_two()
+            && (1..=TALLY as i32).contains(&bands);
+        if self.tally.on {
+            self.tally.y = y;
+            self.tally.cut = cut;
+            self.tally.shift = rows.trailing_zeros();
+            self.tally.counts = [0; TALLY];
+        }
+    }
+
+    /// Adds a record of rows `first..end` to the tally (when counting).
+    #[inline(always)]
+    fn count(&mut self, first: i32, end: i32) {
+        let t = &mut self.tally;
+        if TALLY == 0 || !t.on {
+            return;
+        }
+        let (f, e) = (first.max(t.y), end.min(t.cut));
+        if e <= f {
+            return;
+        }
+        let b0 = ((f - t.y) >> t.shift) as usize;
+        let b1 = ((e - 1 - t.y) >> t.shift) as usize;
+        if let Some(c) = t.counts.get_mut(b0..=b1) {
+            for c in c {
+                *c = c.wrapping_add(1);
+            }
+        }
     }
 
     /// Where group `g`'s entry starts.
@@ -299,6 +378,7 @@ impl<'m> DisplayList<'m> {
         ]);
         self.index = None;
         self.len = at + 4;
+        self.count(e.first, e.end);
         self.note(at, e.first as u16, e.end as u16, self.len);
         self.peak = self.peak.max(self.len + 4 * self.groups);
         true
@@ -377,6 +457,7 @@ impl<'m> DisplayList<'m> {
         }
         let at = self.len;
         self.len += words;
+        self.count(e.first, e.end);
         // Room for the entry was checked above.
         self.note(at, e.first as u16, e.end as u16, self.len);
         self.peak = self.peak.max(self.len + 4 * self.groups);
@@ -386,6 +467,30 @@ impl<'m> DisplayList<'m> {
     /// The record at word `at` (0 for the first), or `None` at the end.
     #[inline]
     pub fn record(&self, at: usize) -> Option<Record> {
+        // The common record (by polygon, fewer than 255 rows, no optional
+        // words: 4 words) decoded straight: the replay reads one for
+        // every band a polygon touches.
+        if self.extra == 0 && at + 4 <= self.len {
+            if let Some(&[w0, w1, w2, _]) = self.buf.get(at..at + 4) {
+                if w0 >> 14 == BY_POLYGON && w2 >> 8 != LONG_ROWS {
+                    let first = i32::from(w0 & 0x3fff);
+                    return Some(Record {
+                        entry: Entry {
+                            first,
+                            end: first + i32::from(w2 >> 8),
+                            rgb: Rgb888::new(w1 as u8, (w1 >> 8) as u8, w2 as u8),
+                            id: 0,
+                            hidden: 0,
+                            clipped: false,
+                        },
+                        n: 0,
+                        kind: Kind::Polygon,
+                        body: at + 3,
+                        next: at + 4,
+                    });
+                }
+            }
+        }
         let h = self.head(at)?;
         // The optional words sit right before the points: the outline
         // mask, then the id.
@@ -488,6 +593,11 @@ impl<'m> DisplayList<'m> {
     /// take 2^16 words or more, the entries being `u16`): the replay scans,
     /// as without an index. Any push or retain drops the index.
     ///
+    /// When the pushes kept a tally of the same bands
+    /// ([`DisplayList::tally_bands`]), the counts come from it and the
+    /// records are read once (to place them), else twice (to count them
+    /// first).
+    ///
     /// Out of line: it runs once a walk, and kept apart it adds nothing to
     /// the stack frame of the band loop that calls it.
     #[inline(never)]
@@ -527,28 +637,57 @@ impl<'m> DisplayList<'m> {
         let extra = self.extra;
         let rows_at =
             |buf: &[u16], at: usize| head_in(buf, extra, at).map(|h| (h.first, h.end, h.next));
+        // The tally of the same bands, when the pushes kept one: the counts
+        // without a pass over the records.
+        let t = &self.tally;
+        let tallied = t.on && t.y == y && t.cut == cut && shift == Some(t.shift);
         let (head, tail) = self.buf.split_at_mut(at);
         let (cursors, entries) = tail.split_at_mut(bands + 1);
-        cursors.fill(0);
-        let mut r = 0;
-        let mut total = 0usize;
-        while let Some((first, end, next)) = rows_at(head, r) {
-            if let Some((b0, b1)) = span(first, end) {
-                for c in &mut cursors[b0 + 1..=b1 + 1] {
-                    *c += 1;
-                }
-                total += b1 + 1 - b0;
+        let total = match t.counts.get(..bands).filter(|_| tallied) {
+            Some(counts) => {
+                cursors[0] = 0;
+                cursors[1..].copy_from_slice(counts);
+                counts.iter().map(|&c| usize::from(c)).sum()
             }
-            r = next;
-        }
+            None => {
+                cursors.fill(0);
+                let mut r = 0;
+                let mut total = 0usize;
+                while let Some((first, end, next)) = rows_at(head, r) {
+                    if let Some((b0, b1)) = span(first, end) {
+                        for c in &mut cursors[b0 + 1..=b1 + 1] {
+                            *c += 1;
+                        }
+                        total += b1 + 1 - b0;
+                    }
+                    r = next;
+                }
+                total
+            }
+        };
         if at + bands + 1 + total > free || total > usize::from(u16::MAX) {
             return false;
         }
         for b in 1..=bands {
             cursors[b] += cursors[b - 1];
         }
+        // The common record (by polygon, fewer than 255 rows, no optional
+        // words: 4 words) decoded straight, the others by `head_in`.
+        let quick = extra == 0;
         let mut r = 0;
-        while let Some((first, end, next)) = rows_at(head, r) {
+        loop {
+            let (first, end, next) = match head.get(r..r + 4) {
+                Some(&[w0, _, w2, _])
+                    if quick && w0 >> 14 == BY_POLYGON && w2 >> 8 != LONG_ROWS =>
+                {
+                    let first = i32::from(w0 & 0x3fff);
+                    (first, first + i32::from(w2 >> 8), r + 4)
+                }
+                _ => match rows_at(head, r) {
+                    Some(h) => h,
+                    None => break,
+                },
+            };
             if let Some((b0, b1)) = span(first, end) {
                 for c in &mut cursors[b0..=b1] {
                     if let Some(e) = entries.get_mut(usize::from(*c)) {
@@ -619,6 +758,7 @@ impl<'m> DisplayList<'m> {
                     groups: self.groups,
                     in_group: self.in_group,
                     index: None,
+                    tally: Tally::OFF,
                 },
                 &mut [],
             );
@@ -641,6 +781,7 @@ impl<'m> DisplayList<'m> {
             groups: 0,
             in_group: 0,
             index: Some(ix),
+            tally: Tally::OFF,
         };
         (view, words)
     }
@@ -666,6 +807,7 @@ impl<'m> DisplayList<'m> {
     /// about as much as the walk it saves (measured, README "Small RAM").
     pub fn retain_rows_below(&mut self, cut: i32) {
         self.index = None;
+        self.tally.on = false;
         self.groups = 0;
         self.in_group = 0;
         // `write`: where the kept records end; `run`: where the run of
@@ -944,6 +1086,74 @@ mod tests {
         assert!(!l.index_bands(0, 16, 240));
         assert_eq!((l.band(0), l.len()), (None, len));
         assert!(l.record(0).is_some());
+    }
+
+    /// The tally the pushes keep gives the very index the counting pass
+    /// gives (records of every kind, rows above, across and below the
+    /// indexed bands), and a retain or other bands fall back to counting.
+    #[test]
+    fn tallied_index_equals_the_counted_one() {
+        let pts = [ScreenPt { x: 1, y: 2 }; 3];
+        let rows = [
+            (20, 23),
+            (0, 40),
+            (5, 5),
+            (33, 34),
+            (2, 9),
+            (15, 17),
+            (60, 90),
+            (0, 300),
+            (47, 48),
+            (48, 49),
+            (3, 260),
+        ];
+        let fill = |l: &mut DisplayList<'_>| {
+            for (i, &(first, end)) in rows.iter().enumerate() {
+                let p = match i % 3 {
+                    0 => Points::Polygon(i as u16),
+                    1 => Points::Indices(&[1, 2, 3]),
+                    _ => Points::Inline(&pts),
+                };
+                assert!(l.push(&entry(first, end), p));
+            }
+        };
+        for (y, band, cut) in [(8, 8, 48), (0, 16, 240), (4, 4, 44), (0, 1, 32)] {
+            let mut a = [0u16; 1024];
+            let mut b = [0u16; 1024];
+            let mut tallied = DisplayList::new(&mut a, false, false);
+            tallied.tally_bands(y, band, cut);
+            assert!(tallied.tally.on);
+            fill(&mut tallied);
+            let mut counted = DisplayList::new(&mut b, false, false);
+            fill(&mut counted);
+            assert!(!counted.tally.on);
+            assert!(tallied.index_bands(y, band, cut));
+            assert!(counted.index_bands(y, band, cut));
+            for y0 in (y..cut).step_by(band as usize) {
+                // The scan's records but the empty one (5, 5), which the
+                // index leaves out.
+                let mut want = scan(&counted, y0, y0 + band);
+                want.retain(|&at| counted.rows_at(at.into()).is_some_and(|(f, e, _)| e > f));
+                assert_eq!(counted.band(y0).unwrap(), &want[..], "band {y0}");
+                assert_eq!(tallied.band(y0).unwrap(), &want[..], "band {y0}");
+            }
+            assert_eq!(tallied.peak(), counted.peak());
+        }
+        // Not a power of two, too many bands, or a retain: no tally.
+        let mut a = [0u16; 1024];
+        let mut l = DisplayList::new(&mut a, false, false);
+        l.tally_bands(0, 12, 240);
+        assert!(!l.tally.on);
+        l.tally_bands(0, 1, 240);
+        assert!(!l.tally.on);
+        l.tally_bands(0, 16, 240);
+        fill(&mut l);
+        l.retain_rows_below(40);
+        assert!(!l.tally.on);
+        assert!(l.index_bands(0, 16, 48));
+        for y0 in [16, 32] {
+            assert_eq!(l.band(y0).unwrap(), &scan(&l, y0, y0 + 16)[..]);
+        }
     }
 
     #[test]
