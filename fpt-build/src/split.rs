@@ -28,7 +28,7 @@
 //! that lie inside the polygon (Jordan). A piece is traced along the boundary
 //! on its side; where the boundary leaves that side, the piece follows the
 //! inside segment to its other end and goes on from there. Vertices on the
-//! plane are resolved by symbolic perturbation (see [`sides`]): each counts
+//! plane are resolved by symbolic perturbation (see `sides`): each counts
 //! as lying on one side (as if the plane were moved by an infinitesimal δ),
 //! which makes every crossing transversal; coinciding crossings are ordered
 //! by where they would move under that δ. Fragments of zero area that the

@@ -213,7 +213,7 @@ impl<'m> DisplayList<'m> {
     /// Counts, from now on, the records pushed per band of `rows` rows
     /// from row `y` up to row `cut`, for [`DisplayList::index_bands`] of
     /// the same bands (called on an empty list; only for power-of-two
-    /// band heights and at most [`TALLY`] bands; anything else, or a
+    /// band heights and at most `TALLY` bands; anything else, or a
     /// [`DisplayList::retain_rows_below`], leaves the index to count).
     pub fn tally_bands(&mut self, y: i32, rows: i32, cut: i32) {
         let bands = if rows > 0 {
@@ -738,7 +738,7 @@ impl<'m> DisplayList<'m> {
     }
 
     /// The list for a replay, and the free words it leaves as `u32`s (the
-    /// carried triangles of [`super::carry`]): with a band index, a list
+    /// carried triangles of `raster::carry`): with a band index, a list
     /// over the records and the index only (a band reads its records
     /// through the index, never the group table) and the words between
     /// the index and the group table; without one, the list itself and

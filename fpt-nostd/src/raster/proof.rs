@@ -66,7 +66,7 @@ impl VertexBound {
     };
 
     /// The bound grown to hold `p` as well (the squared length is computed
-    /// in `f32`, so it is rounded up by [`SLACK`], far above its error of
+    /// in `f32`, so it is rounded up by `SLACK`, far above its error of
     /// three roundings).
     pub fn with(self, p: [f32; 3]) -> VertexBound {
         let a = p.map(f32::abs);
