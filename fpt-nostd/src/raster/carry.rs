@@ -328,22 +328,22 @@ impl TriangleBand {
         spans
     }
 
-    /// Sets up and fills the four-sided polygon `pts` (record `here`, cut
-    /// by this band's end) and keeps it for the next band; `None`, nothing
+    /// Sets up and fills the four-sided polygon `pts` (record `here`, id
+    /// `id`, cut by this band's end) and keeps it for the next band; `None`, nothing
     /// emitted, when it is the general fill's ([`TriangleBand::start_quad`]).
     #[inline(never)]
     pub(crate) fn quad<K: SpanSink>(
         &self,
         pts: [ScreenPt; 4],
         (ring, words): (&mut Ring, &mut [u32]),
-        (here, rgb): (usize, Rgb888),
-        color: K::Color,
+        (here, rgb, id): (usize, Rgb888, u32),
         sink: &mut K,
     ) -> Option<u64> {
         match self.start_quad(pts) {
             QuadStart::Outside => None,
             QuadStart::Empty => Some(0),
             QuadStart::Rows(mut q, y) => {
+                let color = sink.color(&Paint { rgb, id });
                 let spans = self.run_quad(&mut q, y, color, sink) as u64;
                 if self.continues_quad(&q) {
                     ring.push_quad(words, &q, (here, self.end_row()), rgb);

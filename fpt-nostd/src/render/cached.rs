@@ -893,11 +893,7 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
         // box, monotonicity pass and chain seeks in every band).
         if let (true, Some(band), 4, true) = (CARRY_QUADS, &carry, n, keep && e.end > y1) {
             if let [a, b, c, d, ..] = *scratch.screen() {
-                let color = sink.color(&Paint {
-                    rgb: e.rgb,
-                    id: e.id,
-                });
-                if let Some(s) = band.quad([a, b, c, d], (ring, words), (here, e.rgb), color, sink) {
+                if let Some(s) = band.quad([a, b, c, d], (ring, words), (here, e.rgb, e.id), sink) {
                     spans += s;
                     continue;
                 }
