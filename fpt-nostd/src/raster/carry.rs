@@ -289,19 +289,23 @@ impl TriangleBand {
     ) -> usize {
         let stop = q.end.min(self.b.y1);
         let mut spans = 0;
+        // The chains' state in locals (registers) for the row loop, the
+        // vertices left in memory.
+        let (mut l, mut ly1, mut r, mut ry1) = (q.l, q.ly1, q.r, q.ry1);
+        let (mut lo, mut hi) = (q.lo, q.hi);
         while y < stop {
-            let ok = (q.ly1 > y || seek(&q.arc, (&mut q.lo, true), (&mut q.l, &mut q.ly1), self.sub, y))
-                && (q.ry1 > y
-                    || seek(&q.arc, (&mut q.hi, false), (&mut q.r, &mut q.ry1), self.sub, y));
+            let ok = (ly1 > y || seek(&q.arc, (&mut lo, true), (&mut l, &mut ly1), self.sub, y))
+                && (ry1 > y || seek(&q.arc, (&mut hi, false), (&mut r, &mut ry1), self.sub, y));
             if !ok {
                 // Where the chain fill gives up: nothing more, here or after.
                 q.end = y;
                 break;
             }
-            let run = q.ly1.min(q.ry1).min(stop);
-            spans += pair_rows(&mut q.l, &mut q.r, Pair::Span, &self.b, y, run, color, sink);
+            let run = ly1.min(ry1).min(stop);
+            spans += pair_rows(&mut l, &mut r, Pair::Span, &self.b, y, run, color, sink);
             y = run;
         }
+        (q.l, q.ly1, q.r, q.ry1, q.lo, q.hi) = (l, ly1, r, ry1, lo, hi);
         spans
     }
 
