@@ -28,7 +28,7 @@ use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use super::chain::{is_y_monotone, sort_by_y, TriangleBand};
 use super::edge::{all_small, Dda32, SMALL};
-use super::scan::{pair_rows, Bbox, Pair, Paint, SpanSink};
+use super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
 use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
 
@@ -101,11 +101,7 @@ fn seek(
     y: i32,
 ) -> bool {
     for _ in 0..4 {
-        let next = if fwd {
-            *at + 1
-        } else {
-            at.wrapping_sub(1)
-        };
+        let next = if fwd { *at + 1 } else { at.wrapping_sub(1) };
         let (Some(&from), Some(&to)) = (arc.get(*at), arc.get(next)) else {
             return false;
         };
@@ -563,13 +559,19 @@ impl Ring {
     /// ([`Ring::pop_quad`]; else a triangle's, [`Ring::pop`]).
     #[inline(always)]
     pub(crate) fn next_is_quad(&self, words: &[u32]) -> bool {
-        words.get(self.head * WORDS + 14).is_some_and(|&c| c & QUAD != 0)
+        words
+            .get(self.head * WORDS + 14)
+            .is_some_and(|&c| c & QUAD != 0)
     }
 
     /// Takes the next incoming entry, a four-sided polygon's, for `band`:
     /// the state and its colour.
     #[inline(always)]
-    pub(crate) fn pop_quad(&mut self, words: &[u32], band: &TriangleBand) -> Option<(Quad, Rgb888)> {
+    pub(crate) fn pop_quad(
+        &mut self,
+        words: &[u32],
+        band: &TriangleBand,
+    ) -> Option<(Quad, Rgb888)> {
         let at = self.head * WORDS;
         let w: &[u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
         let lo = |x: u32| i32::from(x as u16 as i16);
@@ -752,7 +754,12 @@ mod tests {
             let sub = [0u32, 2, 4, 8][k % 4];
             let m = if k % 5 == 0 { SMALL - 1 } else { 40 << sub };
             let mut rnd = |m: i32| rng.range(-m, m);
-            let mut quad = [pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m))];
+            let mut quad = [
+                pt(rnd(m), rnd(m)),
+                pt(rnd(m), rnd(m)),
+                pt(rnd(m), rnd(m)),
+                pt(rnd(m), rnd(m)),
+            ];
             if k % 3 != 0 {
                 // Convex: the corners in order around their centre
                 // (some with two corners on one row, or one column).
@@ -785,7 +792,17 @@ mod tests {
                 let mut want = Rec(Vec::new(), b);
                 let (mut edges, mut active) = ([Edge::ZERO; 4], [0u16; 4]);
                 let rule = FillRule::NonZero;
-                let n = fill_polygon_in(&quad, None, sub, rule, &b, &mut edges, &mut active, (), &mut want);
+                let n = fill_polygon_in(
+                    &quad,
+                    None,
+                    sub,
+                    rule,
+                    &b,
+                    &mut edges,
+                    &mut active,
+                    (),
+                    &mut want,
+                );
                 let Ok(n) = n else { panic!("fill") };
                 ring.begin(&words);
                 // A triangle kept before the quad (record 3), so that the
@@ -823,7 +840,17 @@ mod tests {
                         QuadStart::Outside => {
                             general += 1;
                             let (mut edges, mut active) = ([Edge::ZERO; 4], [0u16; 4]);
-                            let n = fill_polygon_in(&quad, None, sub, rule, &b, &mut edges, &mut active, (), &mut got);
+                            let n = fill_polygon_in(
+                                &quad,
+                                None,
+                                sub,
+                                rule,
+                                &b,
+                                &mut edges,
+                                &mut active,
+                                (),
+                                &mut got,
+                            );
                             assert!(n.is_ok());
                         }
                         QuadStart::Empty => assert_eq!(n, 0),
@@ -841,7 +868,10 @@ mod tests {
                 y0 += rows;
             }
         }
-        assert!(kept > 1000 && fresh_runs > 1000 && general > 100, "{kept} {fresh_runs} {general}");
+        assert!(
+            kept > 1000 && fresh_runs > 1000 && general > 100,
+            "{kept} {fresh_runs} {general}"
+        );
     }
 
     /// The ring keeps entries in order, refuses one when full (nothing
