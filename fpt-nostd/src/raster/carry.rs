@@ -309,7 +309,7 @@ impl TriangleBand {
     /// in this band, keeping it again (with `keep`) when it goes on;
     /// returns the spans. Out of line: the replay's loop, which inlines
     /// the triangle fills, keeps its registers.
-    #[inline(never)]
+    #[inline(always)]
     pub(crate) fn resume_quad<K: SpanSink>(
         &self,
         ring: &mut Ring,
