@@ -2,10 +2,19 @@
 //! a band keeps its two edge steppers, stepped to the band's last row, for
 //! the next band, instead of being read back from the display list and
 //! set up again there (sorting its corners, its row bounds and two or
-//! three exact edge starts, each with two divisions).
+//! three exact edge starts, each with two divisions). The four-sided
+//! pieces of split triangles ([`Quad`]) are carried the same way: their
+//! two chains' steppers and the vertices still ahead, instead of the
+//! general fill's box, monotonicity pass and chain seeks in every band.
 //!
 //! # Contract
 //!
+//! * [`TriangleBand::start_quad`] then [`TriangleBand::run_quad`] emit
+//!   exactly the spans of `fill_polygon_in` for the same four-sided
+//!   polygon and band (or decline, [`QuadStart::Outside`], before
+//!   emitting anything, where that one takes its general path), and
+//!   [`TriangleBand::run_quad`] of the state it left, resumed in the next
+//!   band, emits exactly what `fill_polygon_in` would there.
 //! * [`TriangleBand::start`] then [`TriangleBand::run`] emit exactly the
 //!   spans of [`TriangleBand::fill`] (so of `fill_polygon_in`) for the same
 //!   triangle and band; [`TriangleBand::run`] of the state it left, in the

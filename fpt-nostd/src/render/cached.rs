@@ -22,7 +22,8 @@
 //!   triangle cut by a band's end keeps its edge steppers for the next
 //!   band instead of being read back and set up again there (60 bytes a
 //!   triangle, at most [`crate::raster::carry`]'s 64 at once; without
-//!   room, set up again: the same picture).
+//!   room, set up again: the same picture). The four-sided pieces of
+//!   split triangles are kept the same way.
 //!
 //! # Less memory than a frame needs
 //!
