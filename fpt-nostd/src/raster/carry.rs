@@ -2,7 +2,10 @@
 //! a band keeps its two edge steppers, stepped to the band's last row, for
 //! the next band, instead of being read back from the display list and
 //! set up again there (sorting its corners, its row bounds and two or
-//! three exact edge starts, each with two divisions).
+//! three exact edge starts, each with two divisions). The four-sided
+//! pieces of split triangles ([`quad`]) are carried the same way: their
+//! two chains' steppers and the vertices still ahead, instead of the
+//! general fill's box, monotonicity pass and chain seeks in every band.
 //!
 //! # Contract
 //!
@@ -23,6 +26,8 @@
 //!   picture, only slower. A kept state that the next band does not meet
 //!   where expected (another band, another record) is dropped, never
 //!   drawn.
+//! * Four-sided polygons, in the same ring (a flag in the entry): see
+//!   [`quad`].
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
@@ -31,6 +36,9 @@ use super::edge::{all_small, Dda32};
 use super::scan::{pair_rows, Pair, SpanSink};
 use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
+
+mod quad;
+use quad::Quad;
 
 /// Words (`u32`) a kept triangle takes in the ring.
 pub(crate) const WORDS: usize = 15;
@@ -352,7 +360,118 @@ impl Ring {
         self.most = self.most.max(self.len);
         true
     }
+
+    /// Whether the next incoming entry is a four-sided polygon's
+    /// ([`Ring::pop_quad`]; else a triangle's, [`Ring::pop`]).
+    #[inline(always)]
+    pub(crate) fn next_is_quad(&self, words: &[u32]) -> bool {
+        words
+            .get(self.head * WORDS + 14)
+            .is_some_and(|&c| c & QUAD != 0)
+    }
+
+    /// Takes the next incoming entry, a four-sided polygon's, for `band`:
+    /// the state and its colour.
+    #[inline(always)]
+    pub(crate) fn pop_quad(
+        &mut self,
+        words: &[u32],
+        band: &TriangleBand,
+    ) -> Option<(Quad, Rgb888)> {
+        let at = self.head * WORDS;
+        let w: &[u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
+        let lo = |x: u32| i32::from(x as u16 as i16);
+        let hi = |x: u32| (x as i32) >> 16;
+        let pt = |x: u32| ScreenPt { x: lo(x), y: hi(x) };
+        let dda = |k: usize| Dda32::from_words([w[k], w[k + 1], w[k + 2], w[k + 3], w[k + 4]]);
+        let c = w[14];
+        // The vertices ahead at `arc[1..=count]`; each chain's edge ends
+        // on its vertex's row, and the polygon on the lowest's.
+        let count = (c >> 24 & 3) as usize;
+        let arc = [pt(0), pt(w[10]), pt(w[11]), pt(w[12]), pt(0)];
+        let row = |p: ScreenPt| Dda32::rows(p, p, band.sub).1;
+        let last = arc.get(count).copied().unwrap_or_default();
+        let mut bottom = arc[1];
+        for &p in arc.iter().take(count + 1).skip(2) {
+            if p.y > bottom.y {
+                bottom = p;
+            }
+        }
+        let quad = Quad {
+            l: dda(0),
+            ly1: row(arc[1]),
+            r: dda(5),
+            ry1: row(last),
+            arc,
+            lo: 1,
+            hi: count,
+            end: row(bottom),
+        };
+        self.skip(words);
+        Some((quad, Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)))
+    }
+
+    /// Keeps four-sided polygon `q` (record at `offset`, drawn in `rgb`) for the band
+    /// starting at row `row`; `false`, nothing kept, when the ring is full
+    /// (or `offset` is not below 2^16). Corners and rows are within
+    /// ±2^14 (the corners within ±`SMALL`), so they fit 16 bits.
+    #[inline(always)]
+    pub(crate) fn push_quad(
+        &mut self,
+        words: &mut [u32],
+        q: &Quad,
+        (offset, row): (usize, i32),
+        rgb: Rgb888,
+    ) -> bool {
+        let cap = capacity(words);
+        if self.len >= cap || offset > usize::from(u16::MAX) {
+            return false;
+        }
+        let at = (self.head + self.len) % cap * WORDS;
+        let Some(out) = words.get_mut(at..at + WORDS) else {
+            return false;
+        };
+        let Ok(out) = <&mut [u32; WORDS]>::try_from(out) else {
+            return false;
+        };
+        let pack = |a: i32, b: i32| (a as u16 as u32) | (b as u32) << 16;
+        let pt = |p: ScreenPt| pack(p.x, p.y);
+        let rgb = u32::from(rgb.r()) | u32::from(rgb.g()) << 8 | u32::from(rgb.b()) << 16;
+        // The vertices ahead, at most three once both chains have left the
+        // top (always, after a run).
+        let count = q.hi.wrapping_sub(q.lo).wrapping_add(1);
+        if q.lo == 0 || count > 3 {
+            return false;
+        }
+        let v = |k: usize| q.arc.get(q.lo + k).map_or(0, |&p| pt(p));
+        let (a, b, [x, y, z]) = (q.l, q.r, [v(0), v(1), v(2)]);
+        let c = rgb | (count as u32) << 24 | QUAD;
+        let [l0, l1, l2, l3, l4] = a.to_words();
+        let [s0, s1, s2, s3, s4] = b.to_words();
+        // Word by word: a copy of an array is a `memcpy` call.
+        out[0] = l0;
+        out[1] = l1;
+        out[2] = l2;
+        out[3] = l3;
+        out[4] = l4;
+        out[5] = s0;
+        out[6] = s1;
+        out[7] = s2;
+        out[8] = s3;
+        out[9] = s4;
+        out[10] = x;
+        out[11] = y;
+        out[12] = z;
+        out[13] = pack(offset as i32, row);
+        out[14] = c;
+        self.len += 1;
+        self.most = self.most.max(self.len);
+        true
+    }
 }
+
+/// The flag of a four-sided polygon's entry (in its colour word).
+const QUAD: u32 = 1 << 26;
 
 #[cfg(test)]
 mod tests {

@@ -79,7 +79,7 @@ impl Chain {
 /// coordinates never decrease and then never increase (horizontal edges
 /// fit either phase). From a lowest vertex this is exactly "two changes of
 /// vertical direction, or none": one pass of one comparison a vertex.
-fn is_y_monotone(pts: &[ScreenPt], top: usize) -> bool {
+pub(super) fn is_y_monotone(pts: &[ScreenPt], top: usize) -> bool {
     let n = pts.len();
     let mut prev = match pts.get(top) {
         Some(p) => p.y,

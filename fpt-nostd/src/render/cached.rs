@@ -22,7 +22,8 @@
 //!   triangle cut by a band's end keeps its edge steppers for the next
 //!   band instead of being read back and set up again there (60 bytes a
 //!   triangle, at most [`crate::raster::carry`]'s 64 at once; without
-//!   room, set up again: the same picture).
+//!   room, set up again: the same picture). The four-sided pieces of
+//!   split triangles are kept the same way.
 //!
 //! # Less memory than a frame needs
 //!
@@ -794,6 +795,11 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
                 want = ring.peek(words);
             }
             if want.is_some_and(|(at, _)| at == here) {
+                if CARRY_QUADS && ring.next_is_quad(words) {
+                    spans += band.resume_quad(ring, words, (here, keep), sink);
+                    want = ring.peek(words);
+                    continue;
+                }
                 if let Some((mut t, rgb)) = ring.pop(words) {
                     want = ring.peek(words);
                     let color = sink.color(&Paint { rgb, id: 0 });
@@ -883,6 +889,17 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
                 }
             }
         }
+        // The four-sided pieces of split triangles the band cuts: set up
+        // once and carried like the triangles (else the general fill's
+        // box, monotonicity pass and chain seeks in every band).
+        if let (true, Some(band), 4, true) = (CARRY_QUADS, &carry, n, keep && e.end > y1) {
+            if let [a, b, c, d, ..] = *scratch.screen() {
+                if let Some(s) = band.quad([a, b, c, d], (ring, words), (here, e.rgb, e.id), sink) {
+                    spans += s;
+                    continue;
+                }
+            }
+        }
         let ready = Ready {
             n,
             // The fill computes the box if it needs it (not for a
@@ -902,6 +919,10 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
     }
     spans
 }
+
+/// Whether the replay carries the four-sided pieces of split triangles
+/// across band edges as it does triangles (with [`CARRY`]).
+const CARRY_QUADS: bool = CARRY;
 
 /// Band `y0` (of `rows` rows in a `size` frame) as a framebuffer over
 /// `buf`, cleared to `background`.

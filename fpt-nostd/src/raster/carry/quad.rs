@@ -1,0 +1,378 @@
+//! The four-sided pieces of split triangles carried across band edges
+//! (see [`super`]): a polygon of four corners cut by a band's end keeps
+//! its two chains' edge steppers and the vertices still ahead, and the
+//! next band resumes it instead of the general fill's box, monotonicity
+//! pass and chain seeks.
+//!
+//! # Contract
+//!
+//! [`TriangleBand::start_quad`] then [`TriangleBand::run_quad`] emit
+//! exactly the spans of `fill_polygon_in` for the same polygon and band
+//! (or decline, [`QuadStart::Outside`], before emitting anything, where
+//! that one takes its general path); [`TriangleBand::run_quad`] of the
+//! state it left, resumed in the next band (through the ring's words,
+//! [`Ring::pop_quad`]), emits exactly what `fill_polygon_in` would there.
+
+use embedded_graphics::pixelcolor::Rgb888;
+
+use super::super::chain::{is_y_monotone, TriangleBand};
+use super::super::edge::{Dda32, SMALL};
+use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
+use super::super::transform::ScreenPt;
+use super::Ring;
+
+/// A four-sided polygon's fill state on some row (the pieces of split
+/// triangles; see [`crate::raster::chain::fill_monotone`] for the two chains):
+/// each chain's current edge, and the vertices still ahead of them.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Quad {
+    /// The chain walking the vertex list forward, and its edge's end row.
+    pub(super) l: Dda32,
+    pub(super) ly1: i32,
+    /// The chain walking it backward, and its edge's end row.
+    pub(super) r: Dda32,
+    pub(super) ry1: i32,
+    /// The vertices from the top, in list order, the top again at the
+    /// end: the forward chain's edge ends at `arc[lo]`, the backward
+    /// one's at `arc[hi]`; `arc[lo..=hi]` are the vertices still ahead.
+    pub(super) arc: [ScreenPt; 5],
+    pub(super) lo: usize,
+    pub(super) hi: usize,
+    /// One past the polygon's last row.
+    pub(crate) end: i32,
+}
+
+/// What [`TriangleBand::start_quad`] found.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum QuadStart {
+    /// Not for the chains (a corner outside ±`SMALL`, or not y-monotone):
+    /// the general fill's.
+    Outside,
+    /// Nothing to fill in this band.
+    Empty,
+    /// The state to run from row `.1` (its chains not yet sought).
+    Rows(Quad, i32),
+}
+
+/// The chain of `arc` from vertex `*at` one vertex on (`fwd`: forward)
+/// to the edge active on row `y`, as `Chain::seek` in
+/// [`crate::raster::chain`] (without clamping the end row to a band: the state
+/// goes on in the next band); false where that one gives up.
+#[inline(always)]
+fn seek(
+    arc: &[ScreenPt; 5],
+    (at, fwd): (&mut usize, bool),
+    (dda, y1): (&mut Dda32, &mut i32),
+    sub: u32,
+    y: i32,
+) -> bool {
+    for _ in 0..4 {
+        let next = if fwd { *at + 1 } else { at.wrapping_sub(1) };
+        let (Some(&from), Some(&to)) = (arc.get(*at), arc.get(next)) else {
+            return false;
+        };
+        *at = next;
+        if to.y == from.y {
+            continue;
+        }
+        if to.y < from.y {
+            return false;
+        }
+        let (first, end) = Dda32::rows(from, to, sub);
+        if end <= y {
+            continue;
+        }
+        if first > y {
+            return false;
+        }
+        *y1 = end;
+        *dda = Dda32::start(from, to, sub, y);
+        return true;
+    }
+    false
+}
+
+impl TriangleBand {
+    /// Sets up the four-sided polygon `pts` as `fill_polygon_in` does
+    /// (its box rejects, then [`crate::raster::chain::fill_monotone`]'s set-up),
+    /// to run from the first row of this band it touches.
+    #[inline(always)]
+    pub(crate) fn start_quad(&self, pts: [ScreenPt; 4]) -> QuadStart {
+        let bbox = Bbox::of(&pts);
+        let Bbox {
+            lo, hi, top, bot, ..
+        } = bbox;
+        if !(lo > -SMALL && hi < SMALL && top > -SMALL && bot < SMALL) {
+            return QuadStart::Outside;
+        }
+        let (sub, b) = (self.sub, &self.b);
+        let col = |x: i32| (2 * x - (1 << sub)) >> (sub + 1);
+        if col(hi) < b.x0 || col(lo) >= b.x1 {
+            return QuadStart::Empty;
+        }
+        let (first, end) = Dda32::rows(ScreenPt { x: 0, y: top }, ScreenPt { x: 0, y: bot }, sub);
+        if end <= b.y0 || first >= b.y1 || top == bot {
+            return QuadStart::Empty;
+        }
+        let t = bbox.top_at;
+        if !is_y_monotone(&pts, t) {
+            return QuadStart::Outside;
+        }
+        let y = first.max(b.y0);
+        if y >= end.min(b.y1) {
+            return QuadStart::Empty;
+        }
+        let at = |k: usize| pts[(t + k) % 4];
+        let quad = Quad {
+            l: Dda32::default(),
+            ly1: y,
+            r: Dda32::default(),
+            ry1: y,
+            arc: [at(0), at(1), at(2), at(3), at(0)],
+            lo: 0,
+            hi: 4,
+            end,
+        };
+        QuadStart::Rows(quad, y)
+    }
+
+    /// Fills `q`'s rows from `y` (its current row) to the band's end or
+    /// the polygon's, leaving it stepped to that row; returns the spans.
+    /// As for a triangle, it goes on in the next band when `q.end` is past
+    /// this band's end ([`TriangleBand::continues_quad`]).
+    #[inline(always)]
+    pub(crate) fn run_quad<K: SpanSink>(
+        &self,
+        q: &mut Quad,
+        mut y: i32,
+        color: K::Color,
+        sink: &mut K,
+    ) -> usize {
+        let stop = q.end.min(self.b.y1);
+        let mut spans = 0;
+        // The chains' state in locals (registers) for the row loop, the
+        // vertices left in memory.
+        let (mut l, mut ly1, mut r, mut ry1) = (q.l, q.ly1, q.r, q.ry1);
+        let (mut lo, mut hi) = (q.lo, q.hi);
+        while y < stop {
+            let ok = (ly1 > y || seek(&q.arc, (&mut lo, true), (&mut l, &mut ly1), self.sub, y))
+                && (ry1 > y || seek(&q.arc, (&mut hi, false), (&mut r, &mut ry1), self.sub, y));
+            if !ok {
+                // Where the chain fill gives up: nothing more, here or after.
+                q.end = y;
+                break;
+            }
+            let run = ly1.min(ry1).min(stop);
+            spans += pair_rows(&mut l, &mut r, Pair::Span, &self.b, y, run, color, sink);
+            y = run;
+        }
+        (q.l, q.ly1, q.r, q.ry1, q.lo, q.hi) = (l, ly1, r, ry1, lo, hi);
+        spans
+    }
+
+    /// Resumes the four-sided polygon at the ring's head (record `here`)
+    /// in this band, keeping it again (with `keep`) when it goes on;
+    /// returns the spans. Out of line: the replay's loop, which inlines
+    /// the triangle fills, keeps its registers.
+    #[inline(always)]
+    pub(crate) fn resume_quad<K: SpanSink>(
+        &self,
+        ring: &mut Ring,
+        words: &mut [u32],
+        (here, keep): (usize, bool),
+        sink: &mut K,
+    ) -> u64 {
+        let Some((mut q, rgb)) = ring.pop_quad(words, self) else {
+            return 0;
+        };
+        let color = sink.color(&Paint { rgb, id: 0 });
+        let spans = self.run_quad(&mut q, self.first_row(), color, sink) as u64;
+        if keep && self.continues_quad(&q) {
+            ring.push_quad(words, &q, (here, self.end_row()), rgb);
+        }
+        spans
+    }
+
+    /// Sets up and fills the four-sided polygon `pts` (record `here`, id
+    /// `id`, cut by this band's end) and keeps it for the next band; `None`, nothing
+    /// emitted, when it is the general fill's ([`TriangleBand::start_quad`]).
+    #[inline(never)]
+    pub(crate) fn quad<K: SpanSink>(
+        &self,
+        pts: [ScreenPt; 4],
+        (ring, words): (&mut Ring, &mut [u32]),
+        (here, rgb, id): (usize, Rgb888, u32),
+        sink: &mut K,
+    ) -> Option<u64> {
+        match self.start_quad(pts) {
+            QuadStart::Outside => None,
+            QuadStart::Empty => Some(0),
+            QuadStart::Rows(mut q, y) => {
+                let color = sink.color(&Paint { rgb, id });
+                let spans = self.run_quad(&mut q, y, color, sink) as u64;
+                if self.continues_quad(&q) {
+                    ring.push_quad(words, &q, (here, self.end_row()), rgb);
+                }
+                Some(spans)
+            }
+        }
+    }
+
+    /// Whether `q`, run through this band, has rows after it.
+    #[inline(always)]
+    pub(crate) fn continues_quad(&self, q: &Quad) -> bool {
+        q.end > self.b.y1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::super::super::chain::tests::Rec;
+    use super::super::super::edge::SMALL;
+    use super::super::super::scan::SpanBounds;
+    use super::super::{Start, WORDS};
+    use super::*;
+    use std::vec::Vec;
+
+    fn pt(x: i32, y: i32) -> ScreenPt {
+        ScreenPt { x, y }
+    }
+
+    /// Random four-sided polygons (convex ones, as the pieces of split
+    /// triangles are, and any others) drawn in bands of random heights:
+    /// set up in a band, or resumed from the state the band before kept
+    /// (after a trip through the ring's words, beside a kept triangle),
+    /// they emit in every band exactly the spans of `fill_polygon_in`
+    /// there, the general fill's path the replay takes without the carry.
+    #[test]
+    fn kept_quads_equal_the_polygon_fill_in_every_band() {
+        use super::super::super::edge::Edge;
+        use super::super::super::scan::{fill_polygon_in, FillRule};
+        let mut rng = crate::raster::tests::Rng(4545);
+        let mut words = [0u32; 4 * WORDS];
+        let (mut kept, mut fresh_runs, mut general) = (0, 0, 0);
+        for k in 0..4000 {
+            let sub = [0u32, 2, 4, 8][k % 4];
+            let m = if k % 5 == 0 { SMALL - 1 } else { 40 << sub };
+            let mut rnd = |m: i32| rng.range(-m, m);
+            let mut quad = [
+                pt(rnd(m), rnd(m)),
+                pt(rnd(m), rnd(m)),
+                pt(rnd(m), rnd(m)),
+                pt(rnd(m), rnd(m)),
+            ];
+            if k % 3 != 0 {
+                // Convex: the corners in order around their centre
+                // (some with two corners on one row, or one column).
+                if k % 7 == 1 {
+                    quad[1].y = quad[0].y;
+                    quad[3].x = quad[2].x;
+                }
+                let cx = quad.iter().map(|p| p.x).sum::<i32>() / 4;
+                let cy = quad.iter().map(|p| p.y).sum::<i32>() / 4;
+                quad.sort_by(|a, b| {
+                    let aa = f64::from(a.y - cy).atan2(f64::from(a.x - cx));
+                    let ab = f64::from(b.y - cy).atan2(f64::from(b.x - cx));
+                    aa.total_cmp(&ab)
+                });
+            }
+            let tri = [quad[0], quad[1], quad[2]];
+            let (x0, x1) = (rnd(30), 30 + rnd(30).abs());
+            let rows = 1 + rnd(12).abs();
+            let mut ring = Ring::new();
+            let rgb = Rgb888::new(k as u8, 2, 3);
+            let mut y0 = -(m >> sub) - 1;
+            while y0 <= (m >> sub) + 1 {
+                let b = SpanBounds {
+                    x0,
+                    y0,
+                    x1,
+                    y1: y0 + rows,
+                };
+                let band = TriangleBand { sub, b };
+                let mut want = Rec(Vec::new(), b);
+                let (mut edges, mut active) = ([Edge::ZERO; 4], [0u16; 4]);
+                let rule = FillRule::NonZero;
+                let n = fill_polygon_in(
+                    &quad,
+                    None,
+                    sub,
+                    rule,
+                    &b,
+                    &mut edges,
+                    &mut active,
+                    (),
+                    &mut want,
+                );
+                let Ok(n) = n else { panic!("fill") };
+                ring.begin(&words);
+                // A triangle kept before the quad (record 3), so that the
+                // two kinds share the ring.
+                let mut t_state = None;
+                if ring.peek(&words).is_some_and(|(at, _)| at == 3) {
+                    assert!(!ring.next_is_quad(&words));
+                    let Some((t, _)) = ring.pop(&words) else {
+                        panic!("a triangle")
+                    };
+                    t_state = Some((t, band.first_row()));
+                } else if let Start::Rows(t, y) = band.start(tri) {
+                    t_state = Some((t, y));
+                }
+                if let Some((mut t, y)) = t_state {
+                    band.run(&mut t, y, (), &mut Rec(Vec::new(), b));
+                    if band.continues(&t) {
+                        assert!(ring.push(&mut words, &t, (3, band.end_row()), rgb));
+                    }
+                }
+                let mut got = Rec(Vec::new(), b);
+                let mut state = None;
+                if let Some((at, row)) = ring.peek(&words) {
+                    assert_eq!((at, row), (7, y0));
+                    assert!(ring.next_is_quad(&words));
+                    let Some((mut q, c)) = ring.pop_quad(&words, &band) else {
+                        panic!("a quad")
+                    };
+                    assert_eq!(c, rgb);
+                    assert_eq!(band.run_quad(&mut q, band.first_row(), (), &mut got), n);
+                    kept += 1;
+                    state = Some(q);
+                } else {
+                    match band.start_quad(quad) {
+                        QuadStart::Outside => {
+                            general += 1;
+                            let (mut edges, mut active) = ([Edge::ZERO; 4], [0u16; 4]);
+                            let n = fill_polygon_in(
+                                &quad,
+                                None,
+                                sub,
+                                rule,
+                                &b,
+                                &mut edges,
+                                &mut active,
+                                (),
+                                &mut got,
+                            );
+                            assert!(n.is_ok());
+                        }
+                        QuadStart::Empty => assert_eq!(n, 0),
+                        QuadStart::Rows(mut q, y) => {
+                            fresh_runs += 1;
+                            assert_eq!(band.run_quad(&mut q, y, (), &mut got), n);
+                            state = Some(q);
+                        }
+                    }
+                }
+                assert_eq!(got.0, want.0, "{quad:?} {sub} {b:?}");
+                if let Some(q) = state.filter(|q| band.continues_quad(q)) {
+                    assert!(ring.push_quad(&mut words, &q, (7, band.end_row()), rgb));
+                }
+                y0 += rows;
+            }
+        }
+        assert!(
+            kept > 1000 && fresh_runs > 1000 && general > 100,
+            "{kept} {fresh_runs} {general}"
+        );
+    }
+}
