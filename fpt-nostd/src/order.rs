@@ -495,6 +495,22 @@ impl<'a, const N: usize> Order<'a, N> {
         self.at.start_walk(self.w.runs, &self.face, segs)
     }
 
+    /// The way up through the levels of `f` (frame `top`, in phase `UP`)
+    /// below its level `f.j`: starts the next class that has runs and
+    /// stores `f`'s progress, true; with none left, pops the frame, false.
+    #[inline(always)]
+    fn up(&mut self, top: usize, f: &mut Frame) -> bool {
+        while f.j > 0 {
+            f.j -= 1;
+            if self.start_level(f, f.j, false) {
+                self.put(top, *f);
+                return true;
+            }
+        }
+        self.len = top;
+        false
+    }
+
     /// Starts the class of the on-plane bunch of `f`'s switch; false if
     /// nothing passes.
     #[inline]
@@ -570,14 +586,9 @@ impl<'a, const N: usize> Order<'a, N> {
                         // storing the frame and reading it back (half the
                         // nodes of a feudal tree).
                         f.phase = UP;
-                        while f.j > 0 {
-                            f.j -= 1;
-                            if self.start_level(&f, f.j, false) {
-                                self.put(top, f);
-                                return true;
-                            }
+                        if self.up(top, &mut f) {
+                            return true;
                         }
-                        self.len = top;
                         continue;
                     }
                     // The back group is farther when the eye is in front.
@@ -608,14 +619,9 @@ impl<'a, const N: usize> Order<'a, N> {
                     }
                 }
                 _ => {
-                    while f.j > 0 {
-                        f.j -= 1;
-                        if self.start_level(&f, f.j, false) {
-                            self.put(top, f);
-                            return true;
-                        }
+                    if self.up(top, &mut f) {
+                        return true;
                     }
-                    self.len = top;
                 }
             }
         }
