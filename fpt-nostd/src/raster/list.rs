@@ -125,6 +125,9 @@ pub struct DisplayList<'m> {
     index: Option<BandIndex>,
     /// The records a band, counted as they are pushed ([`DisplayList::tally_bands`]).
     tally: Tally,
+    /// Records pushed while the tally counts: their group entries are
+    /// written only if a replay scans the groups ([`DisplayList::seal`]).
+    recs: usize,
 }
 
 /// Bands a list counts its records in as they are pushed: enough for the
@@ -198,11 +201,14 @@ impl<'m> DisplayList<'m> {
             in_group: 0,
             index: None,
             tally: Tally::OFF,
+            recs: 0,
         }
     }
 
     /// Empties the list (the storage is kept).
     pub fn clear(&mut self) {
+        self.peak = self.peak();
+        self.recs = 0;
         self.len = 0;
         self.groups = 0;
         self.in_group = 0;
@@ -215,6 +221,11 @@ impl<'m> DisplayList<'m> {
     /// the same bands (called on an empty list; only for power-of-two
     /// band heights and at most `TALLY` bands; anything else, or a
     /// [`DisplayList::retain_rows_below`], leaves the index to count).
+    ///
+    /// While it counts, the pushes leave the group table unwritten (its
+    /// room is kept): with the band index no replay reads it, and
+    /// [`DisplayList::seal`] writes it for one that does (the index did
+    /// not fit, or a single band).
     pub fn tally_bands(&mut self, y: i32, rows: i32, cut: i32) {
         let bands = if rows > 0 {
             (cut - y + rows - 1) / rows
@@ -251,6 +262,65 @@ impl<'m> DisplayList<'m> {
             for c in c {
                 *c = c.wrapping_add(1);
             }
+        }
+    }
+
+    /// Whether the group table waits for [`DisplayList::seal`] (see
+    /// [`DisplayList::tally_bands`]).
+    #[inline(always)]
+    fn lazy(&self) -> bool {
+        TALLY > 0 && self.tally.on
+    }
+
+    /// Words the group table takes (or will take, when written late).
+    #[inline(always)]
+    fn table_words(&self) -> usize {
+        if self.lazy() {
+            4 * self.recs.div_ceil(GROUP)
+        } else {
+            4 * self.groups
+        }
+    }
+
+    /// Words the group table takes once the next record is added.
+    #[inline(always)]
+    fn table_after_push(&self) -> usize {
+        if self.lazy() {
+            4 * (self.recs / GROUP + 1)
+        } else {
+            4 * (self.groups + usize::from(self.in_group == 0))
+        }
+    }
+
+    /// Adds the record at `at` (rows `first..end`) to the group table, or
+    /// (while the table waits) to the records it will hold.
+    #[inline(always)]
+    fn add(&mut self, at: usize, first: i32, end: i32) {
+        if self.lazy() {
+            self.count(first, end);
+            self.recs += 1;
+        } else {
+            // Room for the entry was checked by the caller.
+            self.note(at, first as u16, end as u16, self.len);
+        }
+    }
+
+    /// Writes the group table when the pushes left it waiting (see
+    /// [`DisplayList::tally_bands`]): a replay without the band index scans
+    /// the groups. The tally stops (an index made later counts).
+    pub fn seal(&mut self) {
+        if !self.lazy() {
+            return;
+        }
+        self.peak = self.peak();
+        self.tally.on = false;
+        self.groups = 0;
+        self.in_group = 0;
+        let mut at = 0;
+        while let Some(h) = self.head(at) {
+            // Room for every entry was kept by the pushes.
+            self.note(at, h.first as u16, h.end as u16, self.len);
+            at = h.next;
         }
     }
 
@@ -321,7 +391,9 @@ impl<'m> DisplayList<'m> {
 
     /// The most words in use since the list was made.
     pub fn peak(&self) -> usize {
-        self.peak
+        // Records and the group table only grow between a clear and a
+        // retain, which note the peak: the pushes need not.
+        self.peak.max(self.len + self.table_words())
     }
 
     /// Words a record takes: `n` points stored `kind`, spanning `rows`
@@ -363,7 +435,7 @@ impl<'m> DisplayList<'m> {
     #[inline(always)]
     fn push_short(&mut self, e: &Entry, rows: u16, i: u16) -> bool {
         let at = self.len;
-        let table = 4 * (self.groups + usize::from(self.in_group == 0));
+        let table = self.table_after_push();
         if at + 4 + table > self.buf.len() {
             return false;
         }
@@ -378,9 +450,7 @@ impl<'m> DisplayList<'m> {
         ]);
         self.index = None;
         self.len = at + 4;
-        self.count(e.first, e.end);
-        self.note(at, e.first as u16, e.end as u16, self.len);
-        self.peak = self.peak.max(self.len + 4 * self.groups);
+        self.add(at, e.first, e.end);
         true
     }
 
@@ -403,7 +473,7 @@ impl<'m> DisplayList<'m> {
         self.index = None;
         let rows = e.end - e.first;
         let words = self.record_words(n, kind, rows);
-        let table = 4 * (self.groups + usize::from(self.in_group == 0));
+        let table = self.table_after_push();
         if self.len + words + table > self.buf.len() {
             return false;
         }
@@ -457,10 +527,8 @@ impl<'m> DisplayList<'m> {
         }
         let at = self.len;
         self.len += words;
-        self.count(e.first, e.end);
         // Room for the entry was checked above.
-        self.note(at, e.first as u16, e.end as u16, self.len);
-        self.peak = self.peak.max(self.len + 4 * self.groups);
+        self.add(at, e.first, e.end);
         true
     }
 
@@ -609,7 +677,7 @@ impl<'m> DisplayList<'m> {
         let bands = ((cut - y + rows - 1) / rows) as usize;
         let at = self.len;
         // The group table takes the top `4 * groups` words.
-        let free = self.buf.len().saturating_sub(4 * self.groups);
+        let free = self.buf.len().saturating_sub(self.table_words());
         if at + bands + 1 > free {
             return false;
         }
@@ -706,7 +774,7 @@ impl<'m> DisplayList<'m> {
             at,
             end,
         });
-        self.peak = self.peak.max(at + bands + 1 + total + 4 * self.groups);
+        self.peak = self.peak.max(at + bands + 1 + total + self.table_words());
         true
     }
 
@@ -745,6 +813,9 @@ impl<'m> DisplayList<'m> {
     /// no words. No words either when they are not 4-byte aligned (a
     /// list over storage that did not start as `u32`s).
     pub fn replay_parts(&mut self) -> (DisplayList<'_>, &mut [u32]) {
+        if self.index.is_none() {
+            self.seal();
+        }
         let (len, extra, ids, outlines) = (self.len, self.extra, self.ids, self.outlines);
         let Some(ix) = self.index else {
             return (
@@ -759,11 +830,12 @@ impl<'m> DisplayList<'m> {
                     in_group: self.in_group,
                     index: None,
                     tally: Tally::OFF,
+                    recs: 0,
                 },
                 &mut [],
             );
         };
-        let top = self.buf.len().saturating_sub(4 * self.groups);
+        let top = self.buf.len().saturating_sub(self.table_words());
         // Even offsets of storage that was `u32`s are 4-byte aligned.
         let lo = ix.end.next_multiple_of(2).min(top);
         let hi = lo + (top - lo) / 2 * 2;
@@ -782,6 +854,7 @@ impl<'m> DisplayList<'m> {
             in_group: 0,
             index: Some(ix),
             tally: Tally::OFF,
+            recs: 0,
         };
         (view, words)
     }
@@ -790,7 +863,7 @@ impl<'m> DisplayList<'m> {
     /// lent as used, in [`DisplayList::peak`].
     pub fn note_spare_used(&mut self, words: usize) {
         if let Some(ix) = self.index {
-            let used = ix.end.next_multiple_of(2) + 2 * words + 4 * self.groups;
+            let used = ix.end.next_multiple_of(2) + 2 * words + self.table_words();
             self.peak = self.peak.max(used.min(self.buf.len()));
         }
     }
@@ -806,6 +879,7 @@ impl<'m> DisplayList<'m> {
     /// `memmove` call each) and a second pass for the groups made it cost
     /// about as much as the walk it saves (measured, README "Small RAM").
     pub fn retain_rows_below(&mut self, cut: i32) {
+        self.peak = self.peak();
         self.index = None;
         self.tally.on = false;
         self.groups = 0;

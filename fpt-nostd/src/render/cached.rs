@@ -1312,6 +1312,8 @@ where
                         k.copy_from_slice(p);
                     }
                 }
+                // The replay scans the groups (no band index).
+                list.seal();
                 spans += replay::<P, E, X, _, V>(
                     r,
                     s,
