@@ -318,3 +318,70 @@ fn retain_equals_a_list_pushed_again() {
         }
     }
 }
+
+/// While the tally counts, the pushes leave the group table to
+/// [`DisplayList::seal`]: the same records fit (its room is kept), the
+/// sealed table equals the one written push by push, and so do the peak,
+/// the free words a replay gets and the records a scan finds.
+#[test]
+fn a_sealed_group_table_equals_the_one_written_as_pushed() {
+    if TALLY == 0 {
+        return;
+    }
+    let pts = [ScreenPt { x: 1, y: 2 }; 3];
+    // Every kind, short and long, until the list is full (several group
+    // entries, the last one partial).
+    let push = |l: &mut DisplayList<'_>, i: usize| {
+        let first = (i * 7 % 200) as i32;
+        let e = entry(
+            first,
+            first + (i % 5) as i32 * 20 + (i % 13 == 0) as i32 * 300,
+        );
+        let p = match i % 4 {
+            0 | 1 => Points::Polygon(i as u16),
+            2 => Points::Indices(&[4, 5, 6]),
+            _ => Points::Inline(&pts),
+        };
+        l.push(&e, p)
+    };
+    for size in [40, 97, 160, 333, 600] {
+        let mut a = std::vec![0u16; size];
+        let mut b = std::vec![0u16; size];
+        let mut lazy = DisplayList::new(&mut a, false, false);
+        lazy.tally_bands(0, 16, 240);
+        let mut eager = DisplayList::new(&mut b, false, false);
+        let mut pushed = 0;
+        for i in 0..200 {
+            let (x, y) = (push(&mut lazy, i), push(&mut eager, i));
+            assert_eq!(x, y, "size {size}, record {i}");
+            pushed += usize::from(x);
+        }
+        // Full, and the larger ones over several group entries.
+        assert!(
+            pushed < 200 && (size < 300 || pushed > GROUP),
+            "size {size}: {pushed}"
+        );
+        assert!(lazy.lazy() && lazy.groups() == 0);
+        assert_eq!(lazy.peak(), eager.peak(), "size {size}");
+        let spare_lazy = lazy.replay_parts().1.len();
+        let spare_eager = eager.replay_parts().1.len();
+        assert_eq!(spare_lazy, spare_eager);
+        // `replay_parts` without an index sealed it.
+        assert!(!lazy.lazy());
+        assert_eq!(lazy.groups(), eager.groups());
+        for g in 0..eager.groups() {
+            assert_eq!(lazy.group(g), eager.group(g), "size {size}, group {g}");
+        }
+        for y0 in (0..240).step_by(16) {
+            assert_eq!(scan(&lazy, y0, y0 + 16), scan(&eager, y0, y0 + 16));
+        }
+        assert_eq!(lazy.peak(), eager.peak());
+        // Pushes after the seal write the table as they go.
+        let more = (push(&mut lazy, 7), push(&mut eager, 7));
+        assert_eq!(more.0, more.1);
+        assert_eq!(lazy.groups(), eager.groups());
+        lazy.clear();
+        eager.clear();
+        assert_eq!(lazy.peak(), eager.peak());
+    }
+}
