@@ -335,7 +335,7 @@ fn a_sealed_group_table_equals_the_one_written_as_pushed() {
         let first = (i * 7 % 200) as i32;
         let e = entry(
             first,
-            first + (i % 5) as i32 * 20 + (i % 13 == 0) as i32 * 300,
+            first + (i % 5) as i32 * 20 + i32::from(i.is_multiple_of(13)) * 300,
         );
         let p = match i % 4 {
             0 | 1 => Points::Polygon(i as u16),
