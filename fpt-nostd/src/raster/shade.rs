@@ -160,6 +160,10 @@ fn below_two(c: f32) -> bool {
 }
 
 /// Normalises an `f32` vector; `None` for zero or non-finite input.
+/// Inlined into the per-face shading: the fast path is a few dozen
+/// instructions, and the general one ([`unit_from_f32_slow`]) out of line
+/// keeps its registers (and their saving) out of every face's call.
+#[inline]
 fn unit_from_f32(v: [f32; 3]) -> Option<[Fx14; 3]> {
     // Fast path: stored normals are unit already, and a 64-bit integer
     // square root plus three 64-bit divisions per face was the whole cost
@@ -176,6 +180,14 @@ fn unit_from_f32(v: [f32; 3]) -> Option<[Fx14; 3]> {
             return Some(q);
         }
     }
+    unit_from_f32_slow(v)
+}
+
+/// [`unit_from_f32`] past its fast path: a vector that is not unit length
+/// or has a component of magnitude 2 or more (or not finite).
+#[cold]
+#[inline(never)]
+fn unit_from_f32_slow(v: [f32; 3]) -> Option<[Fx14; 3]> {
     // After the fast path, which needs no finiteness test of its own (a
     // component below 2 in magnitude is finite): three tests fewer a face.
     if !v.iter().all(|c| c.is_finite()) {
@@ -244,7 +256,12 @@ impl Light {
             }
             _ => Fx14::ZERO,
         };
-        let lit = self.ambient + self.diffuse * cos.max(Fx14::ZERO);
+        // `diffuse` is in [0, 2^14] (`Light::new` clamps it, `DEFAULT`'s is
+        // 3·2^12) and `cos` at most (2^31 − 1) >> 14, so their product fits
+        // an `i32`: the saturating 64-bit `Fx14` product (a long multiply
+        // and two saturation tests a face) is this one, exactly.
+        let diffuse = (self.diffuse.raw() * cos.max(Fx14::ZERO).raw()) >> 14;
+        let lit = self.ambient + Fx14::from_raw(diffuse);
         lit.clamp(Fx14::ZERO, Fx14::ONE)
     }
 
