@@ -401,6 +401,38 @@ mod tests {
     use super::*;
     use embedded_graphics::pixelcolor::RgbColor;
 
+    /// The diffuse term's `i32` product is the saturating 64-bit `Fx14`
+    /// product it replaced, for every weight `Light::new` can hold (the
+    /// clamped ends included) and normals of every length and sign, unit or
+    /// not, tiny or huge (the general normalisation).
+    #[test]
+    fn intensity_is_the_saturating_fx14_formula() {
+        let mut rng = crate::raster::tests::Rng(23);
+        let reference = |l: &Light, n: Option<[Fx14; 3]>| {
+            let cos = match (n, l.dir) {
+                (Some(n), Some(d)) => {
+                    let dot: i32 = (0..3).map(|i| n[i].raw() * d[i].raw()).sum();
+                    Fx14::from_raw(dot >> 14)
+                }
+                _ => Fx14::ZERO,
+            };
+            (l.ambient + l.diffuse.saturating_mul(cos.max(Fx14::ZERO))).clamp(Fx14::ZERO, Fx14::ONE)
+        };
+        let weights = [-1.0, 0.0, 0.1, 0.25, 0.5, 0.75, 1.0, 2.0];
+        for k in 0..40_000 {
+            let dir = [0; 3].map(|_| rng.float(-1.0, 1.0));
+            let (a, d) = (weights[k % 8], weights[(k / 8) % 8]);
+            let l = Light::new(dir, a, d);
+            let scale = [1.0, 1e-3, 7.0, 1e30][k % 4];
+            let v = [0; 3].map(|_| rng.float(-1.0, 1.0) * scale);
+            // Unit normals too, which take the fast path.
+            let len = v.iter().map(|c| c * c).sum::<f32>().sqrt();
+            let v = if k % 2 == 0 { v.map(|c| c / len) } else { v };
+            let n = unit_from_f32(v);
+            assert_eq!(l.intensity(v), reference(&l, n), "{l:?} {v:?}");
+        }
+    }
+
     #[test]
     fn integer_rounding_is_exact() {
         // Against f64, where c · 2^frac + 0.5 is exact for these values.
