@@ -44,20 +44,24 @@ impl VertexDecoder<'_> {
     /// Vertex `v`, relative to the origin, decoded to `f32`.
     #[inline]
     pub fn get(&self, v: usize) -> [f32; 3] {
-        // One branch on the format, each arm with its record length as a
-        // constant (a vertex cache's misses call this once per vertex).
+        let at = v.wrapping_mul(self.format.vertex_len());
+        let f = |r: &[u8], k: usize| -> [u8; 4] {
+            let mut o = [0; 4];
+            if let Some(s) = r.get(k..k + 4) {
+                o.copy_from_slice(s);
+            }
+            o
+        };
         match self.format {
-            VertexFormat::F32 => match self.record::<12>(v) {
-                Some(r) => [0, 4, 8].map(|k| f32::from_le_bytes(word(r, k))),
+            VertexFormat::F32 => match self.section.get(at..at.wrapping_add(12)) {
+                Some(r) => [0, 4, 8].map(|k| f32::from_le_bytes(f(r, k))),
                 None => [0.0; 3],
             },
-            VertexFormat::Q32 => match self.record::<12>(v) {
-                Some(r) => {
-                    [0, 4, 8].map(|k| i32::from_le_bytes(word(r, k)) as f32 * self.q32_scale)
-                }
+            VertexFormat::Q32 => match self.section.get(at..at.wrapping_add(12)) {
+                Some(r) => [0, 4, 8].map(|k| i32::from_le_bytes(f(r, k)) as f32 * self.q32_scale),
                 None => [0.0; 3],
             },
-            VertexFormat::Q16 => match self.record::<6>(v) {
+            VertexFormat::Q16 => match self.section.get(at..at.wrapping_add(6)) {
                 Some(r) => {
                     let q = |k: usize| f32::from(i16::from_le_bytes([r[k], r[k + 1]]));
                     [
@@ -70,24 +74,6 @@ impl VertexDecoder<'_> {
             },
         }
     }
-
-    /// The `L` bytes of vertex `v`'s record (`L` the format's
-    /// [`VertexFormat::vertex_len`]); `None` outside the section.
-    #[inline(always)]
-    fn record<const L: usize>(&self, v: usize) -> Option<&[u8; L]> {
-        let at = v.wrapping_mul(L);
-        self.section.get(at..)?.first_chunk::<L>()
-    }
-}
-
-/// The four bytes of `r` from `k` (`k + 4 ≤ 12`).
-#[inline(always)]
-fn word(r: &[u8; 12], k: usize) -> [u8; 4] {
-    let mut o = [0; 4];
-    if let Some(s) = r.get(k..k + 4) {
-        o.copy_from_slice(s);
-    }
-    o
 }
 
 impl Iterator for Vertices<'_> {
