@@ -607,7 +607,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         let project = |v: u32| {
             xform(v)
                 .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
-                .and_then(|c| P::Path::project_clipped(&c, &self.viewport))
+                .and_then(|c| P::Path::project_inside(&c, &self.viewport))
         };
         let cap = cache.indexed_len();
         let mut n = 0;
@@ -650,7 +650,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         let project = |v: u32| {
             xform(v)
                 .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
-                .and_then(|c| P::Path::project_clipped(&c, &self.viewport))
+                .and_then(|c| P::Path::project_inside(&c, &self.viewport))
         };
         let mut n = 0;
         for v in indices {

@@ -160,10 +160,11 @@ fn below_two(c: f32) -> bool {
 }
 
 /// Normalises an `f32` vector; `None` for zero or non-finite input.
+/// Inlined into the per-face shading: the fast path is a few dozen
+/// instructions, and the general one ([`unit_from_f32_slow`]) out of line
+/// keeps its registers (and their saving) out of every face's call.
+#[inline]
 fn unit_from_f32(v: [f32; 3]) -> Option<[Fx14; 3]> {
-    if !v.iter().all(|c| c.is_finite()) {
-        return None;
-    }
     // Fast path: stored normals are unit already, and a 64-bit integer
     // square root plus three 64-bit divisions per face was the whole cost
     // of shading on a 32-bit core. The length test is on the rounded Q14
@@ -178,6 +179,19 @@ fn unit_from_f32(v: [f32; 3]) -> Option<[Fx14; 3]> {
         if len2.abs_diff(1 << 28) <= 1 << 16 {
             return Some(q);
         }
+    }
+    unit_from_f32_slow(v)
+}
+
+/// [`unit_from_f32`] past its fast path: a vector that is not unit length
+/// or has a component of magnitude 2 or more (or not finite).
+#[cold]
+#[inline(never)]
+fn unit_from_f32_slow(v: [f32; 3]) -> Option<[Fx14; 3]> {
+    // After the fast path, which needs no finiteness test of its own (a
+    // component below 2 in magnitude is finite): three tests fewer a face.
+    if !v.iter().all(|c| c.is_finite()) {
+        return None;
     }
     let big = v.iter().fold(0.0f32, |m, c| m.max(c.abs()));
     if big == 0.0 {
@@ -242,7 +256,12 @@ impl Light {
             }
             _ => Fx14::ZERO,
         };
-        let lit = self.ambient + self.diffuse * cos.max(Fx14::ZERO);
+        // `diffuse` is in [0, 2^14] (`Light::new` clamps it, `DEFAULT`'s is
+        // 3·2^12) and `cos` at most (2^31 − 1) >> 14, so their product fits
+        // an `i32`: the saturating 64-bit `Fx14` product (a long multiply
+        // and two saturation tests a face) is this one, exactly.
+        let diffuse = (self.diffuse.raw() * cos.max(Fx14::ZERO).raw()) >> 14;
+        let lit = self.ambient + Fx14::from_raw(diffuse);
         lit.clamp(Fx14::ZERO, Fx14::ONE)
     }
 
@@ -381,6 +400,38 @@ impl DepthCue {
 mod tests {
     use super::*;
     use embedded_graphics::pixelcolor::RgbColor;
+
+    /// The diffuse term's `i32` product is the saturating 64-bit `Fx14`
+    /// product it replaced, for every weight `Light::new` can hold (the
+    /// clamped ends included) and normals of every length and sign, unit or
+    /// not, tiny or huge (the general normalisation).
+    #[test]
+    fn intensity_is_the_saturating_fx14_formula() {
+        let mut rng = crate::raster::tests::Rng(23);
+        let reference = |l: &Light, n: Option<[Fx14; 3]>| {
+            let cos = match (n, l.dir) {
+                (Some(n), Some(d)) => {
+                    let dot: i32 = (0..3).map(|i| n[i].raw() * d[i].raw()).sum();
+                    Fx14::from_raw(dot >> 14)
+                }
+                _ => Fx14::ZERO,
+            };
+            (l.ambient + l.diffuse.saturating_mul(cos.max(Fx14::ZERO))).clamp(Fx14::ZERO, Fx14::ONE)
+        };
+        let weights = [-1.0, 0.0, 0.1, 0.25, 0.5, 0.75, 1.0, 2.0];
+        for k in 0..40_000 {
+            let dir = [0; 3].map(|_| rng.float(-1.0, 1.0));
+            let (a, d) = (weights[k % 8], weights[(k / 8) % 8]);
+            let l = Light::new(dir, a, d);
+            let scale = [1.0, 1e-3, 7.0, 1e30][k % 4];
+            let v = [0; 3].map(|_| rng.float(-1.0, 1.0) * scale);
+            // Unit normals too, which take the fast path.
+            let len = v.iter().map(|c| c * c).sum::<f32>().sqrt();
+            let v = if k % 2 == 0 { v.map(|c| c / len) } else { v };
+            let n = unit_from_f32(v);
+            assert_eq!(l.intensity(v), reference(&l, n), "{l:?} {v:?}");
+        }
+    }
 
     #[test]
     fn integer_rounding_is_exact() {
