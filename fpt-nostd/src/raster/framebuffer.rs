@@ -553,7 +553,7 @@ mod tests {
                 assert_eq!(fast, slow, "{width}x{height} from word {skip}");
             }
         }
-        for (w, h) in [(1, 1), (2, 1), (3, 2), (13, 3), (240, 2)] {
+        for (w, h) in [(1, 1), (2, 1), (3, 2), (13, 3), (240, 2), (240, 9)] {
             check::<Rgb565Format>(w, h, 0x5a5a, Rgb565::new(31, 7, 9));
             check::<Gray8Format>(w, h, 3, Gray8::new(200));
             check::<BinaryFormat>(w, h, 0x55, BinaryColor::On);
