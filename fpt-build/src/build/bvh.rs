@@ -24,15 +24,7 @@ use glam::DVec3;
 const MARGIN: f64 = 1e-12;
 
 /// Members per leaf, at most.
-///
-/// A count opens every leaf the plane passes through and classifies each
-/// alive member in it, vertex by vertex; a box test is one corner
-/// distance. Leaves of four instead of six members classify about a
-/// quarter fewer members per count on faceted tori of 24k and 48k polygons
-/// (most of a static build's time), for a third more nodes; two or three
-/// per leaf classify about as many and visit more boxes. The counts, and so the
-/// trees, do not depend on it.
-const LEAF: usize = 4;
+const LEAF: usize = 6;
 
 #[derive(Clone, Copy, Debug)]
 struct Node {
