@@ -211,19 +211,7 @@ impl Bvh {
     /// Front, back and cut counts of the alive members other than `skip`
     /// against `plane` (coplanar ones count in none).
     pub fn counts(&self, plane: &Plane, skip: usize, alive: &[bool], tol: Tolerance) -> [u32; 3] {
-        self.counts_cut(plane, skip, alive, tol).0
-    }
-
-    /// [`Bvh::counts`], with one member the plane cuts (`u32::MAX`: none).
-    pub fn counts_cut(
-        &self,
-        plane: &Plane,
-        skip: usize,
-        alive: &[bool],
-        tol: Tolerance,
-    ) -> ([u32; 3], u32) {
         let mut c = [0u32; 3];
-        let mut cut = u32::MAX;
         let mut leaf = [0u32; 3];
         self.visit(
             plane,
@@ -236,15 +224,12 @@ impl Bvh {
                 match plane.relation(verts, tol) {
                     Relation::Front => leaf[0] += 1,
                     Relation::Back => leaf[1] += 1,
-                    Relation::Cut => {
-                        leaf[2] += 1;
-                        cut = cut.min(i as u32);
-                    }
+                    Relation::Cut => leaf[2] += 1,
                     Relation::Coplanar => {}
                 }
             },
         );
-        ([c[0] + leaf[0], c[1] + leaf[1], leaf[2]], cut)
+        [c[0] + leaf[0], c[1] + leaf[1], leaf[2]]
     }
 
     /// Lower bounds on the front, back and cut counts of the alive members

@@ -313,16 +313,12 @@ fn best_by(
     t: &mut Table,
     ctx: &Ctx,
     k: usize,
-    no_cut: bool,
     score: impl Fn([u32; 3]) -> Option<(u32, u32)>,
     bound: impl Fn([u32; 3], u32) -> Option<(u32, u32)>,
 ) -> Vec<usize> {
     t.probe_all(ctx);
     let mut cands: Vec<Rank> = (0..t.len())
         .filter(|&q| t.is_alive(q) && t.has_row(q))
-        // A row known to cut something cannot qualify when `score` needs
-        // an empty cut column (`no_cut`): no need to count it.
-        .filter(|&q| !(no_cut && t.cuts_for_sure(q)))
         .filter_map(|q| {
             let (c, u) = t.bounds(q);
             bound(c, u).map(|b| (b, geometric_key(ctx, t.ids[q]), q))
@@ -371,7 +367,6 @@ fn choose_separator(t: &mut Table, ctx: &Ctx) -> Option<usize> {
         t,
         ctx,
         1,
-        true,
         |[f, b, c]| (c == 0).then_some((0, f.abs_diff(b))),
         |[f, b, c], u| (c == 0).then_some((0, balance_bound(f, b, u))),
     )
@@ -408,7 +403,6 @@ fn choose_splitters(t: &mut Table, ctx: &Ctx, k: usize) -> Vec<usize> {
         t,
         ctx,
         k,
-        false,
         |[f, b, c]| Some(split_score(f, b, c)),
         |[f, b, c], u| {
             Some((
@@ -433,7 +427,6 @@ fn choose_alternatives(t: &mut Table, ctx: &Ctx, k: usize) -> Vec<usize> {
         t,
         ctx,
         k,
-        false,
         |[f, b, c]| Some((c.saturating_mul(w).saturating_add(f.abs_diff(b)), c)),
         |[f, b, c], u| {
             Some((

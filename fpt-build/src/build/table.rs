@@ -75,12 +75,6 @@ pub struct Table {
     log: Vec<u32>,
     alive_count: usize,
     bvh: Bvh,
-    /// A member the plane of each row cuts (`u32::MAX`: none known). While
-    /// it is alive the row's cut count is at least one, so the row is
-    /// neither absolute nor separating, whatever else was removed: such a
-    /// row is not counted again when due ([`Table::due`]) nor when looking
-    /// for a separating plane ([`Table::cuts_for_sure`]).
-    cut_witness: Vec<u32>,
 }
 
 /// Rows waiting until their counts could pass a test (see the module docs).
@@ -162,15 +156,7 @@ impl Table {
             removed: 0,
             log: Vec::new(),
             alive_count: m,
-            cut_witness: vec![u32::MAX; m],
         }
-    }
-
-    /// Whether row `q`'s plane certainly cuts an alive member (its cut
-    /// count is at least one), known without counting it.
-    pub fn cuts_for_sure(&self, q: usize) -> bool {
-        let w = self.cut_witness[q];
-        w != u32::MAX && self.alive[w as usize]
     }
 
     /// Number of members.
@@ -238,15 +224,12 @@ impl Table {
                         false,
                     );
                 }
-                (c, u32::MAX)
+                c
             } else {
-                self.bvh.counts_cut(&plane, q, &self.alive, tol)
+                self.bvh.counts(&plane, q, &self.alive, tol)
             }
         });
-        for (q, (c, w)) in rows.into_iter().zip(counts) {
-            if w != u32::MAX {
-                self.cut_witness[q] = w;
-            }
+        for (q, c) in rows.into_iter().zip(counts) {
             self.counts[q] = c;
             self.undecided[q] = 0;
             self.stamp[q] = self.removed;
@@ -378,17 +361,6 @@ impl Table {
         }
         v.sort_unstable();
         v.dedup();
-        // A row whose plane still cuts an alive member can pass neither
-        // test (both need a cut count of zero): look at it again after the
-        // next removal instead of counting it now.
-        let next = u64::from(self.removed) + 1;
-        v.retain(|&q| {
-            let sure = self.cuts_for_sure(q);
-            if sure {
-                w.heap.push(Reverse((next, q as u32)));
-            }
-            !sure
-        });
         self.refresh(&v, ctx);
         v
     }
@@ -417,23 +389,12 @@ impl Table {
         let gone: Vec<usize> = (0..self.len())
             .filter(|&i| self.alive[i] && !kept[i])
             .collect();
-        // Local index here → local index in the subtable, for the members
-        // kept: a row keeps its cut witness if that comes along (a piece's
-        // row is its parent's plane, and the witness is another member).
-        let mut local = vec![u32::MAX; self.len()];
-        for (k, &i) in members.iter().enumerate() {
-            local[i] = k as u32;
-        }
         let mut rows = Vec::new();
         for (q, &o) in origin.iter().enumerate() {
             if self.has_row[o] {
                 t.has_row[q] = true;
                 t.stamp[q] = NEVER;
                 rows.push(q);
-            }
-            let w = self.cut_witness[o];
-            if w != u32::MAX && self.alive[w as usize] {
-                t.cut_witness[q] = local[w as usize];
             }
         }
         // Entries of a known row against the new pieces are new relations.
