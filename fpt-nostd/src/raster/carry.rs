@@ -3,7 +3,7 @@
 //! the next band, instead of being read back from the display list and
 //! set up again there (sorting its corners, its row bounds and two or
 //! three exact edge starts, each with two divisions). The four-sided
-//! pieces of split triangles ([`poly`]) are carried the same way: their
+//! pieces of split triangles ([`quad`]) are carried the same way: their
 //! two chains' steppers and the vertices still ahead, instead of the
 //! general fill's box, monotonicity pass and chain seeks in every band.
 //!
@@ -27,7 +27,7 @@
 //!   where expected (another band, another record) is dropped, never
 //!   drawn.
 //! * Four-sided polygons, in the same ring (a flag in the entry): see
-//!   [`poly`].
+//!   [`quad`].
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
@@ -37,8 +37,8 @@ use super::scan::{pair_rows, Pair, SpanSink};
 use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
 
-mod poly;
-use poly::{Poly, KEPT};
+mod quad;
+use quad::Quad;
 
 /// Words (`u32`) a kept triangle takes in the ring.
 pub(crate) const WORDS: usize = 15;
@@ -362,22 +362,22 @@ impl Ring {
     }
 
     /// Whether the next incoming entry is a four-sided polygon's
-    /// ([`Ring::pop_poly`]; else a triangle's, [`Ring::pop`]).
+    /// ([`Ring::pop_quad`]; else a triangle's, [`Ring::pop`]).
     #[inline(always)]
-    pub(crate) fn next_is_poly(&self, words: &[u32]) -> bool {
+    pub(crate) fn next_is_quad(&self, words: &[u32]) -> bool {
         words
             .get(self.head * WORDS + 14)
-            .is_some_and(|&c| c & POLY != 0)
+            .is_some_and(|&c| c & QUAD != 0)
     }
 
     /// Takes the next incoming entry, a four-sided polygon's, for `band`:
     /// the state and its colour.
     #[inline(always)]
-    pub(crate) fn pop_poly(
+    pub(crate) fn pop_quad(
         &mut self,
         words: &[u32],
         band: &TriangleBand,
-    ) -> Option<(Poly<KEPT>, Rgb888)> {
+    ) -> Option<(Quad, Rgb888)> {
         let at = self.head * WORDS;
         let w: &[u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
         let lo = |x: u32| i32::from(x as u16 as i16);
@@ -397,7 +397,7 @@ impl Ring {
                 bottom = p;
             }
         }
-        let quad = Poly {
+        let quad = Quad {
             l: dda(0),
             ly1: row(arc[1]),
             r: dda(5),
@@ -416,10 +416,10 @@ impl Ring {
     /// (or `offset` is not below 2^16). Corners and rows are within
     /// ±2^14 (the corners within ±`SMALL`), so they fit 16 bits.
     #[inline(always)]
-    pub(crate) fn push_poly<const A: usize>(
+    pub(crate) fn push_quad(
         &mut self,
         words: &mut [u32],
-        q: &Poly<A>,
+        q: &Quad,
         (offset, row): (usize, i32),
         rgb: Rgb888,
     ) -> bool {
@@ -445,7 +445,7 @@ impl Ring {
         }
         let v = |k: usize| q.arc.get(q.lo + k).map_or(0, |&p| pt(p));
         let (a, b, [x, y, z]) = (q.l, q.r, [v(0), v(1), v(2)]);
-        let c = rgb | (count as u32) << 24 | POLY;
+        let c = rgb | (count as u32) << 24 | QUAD;
         let [l0, l1, l2, l3, l4] = a.to_words();
         let [s0, s1, s2, s3, s4] = b.to_words();
         // Word by word: a copy of an array is a `memcpy` call.
@@ -471,7 +471,7 @@ impl Ring {
 }
 
 /// The flag of a four-sided polygon's entry (in its colour word).
-const POLY: u32 = 1 << 26;
+const QUAD: u32 = 1 << 26;
 
 #[cfg(test)]
 mod tests {

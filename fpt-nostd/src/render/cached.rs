@@ -795,8 +795,8 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
                 want = ring.peek(words);
             }
             if want.is_some_and(|(at, _)| at == here) {
-                if CARRY_POLYS && ring.next_is_poly(words) {
-                    spans += band.resume_poly(ring, words, (here, keep), sink);
+                if CARRY_QUADS && ring.next_is_quad(words) {
+                    spans += band.resume_quad(ring, words, (here, keep), sink);
                     want = ring.peek(words);
                     continue;
                 }
@@ -892,14 +892,9 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
         // The four-sided pieces of split triangles the band cuts: set up
         // once and carried like the triangles (else the general fill's
         // box, monotonicity pass and chain seeks in every band).
-        if let (true, Some(band), true) = (CARRY_POLYS, &carry, n > 3 && keep && e.end > y1) {
-            // A polygon with more than four corners is kept only when at
-            // most three of them are left below this band (the ring
-            // entry's room): one with more is the general fill's here.
-            let pts = scratch.screen().get(..n);
-            let pts = pts.filter(|p| n == 4 || band.may_keep_poly(p));
-            if let Some(pts) = pts {
-                if let Some(s) = band.poly(pts, (ring, words), (here, e.rgb, e.id), sink) {
+        if let (true, Some(band), 4, true) = (CARRY_QUADS, &carry, n, keep && e.end > y1) {
+            if let [a, b, c, d, ..] = *scratch.screen() {
+                if let Some(s) = band.quad([a, b, c, d], (ring, words), (here, e.rgb, e.id), sink) {
                     spans += s;
                     continue;
                 }
@@ -927,7 +922,7 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
 
 /// Whether the replay carries the four-sided pieces of split triangles
 /// across band edges as it does triangles (with [`CARRY`]).
-const CARRY_POLYS: bool = CARRY;
+const CARRY_QUADS: bool = CARRY;
 
 /// Band `y0` (of `rows` rows in a `size` frame) as a framebuffer over
 /// `buf`, cleared to `background`.

@@ -6,12 +6,12 @@
 //!
 //! # Contract
 //!
-//! [`TriangleBand::start_poly`] then [`TriangleBand::run_poly`] emit
+//! [`TriangleBand::start_quad`] then [`TriangleBand::run_quad`] emit
 //! exactly the spans of `fill_polygon_in` for the same polygon and band
-//! (or decline, [`PolyStart::Outside`], before emitting anything, where
-//! that one takes its general path); [`TriangleBand::run_poly`] of the
+//! (or decline, [`QuadStart::Outside`], before emitting anything, where
+//! that one takes its general path); [`TriangleBand::run_quad`] of the
 //! state it left, resumed in the next band (through the ring's words,
-//! [`Ring::pop_poly`]), emits exactly what `fill_polygon_in` would there.
+//! [`Ring::pop_quad`]), emits exactly what `fill_polygon_in` would there.
 
 use embedded_graphics::pixelcolor::Rgb888;
 
@@ -25,7 +25,7 @@ use super::Ring;
 /// triangles; see [`crate::raster::chain::fill_monotone`] for the two chains):
 /// each chain's current edge, and the vertices still ahead of them.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Poly<const A: usize> {
+pub(crate) struct Quad {
     /// The chain walking the vertex list forward, and its edge's end row.
     pub(super) l: Dda32,
     pub(super) ly1: i32,
@@ -35,36 +35,23 @@ pub(crate) struct Poly<const A: usize> {
     /// The vertices from the top, in list order, the top again at the
     /// end: the forward chain's edge ends at `arc[lo]`, the backward
     /// one's at `arc[hi]`; `arc[lo..=hi]` are the vertices still ahead.
-    pub(super) arc: [ScreenPt; A],
+    pub(super) arc: [ScreenPt; 5],
     pub(super) lo: usize,
     pub(super) hi: usize,
     /// One past the polygon's last row.
     pub(crate) end: i32,
 }
 
-/// Most corners of a polygon carried (the arc's room; bench_city's
-/// polygons average 5.3). One with more takes the general fill.
-pub(crate) const MAX_SIDES: usize = 8;
-
-/// The arc of a polygon set up in this band: its corners, the top again.
-pub(crate) const FRESH: usize = MAX_SIDES + 1;
-
-/// The arc of a polygon resumed from the ring: the (at most three)
-/// corners still ahead at `1..=3`, between two unused slots (the chains
-/// never step onto them: the polygon ends on the lowest corner ahead).
-/// Small, so that the state the replay inlines stays in registers.
-pub(crate) const KEPT: usize = 5;
-
-/// What [`TriangleBand::start_poly`] found.
+/// What [`TriangleBand::start_quad`] found.
 #[derive(Clone, Copy, Debug)]
-pub(crate) enum PolyStart {
+pub(crate) enum QuadStart {
     /// Not for the chains (a corner outside ±`SMALL`, or not y-monotone):
     /// the general fill's.
     Outside,
     /// Nothing to fill in this band.
     Empty,
     /// The state to run from row `.1` (its chains not yet sought).
-    Rows(Poly<FRESH>, i32),
+    Rows(Quad, i32),
 }
 
 /// The chain of `arc` from vertex `*at` one vertex on (`fwd`: forward)
@@ -72,14 +59,14 @@ pub(crate) enum PolyStart {
 /// [`crate::raster::chain`] (without clamping the end row to a band: the state
 /// goes on in the next band); false where that one gives up.
 #[inline(always)]
-fn seek<const A: usize>(
-    arc: &[ScreenPt; A],
+fn seek(
+    arc: &[ScreenPt; 5],
     (at, fwd): (&mut usize, bool),
     (dda, y1): (&mut Dda32, &mut i32),
     sub: u32,
     y: i32,
 ) -> bool {
-    for _ in 1..A {
+    for _ in 0..4 {
         let next = if fwd { *at + 1 } else { at.wrapping_sub(1) };
         let (Some(&from), Some(&to)) = (arc.get(*at), arc.get(next)) else {
             return false;
@@ -106,68 +93,57 @@ fn seek<const A: usize>(
 }
 
 impl TriangleBand {
-    /// Sets up polygon `pts` (at most [`MAX_SIDES`] corners) as
-    /// `fill_polygon_in` does (its box rejects, then
-    /// [`crate::raster::chain::fill_monotone`]'s set-up), to run from the
-    /// first row of this band it touches.
+    /// Sets up the four-sided polygon `pts` as `fill_polygon_in` does
+    /// (its box rejects, then [`crate::raster::chain::fill_monotone`]'s set-up),
+    /// to run from the first row of this band it touches.
     #[inline(always)]
-    pub(crate) fn start_poly(&self, pts: &[ScreenPt]) -> PolyStart {
-        let n = pts.len();
-        if !(3..=MAX_SIDES).contains(&n) {
-            return PolyStart::Outside;
-        }
-        let bbox = Bbox::of(pts);
+    pub(crate) fn start_quad(&self, pts: [ScreenPt; 4]) -> QuadStart {
+        let bbox = Bbox::of(&pts);
         let Bbox {
             lo, hi, top, bot, ..
         } = bbox;
         if !(lo > -SMALL && hi < SMALL && top > -SMALL && bot < SMALL) {
-            return PolyStart::Outside;
+            return QuadStart::Outside;
         }
         let (sub, b) = (self.sub, &self.b);
         let col = |x: i32| (2 * x - (1 << sub)) >> (sub + 1);
         if col(hi) < b.x0 || col(lo) >= b.x1 {
-            return PolyStart::Empty;
+            return QuadStart::Empty;
         }
         let (first, end) = Dda32::rows(ScreenPt { x: 0, y: top }, ScreenPt { x: 0, y: bot }, sub);
         if end <= b.y0 || first >= b.y1 || top == bot {
-            return PolyStart::Empty;
+            return QuadStart::Empty;
         }
         let t = bbox.top_at;
-        if !is_y_monotone(pts, t) {
-            return PolyStart::Outside;
+        if !is_y_monotone(&pts, t) {
+            return QuadStart::Outside;
         }
         let y = first.max(b.y0);
         if y >= end.min(b.y1) {
-            return PolyStart::Empty;
+            return QuadStart::Empty;
         }
-        // The corners from the top, the top again after them.
-        // (Two copies, not an index modulo `n`: a division per corner.)
-        let mut arc = [ScreenPt::default(); FRESH];
-        let (head, tail) = pts.split_at(t.min(n));
-        for (dst, &p) in arc.iter_mut().zip(tail.iter().chain(head).chain(tail.first())) {
-            *dst = p;
-        }
-        let poly = Poly {
+        let at = |k: usize| pts[(t + k) % 4];
+        let quad = Quad {
             l: Dda32::default(),
             ly1: y,
             r: Dda32::default(),
             ry1: y,
-            arc,
+            arc: [at(0), at(1), at(2), at(3), at(0)],
             lo: 0,
-            hi: n,
+            hi: 4,
             end,
         };
-        PolyStart::Rows(poly, y)
+        QuadStart::Rows(quad, y)
     }
 
     /// Fills `q`'s rows from `y` (its current row) to the band's end or
     /// the polygon's, leaving it stepped to that row; returns the spans.
     /// As for a triangle, it goes on in the next band when `q.end` is past
-    /// this band's end ([`TriangleBand::continues_poly`]).
+    /// this band's end ([`TriangleBand::continues_quad`]).
     #[inline(always)]
-    pub(crate) fn run_poly<K: SpanSink, const A: usize>(
+    pub(crate) fn run_quad<K: SpanSink>(
         &self,
-        q: &mut Poly<A>,
+        q: &mut Quad,
         mut y: i32,
         color: K::Color,
         sink: &mut K,
@@ -199,63 +175,52 @@ impl TriangleBand {
     /// returns the spans. Out of line: the replay's loop, which inlines
     /// the triangle fills, keeps its registers.
     #[inline(always)]
-    pub(crate) fn resume_poly<K: SpanSink>(
+    pub(crate) fn resume_quad<K: SpanSink>(
         &self,
         ring: &mut Ring,
         words: &mut [u32],
         (here, keep): (usize, bool),
         sink: &mut K,
     ) -> u64 {
-        let Some((mut q, rgb)) = ring.pop_poly(words, self) else {
+        let Some((mut q, rgb)) = ring.pop_quad(words, self) else {
             return 0;
         };
         let color = sink.color(&Paint { rgb, id: 0 });
-        let spans = self.run_poly(&mut q, self.first_row(), color, sink) as u64;
-        if keep && self.continues_poly(&q) {
-            ring.push_poly(words, &q, (here, self.end_row()), rgb);
+        let spans = self.run_quad(&mut q, self.first_row(), color, sink) as u64;
+        if keep && self.continues_quad(&q) {
+            ring.push_quad(words, &q, (here, self.end_row()), rgb);
         }
         spans
     }
 
     /// Sets up and fills the four-sided polygon `pts` (record `here`, id
     /// `id`, cut by this band's end) and keeps it for the next band; `None`, nothing
-    /// emitted, when it is the general fill's ([`TriangleBand::start_poly`]).
+    /// emitted, when it is the general fill's ([`TriangleBand::start_quad`]).
     #[inline(never)]
-    pub(crate) fn poly<K: SpanSink>(
+    pub(crate) fn quad<K: SpanSink>(
         &self,
-        pts: &[ScreenPt],
+        pts: [ScreenPt; 4],
         (ring, words): (&mut Ring, &mut [u32]),
         (here, rgb, id): (usize, Rgb888, u32),
         sink: &mut K,
     ) -> Option<u64> {
-        match self.start_poly(pts) {
-            PolyStart::Outside => None,
-            PolyStart::Empty => Some(0),
-            PolyStart::Rows(mut q, y) => {
+        match self.start_quad(pts) {
+            QuadStart::Outside => None,
+            QuadStart::Empty => Some(0),
+            QuadStart::Rows(mut q, y) => {
                 let color = sink.color(&Paint { rgb, id });
-                let spans = self.run_poly(&mut q, y, color, sink) as u64;
-                if self.continues_poly(&q) {
-                    ring.push_poly(words, &q, (here, self.end_row()), rgb);
+                let spans = self.run_quad(&mut q, y, color, sink) as u64;
+                if self.continues_quad(&q) {
+                    ring.push_quad(words, &q, (here, self.end_row()), rgb);
                 }
                 Some(spans)
             }
         }
     }
 
-    /// Whether `pts` may fit the ring once run through this band: at
-    /// most three corners below its end (the entry's room for the
-    /// corners still ahead). A cheap bound, not the exact test (that is
-    /// [`Ring::push_poly`]'s); a polygon it turns away takes the general
-    /// fill, which would also set it up again in the next band.
-    #[inline(always)]
-    pub(crate) fn may_keep_poly(&self, pts: &[ScreenPt]) -> bool {
-        let cut = self.b.y1 << self.sub;
-        pts.iter().filter(|p| p.y > cut).count() <= 3
-    }
-
     /// Whether `q`, run through this band, has rows after it.
     #[inline(always)]
-    pub(crate) fn continues_poly<const A: usize>(&self, q: &Poly<A>) -> bool {
+    pub(crate) fn continues_quad(&self, q: &Quad) -> bool {
         q.end > self.b.y1
     }
 }
@@ -346,7 +311,7 @@ mod tests {
                 // two kinds share the ring.
                 let mut t_state = None;
                 if ring.peek(&words).is_some_and(|(at, _)| at == 3) {
-                    assert!(!ring.next_is_poly(&words));
+                    assert!(!ring.next_is_quad(&words));
                     let Some((t, _)) = ring.pop(&words) else {
                         panic!("a triangle")
                     };
@@ -364,17 +329,17 @@ mod tests {
                 let mut state = None;
                 if let Some((at, row)) = ring.peek(&words) {
                     assert_eq!((at, row), (7, y0));
-                    assert!(ring.next_is_poly(&words));
-                    let Some((mut q, c)) = ring.pop_poly(&words, &band) else {
+                    assert!(ring.next_is_quad(&words));
+                    let Some((mut q, c)) = ring.pop_quad(&words, &band) else {
                         panic!("a quad")
                     };
                     assert_eq!(c, rgb);
-                    assert_eq!(band.run_poly(&mut q, band.first_row(), (), &mut got), n);
+                    assert_eq!(band.run_quad(&mut q, band.first_row(), (), &mut got), n);
                     kept += 1;
                     state = Some(q);
                 } else {
-                    match band.start_poly(&quad) {
-                        PolyStart::Outside => {
+                    match band.start_quad(quad) {
+                        QuadStart::Outside => {
                             general += 1;
                             let (mut edges, mut active) = ([Edge::ZERO; 4], [0u16; 4]);
                             let n = fill_polygon_in(
@@ -390,17 +355,17 @@ mod tests {
                             );
                             assert!(n.is_ok());
                         }
-                        PolyStart::Empty => assert_eq!(n, 0),
-                        PolyStart::Rows(mut q, y) => {
+                        QuadStart::Empty => assert_eq!(n, 0),
+                        QuadStart::Rows(mut q, y) => {
                             fresh_runs += 1;
-                            assert_eq!(band.run_poly(&mut q, y, (), &mut got), n);
+                            assert_eq!(band.run_quad(&mut q, y, (), &mut got), n);
                             state = Some(q);
                         }
                     }
                 }
                 assert_eq!(got.0, want.0, "{quad:?} {sub} {b:?}");
-                if let Some(q) = state.filter(|q| band.continues_poly(q)) {
-                    assert!(ring.push_poly(&mut words, &q, (7, band.end_row()), rgb));
+                if let Some(q) = state.filter(|q| band.continues_quad(q)) {
+                    assert!(ring.push_quad(&mut words, &q, (7, band.end_row()), rgb));
                 }
                 y0 += rows;
             }
