@@ -185,13 +185,16 @@ impl TriangleBand {
 }
 
 /// Most triangles a ring keeps at once. A band of socket's orbit keeps
-/// up to about 40 and its replay holds two bands' worth; the cap keeps
-/// the memory a frame reports (`RenderStats::memory_used`, what `fpt
-/// mcu-bench` gives the firmware by default) within what the Cortex-M4F's
-/// 32 KiB budget leaves beside the list: 64 × 60 B = 3.75 KiB. A triangle
-/// beyond it is set up again in the next band (measured: socket's 16-row
-/// bands, 78 entries at most without the cap).
-pub(crate) const MAX_KEPT: usize = 64;
+/// up to about 40 and its replay holds two bands' worth (78 entries at
+/// most); bench_city's bands keep more (the four-sided pieces of its
+/// split polygons too). The ring only uses the words the list and its
+/// index leave, so the cap bounds the spare words a frame notes as used
+/// (`DisplayList::note_spare_used`), not what it needs: 128 × 60 B =
+/// 7.5 KiB at most. Measured against 64 (session 14): bench_city's band
+/// frames 0.03–1.35 % faster, socket's 16-row bands 2.0 k a frame faster
+/// with the same memory (4,567 words) and RAM; 96 gave less, 256 no more.
+/// A triangle beyond it is set up again in the next band.
+pub(crate) const MAX_KEPT: usize = 128;
 
 /// Entries a ring over `words` holds.
 #[inline(always)]
