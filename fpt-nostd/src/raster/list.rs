@@ -739,32 +739,28 @@ impl<'m> DisplayList<'m> {
         for b in 1..=bands {
             cursors[b] += cursors[b - 1];
         }
-        // The common record (by polygon, fewer than 255 rows, no optional
-        // words: 4 words) decoded straight, the others by `head_in`.
-        let quick = extra == 0;
-        let mut r = 0;
-        loop {
-            let (first, end, next) = match head.get(r..r + 4) {
-                Some(&[w0, _, w2, _])
-                    if quick && w0 >> 14 == BY_POLYGON && w2 >> 8 != LONG_ROWS =>
-                {
-                    let first = i32::from(w0 & 0x3fff);
-                    (first, first + i32::from(w2 >> 8), r + 4)
-                }
-                _ => match rows_at(head, r) {
-                    Some(h) => h,
-                    None => break,
-                },
-            };
-            if let Some((b0, b1)) = span(first, end) {
-                for c in &mut cursors[b0..=b1] {
-                    if let Some(e) = entries.get_mut(usize::from(*c)) {
-                        *e = r as u16;
-                    }
-                    *c += 1;
-                }
-            }
-            r = next;
+        // Placed by a loop of its own for each way of finding a row's band
+        // (a shift, the usual case, or a division): with the choice made
+        // inside, the loop kept its values on the stack (measured on a
+        // Cortex-M4F, socket's 16-row bands).
+        let (first_row, last_row) = (y, cut);
+        match shift {
+            Some(s) => place(
+                head,
+                extra,
+                cursors,
+                entries,
+                (first_row, last_row),
+                |row| (row >> s) as usize,
+            ),
+            None => place(
+                head,
+                extra,
+                cursors,
+                entries,
+                (first_row, last_row),
+                |row| (row / rows) as usize,
+            ),
         }
         let end = at + bands + 1 + total;
         self.index = Some(BandIndex {
@@ -907,6 +903,48 @@ impl<'m> DisplayList<'m> {
             write += read - run;
         }
         self.len = write;
+    }
+}
+
+/// The placement pass of [`DisplayList::index_bands`]: writes each record
+/// of `records` (offset `r`) at the cursors of the bands `y..cut` it
+/// touches (`band_of` a row relative to `y`), advancing them. The common
+/// record (by polygon, fewer than 255 rows, no optional words: 4 words) is
+/// decoded straight, the others by [`head_in`].
+#[inline(always)]
+fn place(
+    records: &[u16],
+    extra: usize,
+    cursors: &mut [u16],
+    entries: &mut [u16],
+    (y, cut): (i32, i32),
+    band_of: impl Fn(i32) -> usize,
+) {
+    let quick = extra == 0;
+    let mut r = 0;
+    loop {
+        let (first, end, next) = match records.get(r..r + 4) {
+            Some(&[w0, _, w2, _]) if quick && w0 >> 14 == BY_POLYGON && w2 >> 8 != LONG_ROWS => {
+                let first = i32::from(w0 & 0x3fff);
+                (first, first + i32::from(w2 >> 8), r + 4)
+            }
+            _ => match head_in(records, extra, r) {
+                Some(h) => (h.first, h.end, h.next),
+                None => break,
+            },
+        };
+        if end > y && first < cut && end > first {
+            let (b0, b1) = (band_of(first.max(y) - y), band_of(end.min(cut) - 1 - y));
+            if let Some(cs) = cursors.get_mut(b0..=b1) {
+                for c in cs {
+                    if let Some(e) = entries.get_mut(usize::from(*c)) {
+                        *e = r as u16;
+                    }
+                    *c += 1;
+                }
+            }
+        }
+        r = next;
     }
 }
 
