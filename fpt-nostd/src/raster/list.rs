@@ -533,11 +533,14 @@ impl<'m> DisplayList<'m> {
     }
 
     /// The record at word `at` (0 for the first), or `None` at the end.
-    #[inline]
+    ///
+    /// The common record is decoded in line (the replay reads one for
+    /// every band a polygon touches: the call and the copy of the record
+    /// out of it cost more than the decoding), the others out of line.
+    #[inline(always)]
     pub fn record(&self, at: usize) -> Option<Record> {
         // The common record (by polygon, fewer than 255 rows, no optional
-        // words: 4 words) decoded straight: the replay reads one for
-        // every band a polygon touches.
+        // words: 4 words) decoded straight.
         if self.extra == 0 && at + 4 <= self.len {
             if let Some(&[w0, w1, w2, _]) = self.buf.get(at..at + 4) {
                 if w0 >> 14 == BY_POLYGON && w2 >> 8 != LONG_ROWS {
@@ -559,6 +562,12 @@ impl<'m> DisplayList<'m> {
                 }
             }
         }
+        self.record_general(at)
+    }
+
+    /// [`DisplayList::record`] of any record.
+    #[inline(never)]
+    fn record_general(&self, at: usize) -> Option<Record> {
         let h = self.head(at)?;
         // The optional words sit right before the points: the outline
         // mask, then the id.
