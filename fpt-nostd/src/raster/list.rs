@@ -412,6 +412,11 @@ impl<'m> DisplayList<'m> {
     /// fit or a field is out of range (a first row outside `0..2^14`, an
     /// end row outside `0..=2^14` or above it, more than 65 535 points). A clipped polygon must be
     /// stored inline (its points are not the tree's).
+    ///
+    /// The common record is written in line (the walk pushes one for
+    /// every polygon it draws: the call costs more than the writing),
+    /// the others out of line.
+    #[inline(always)]
     pub fn push(&mut self, e: &Entry, pts: Points<'_>) -> bool {
         // The common record first, written straight (a frame records every
         // polygon it draws): by polygon, not clipped, fewer than 255 rows,
@@ -455,6 +460,7 @@ impl<'m> DisplayList<'m> {
     }
 
     /// [`DisplayList::push`] of any record.
+    #[inline(never)]
     fn push_general(&mut self, e: &Entry, pts: Points<'_>) -> bool {
         let (n, kind) = match pts {
             Points::Polygon(_) => (0, Kind::Polygon),
