@@ -196,6 +196,17 @@ impl TriangleBand {
 /// A triangle beyond it is set up again in the next band.
 pub(crate) const MAX_KEPT: usize = 128;
 
+/// Most kept states a frame counts in the memory it used
+/// (`RenderStats::memory_used`, so the default memory of `fpt mcu-bench`
+/// and `fpt bench-memory`'s "words a frame uses"): the ring is a cache in
+/// spare words, and states past this many are speed where the memory
+/// allows, not a need. Measured (session 15): counting every state of
+/// socket's 16-row bands (M4F) made the default memory 4,843 words, 32,824 B of RAM (56 B over 32 KiB), for the same
+/// instructions as 4,567 words (2,119,824.5 against 2,119,821.5), which is
+/// what 64 counts. 64 was [`MAX_KEPT`] before session 14, so the need is
+/// the one the README's tables were measured with.
+pub(crate) const NEED_KEPT: usize = 64;
+
 /// Entries a ring over `words` holds.
 #[inline(always)]
 fn capacity(words: &[u32]) -> usize {

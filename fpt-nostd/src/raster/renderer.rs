@@ -180,7 +180,9 @@ pub struct RenderStats {
     /// [`crate::render::memory_words`]); 0 when no tree was drawn.
     pub walks: u32,
     /// Words of the caller's working memory the frame used (vertex cache
-    /// slots plus the display list's peak).
+    /// slots plus the display list's peak, with its band index and at most
+    /// 64 kept band states: more are kept when the memory allows, as speed,
+    /// not need).
     pub memory_used: u32,
 }
 

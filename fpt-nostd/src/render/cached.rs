@@ -59,7 +59,7 @@ use super::{face_of, walk_effects, BandBuffer, FaceIds, Frame, RenderError, Walk
 use crate::effects::{for_frame, Compiled, Effects, ForPipeline};
 use crate::format::VertexFormat;
 use crate::order::{memo_words, Class, Order, OrderError, MEMO};
-use crate::raster::carry::{Ring, Start, CARRY, WORDS as CARRY_WORDS};
+use crate::raster::carry::{Ring, Start, CARRY, NEED_KEPT, WORDS as CARRY_WORDS};
 use crate::raster::clip::ClipVert;
 use crate::raster::int_path::q16_camera;
 use crate::raster::list::{DisplayList, Entry, Kind, Points};
@@ -1390,7 +1390,9 @@ where
     let mut stats = stats.unwrap_or_default();
     stats.spans = spans;
     stats.walks = walks;
-    list.note_spare_used(ring.most() * CARRY_WORDS);
+    // The ring's states beyond `NEED_KEPT` are counted as unused: the
+    // ring takes only the words left, so fewer cost speed, not a picture.
+    list.note_spare_used(ring.most().min(NEED_KEPT) * CARRY_WORDS);
     stats.memory_used = (memo_n + cache.words() + list.peak().div_ceil(2)) as u32;
     Ok(stats)
 }
