@@ -27,7 +27,9 @@
 //!   where expected (another band, another record) is dropped, never
 //!   drawn.
 //! * Four-sided polygons, in the same ring (a flag in the entry): see
-//!   [`quad`].
+//!   [`quad`]. Polygons of five or more corners are set up by their own
+//!   path and, once at most three corners are left ahead, kept as
+//!   four-sided polygons' entries: see [`poly`].
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
@@ -37,6 +39,7 @@ use super::scan::{pair_rows, Pair, SpanSink};
 use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
 
+mod poly;
 mod quad;
 use quad::Quad;
 

@@ -900,6 +900,17 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
                 }
             }
         }
+        // Polygons of five or more corners the band cuts: set up by the
+        // chains out of line, and kept (as quads) once at most three
+        // corners are left ahead (`raster::carry::poly`).
+        if let (true, Some(band), true) = (CARRY_POLYS, &carry, n > 4 && keep && e.end > y1) {
+            if let Some(pts) = scratch.screen().get(..n) {
+                if let Some(s) = band.poly(pts, (ring, words), (here, e.rgb, e.id), sink) {
+                    spans += s;
+                    continue;
+                }
+            }
+        }
         let ready = Ready {
             n,
             // The fill computes the box if it needs it (not for a
@@ -923,6 +934,10 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
 /// Whether the replay carries the four-sided pieces of split triangles
 /// across band edges as it does triangles (with [`CARRY`]).
 const CARRY_QUADS: bool = CARRY;
+
+/// Whether the replay sets up the polygons of five or more corners a band
+/// cuts by their own path and carries them (with [`CARRY`]).
+const CARRY_POLYS: bool = CARRY;
 
 /// Band `y0` (of `rows` rows in a `size` frame) as a framebuffer over
 /// `buf`, cleared to `background`.

@@ -1,0 +1,395 @@
+//! Polygons of five to [`MAX_SIDES`] corners carried across band edges
+//! (see [`super`]; bench_city's polygons average 5.3 corners). Such a
+//! polygon cut by a band's end is set up once by the chains (as the
+//! general fill's monotone path does), and once no more than three of
+//! its corners are left ahead it is kept in the ring **as a four-sided
+//! polygon's entry**: two edge steppers and the corners ahead are all a
+//! resumed chain fill needs, whatever the polygon had above. So the next
+//! band resumes it by the quads' own path ([`super::quad`],
+//! `Ring::pop_quad`), unchanged.
+//!
+//! Why a path of its own: generalising the quads' state to nine corners
+//! (session 15, f55b955) took the general fill's set-ups off these
+//! polygons but slowed every quad (the longer arc's slice and seek loops)
+//! and the replay (its pre-check inline): a loss on bench_city. Here the
+//! quads' code is untouched and this set-up is out of line, called only
+//! for a polygon of five or more corners that goes on below the band.
+//!
+//! # Contract
+//!
+//! [`TriangleBand::start_poly`] then [`TriangleBand::run_poly`] emit
+//! exactly the spans of `fill_polygon_in` for the same polygon and band
+//! (or decline, [`PolyStart::Outside`], before emitting anything, where
+//! that one takes its general path). The state [`TriangleBand::poly`]
+//! keeps (only with at most three corners ahead, else nothing: the next
+//! band sets the polygon up again, the same picture), resumed in the next
+//! band by `Ring::pop_quad` and `TriangleBand::run_quad`, emits exactly
+//! what `fill_polygon_in` would there.
+
+use embedded_graphics::pixelcolor::Rgb888;
+
+use super::super::chain::{is_y_monotone, TriangleBand};
+use super::super::edge::{Dda32, SMALL};
+use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
+use super::super::transform::ScreenPt;
+use super::quad::Quad;
+use super::Ring;
+
+/// Most corners of a polygon this path sets up; one with more takes the
+/// general fill.
+pub(crate) const MAX_SIDES: usize = 8;
+
+/// The arc's room: the corners from the top, the top again after them.
+const ARC: usize = MAX_SIDES + 1;
+
+/// A polygon's fill state on some row, as [`Quad`]'s with a longer arc.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Poly {
+    /// The chain walking the vertex list forward, and its edge's end row.
+    l: Dda32,
+    ly1: i32,
+    /// The chain walking it backward, and its edge's end row.
+    r: Dda32,
+    ry1: i32,
+    /// The vertices from the top, in list order, the top again after
+    /// them: the forward chain's edge ends at `arc[lo]`, the backward
+    /// one's at `arc[hi]`; `arc[lo..=hi]` are the vertices still ahead.
+    arc: [ScreenPt; ARC],
+    lo: usize,
+    hi: usize,
+    /// One past the polygon's last row.
+    end: i32,
+}
+
+/// What [`TriangleBand::start_poly`] found.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum PolyStart {
+    /// Not for the chains (more than [`MAX_SIDES`] corners, a corner
+    /// outside ±`SMALL`, or not y-monotone): the general fill's.
+    Outside,
+    /// Nothing to fill in this band.
+    Empty,
+    /// The state to run from row `.1` (its chains not yet sought).
+    Rows(Poly, i32),
+}
+
+/// The chain of `arc` from vertex `*at` one vertex on (`fwd`: forward)
+/// to the edge active on row `y`, as the quads' seek (and `Chain::seek`
+/// in [`crate::raster::chain`], without clamping the end row to a band);
+/// false where that one gives up.
+#[inline(always)]
+fn seek(
+    arc: &[ScreenPt; ARC],
+    (at, fwd): (&mut usize, bool),
+    (dda, y1): (&mut Dda32, &mut i32),
+    sub: u32,
+    y: i32,
+) -> bool {
+    for _ in 1..ARC {
+        let next = if fwd { *at + 1 } else { at.wrapping_sub(1) };
+        let (Some(&from), Some(&to)) = (arc.get(*at), arc.get(next)) else {
+            return false;
+        };
+        *at = next;
+        if to.y == from.y {
+            continue;
+        }
+        if to.y < from.y {
+            return false;
+        }
+        let (first, end) = Dda32::rows(from, to, sub);
+        if end <= y {
+            continue;
+        }
+        if first > y {
+            return false;
+        }
+        *y1 = end;
+        *dda = Dda32::start(from, to, sub, y);
+        return true;
+    }
+    false
+}
+
+impl Poly {
+    /// The state as a four-sided polygon's, for the ring: the corners
+    /// ahead at `arc[1..=count]`; `None` with more than three ahead (or
+    /// before the chains' first seek).
+    fn as_quad(&self) -> Option<Quad> {
+        let count = self.hi.wrapping_sub(self.lo).wrapping_add(1);
+        if self.lo == 0 || count > 3 {
+            return None;
+        }
+        let at = |k: usize| self.arc.get(self.lo + k).copied().unwrap_or_default();
+        Some(Quad {
+            l: self.l,
+            ly1: self.ly1,
+            r: self.r,
+            ry1: self.ry1,
+            arc: [
+                ScreenPt::default(),
+                at(0),
+                at(1),
+                at(2),
+                ScreenPt::default(),
+            ],
+            lo: 1,
+            hi: count,
+            end: self.end,
+        })
+    }
+}
+
+impl TriangleBand {
+    /// Sets up polygon `pts` (five to [`MAX_SIDES`] corners; any count
+    /// from three works) as `fill_polygon_in` does (its box rejects, then
+    /// [`crate::raster::chain::fill_monotone`]'s set-up), to run from the
+    /// first row of this band it touches.
+    #[inline(always)]
+    pub(crate) fn start_poly(&self, pts: &[ScreenPt]) -> PolyStart {
+        let n = pts.len();
+        if !(3..=MAX_SIDES).contains(&n) {
+            return PolyStart::Outside;
+        }
+        let bbox = Bbox::of(pts);
+        let Bbox {
+            lo, hi, top, bot, ..
+        } = bbox;
+        if !(lo > -SMALL && hi < SMALL && top > -SMALL && bot < SMALL) {
+            return PolyStart::Outside;
+        }
+        let (sub, b) = (self.sub, &self.b);
+        let col = |x: i32| (2 * x - (1 << sub)) >> (sub + 1);
+        if col(hi) < b.x0 || col(lo) >= b.x1 {
+            return PolyStart::Empty;
+        }
+        let (first, end) = Dda32::rows(ScreenPt { x: 0, y: top }, ScreenPt { x: 0, y: bot }, sub);
+        if end <= b.y0 || first >= b.y1 || top == bot {
+            return PolyStart::Empty;
+        }
+        let t = bbox.top_at;
+        if !is_y_monotone(pts, t) {
+            return PolyStart::Outside;
+        }
+        let y = first.max(b.y0);
+        if y >= end.min(b.y1) {
+            return PolyStart::Empty;
+        }
+        // The corners from the top, the top again after them (two
+        // copies, not an index modulo `n`: a division per corner).
+        let mut arc = [ScreenPt::default(); ARC];
+        let (head, tail) = pts.split_at(t.min(n));
+        for (dst, &p) in arc
+            .iter_mut()
+            .zip(tail.iter().chain(head).chain(tail.first()))
+        {
+            *dst = p;
+        }
+        let poly = Poly {
+            l: Dda32::default(),
+            ly1: y,
+            r: Dda32::default(),
+            ry1: y,
+            arc,
+            lo: 0,
+            hi: n,
+            end,
+        };
+        PolyStart::Rows(poly, y)
+    }
+
+    /// Fills `q`'s rows from `y` (its current row) to the band's end or
+    /// the polygon's, leaving it stepped to that row; returns the spans.
+    #[inline(always)]
+    pub(crate) fn run_poly<K: SpanSink>(
+        &self,
+        q: &mut Poly,
+        mut y: i32,
+        color: K::Color,
+        sink: &mut K,
+    ) -> usize {
+        let stop = q.end.min(self.b.y1);
+        let mut spans = 0;
+        let (mut l, mut ly1, mut r, mut ry1) = (q.l, q.ly1, q.r, q.ry1);
+        let (mut lo, mut hi) = (q.lo, q.hi);
+        while y < stop {
+            let ok = (ly1 > y || seek(&q.arc, (&mut lo, true), (&mut l, &mut ly1), self.sub, y))
+                && (ry1 > y || seek(&q.arc, (&mut hi, false), (&mut r, &mut ry1), self.sub, y));
+            if !ok {
+                // Where the chain fill gives up: nothing more, here or after.
+                q.end = y;
+                break;
+            }
+            let run = ly1.min(ry1).min(stop);
+            spans += pair_rows(&mut l, &mut r, Pair::Span, &self.b, y, run, color, sink);
+            y = run;
+        }
+        (q.l, q.ly1, q.r, q.ry1, q.lo, q.hi) = (l, ly1, r, ry1, lo, hi);
+        spans
+    }
+
+    /// Sets up and fills polygon `pts` (record `here`, id `id`, cut by
+    /// this band's end) and keeps it for the next band when at most three
+    /// corners are left ahead (as a quad's entry); `None`, nothing
+    /// emitted, when it is the general fill's
+    /// ([`TriangleBand::start_poly`]). Out of line: the replay's loop
+    /// keeps its registers for the triangles and quads.
+    #[inline(never)]
+    pub(crate) fn poly<K: SpanSink>(
+        &self,
+        pts: &[ScreenPt],
+        (ring, words): (&mut Ring, &mut [u32]),
+        (here, rgb, id): (usize, Rgb888, u32),
+        sink: &mut K,
+    ) -> Option<u64> {
+        match self.start_poly(pts) {
+            PolyStart::Outside => None,
+            PolyStart::Empty => Some(0),
+            PolyStart::Rows(mut q, y) => {
+                let color = sink.color(&Paint { rgb, id });
+                let spans = self.run_poly(&mut q, y, color, sink) as u64;
+                if q.end > self.b.y1 {
+                    if let Some(quad) = q.as_quad() {
+                        ring.push_quad(words, &quad, (here, self.end_row()), rgb);
+                    }
+                }
+                Some(spans)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::super::super::chain::tests::Rec;
+    use super::super::super::edge::{Edge, SMALL};
+    use super::super::super::scan::{fill_polygon_in, FillRule, SpanBounds};
+    use super::super::WORDS;
+    use super::*;
+    use std::vec::Vec;
+
+    fn pt(x: i32, y: i32) -> ScreenPt {
+        ScreenPt { x, y }
+    }
+
+    /// Random polygons of five to eight corners (convex ones, as most of
+    /// bench_city's are, and any others) drawn in bands of random
+    /// heights: set up in a band ([`TriangleBand::poly`]'s path), or
+    /// resumed by the quads' path from the entry a band before kept
+    /// (after a trip through the ring's words), they emit in every band
+    /// exactly the spans of `fill_polygon_in` there, the general fill the
+    /// replay takes without the carry; and a polygon goes on in the ring
+    /// exactly while it has rows left and at most three corners ahead.
+    #[test]
+    fn kept_polygons_equal_the_polygon_fill_in_every_band() {
+        let mut rng = crate::raster::tests::Rng(7373);
+        let mut words = [0u32; 2 * WORDS];
+        let (mut kept, mut fresh_runs, mut general) = (0, 0, 0);
+        for k in 0..4000 {
+            let sub = [0u32, 2, 4, 8][k % 4];
+            let m = if k % 5 == 0 { SMALL - 1 } else { 40 << sub };
+            let mut rnd = |m: i32| rng.range(-m, m);
+            let n = 5 + k % 4;
+            let mut poly: Vec<ScreenPt> = (0..n).map(|_| pt(rnd(m), rnd(m))).collect();
+            if k % 3 != 0 {
+                // Convex-ish: the corners in order around their centre
+                // (some with two corners on one row, or one column).
+                if k % 7 == 1 {
+                    poly[1].y = poly[0].y;
+                    poly[3].x = poly[2].x;
+                }
+                let cx = poly.iter().map(|p| p.x).sum::<i32>() / n as i32;
+                let cy = poly.iter().map(|p| p.y).sum::<i32>() / n as i32;
+                poly.sort_by(|a, b| {
+                    let aa = f64::from(a.y - cy).atan2(f64::from(a.x - cx));
+                    let ab = f64::from(b.y - cy).atan2(f64::from(b.x - cx));
+                    aa.total_cmp(&ab)
+                });
+            }
+            let (x0, x1) = (rnd(30), 30 + rnd(30).abs());
+            let rows = 1 + rnd(12).abs();
+            let mut ring = Ring::new();
+            let rgb = Rgb888::new(k as u8, 2, 3);
+            let mut y0 = -(m >> sub) - 1;
+            while y0 <= (m >> sub) + 1 {
+                let b = SpanBounds {
+                    x0,
+                    y0,
+                    x1,
+                    y1: y0 + rows,
+                };
+                let band = TriangleBand { sub, b };
+                let mut want = Rec(Vec::new(), b);
+                let (mut edges, mut active) = ([Edge::ZERO; 8], [0u16; 8]);
+                let rule = FillRule::NonZero;
+                let filled = fill_polygon_in(
+                    &poly,
+                    None,
+                    sub,
+                    rule,
+                    &b,
+                    &mut edges,
+                    &mut active,
+                    (),
+                    &mut want,
+                );
+                let Ok(spans) = filled else { panic!("fill") };
+                ring.begin(&words);
+                let mut got = Rec(Vec::new(), b);
+                if let Some((at, row)) = ring.peek(&words) {
+                    assert_eq!((at, row), (7, y0));
+                    assert!(ring.next_is_quad(&words));
+                    let Some((mut q, c)) = ring.pop_quad(&words, &band) else {
+                        panic!("a kept polygon")
+                    };
+                    assert_eq!(c, rgb);
+                    assert_eq!(band.run_quad(&mut q, band.first_row(), (), &mut got), spans);
+                    kept += 1;
+                    if band.continues_quad(&q) {
+                        assert!(ring.push_quad(&mut words, &q, (7, band.end_row()), rgb));
+                    }
+                } else {
+                    let mut state = None;
+                    match band.start_poly(&poly) {
+                        PolyStart::Outside => {
+                            general += 1;
+                            let (mut edges, mut active) = ([Edge::ZERO; 8], [0u16; 8]);
+                            let n = fill_polygon_in(
+                                &poly,
+                                None,
+                                sub,
+                                rule,
+                                &b,
+                                &mut edges,
+                                &mut active,
+                                (),
+                                &mut got,
+                            );
+                            assert!(n.is_ok());
+                        }
+                        PolyStart::Empty => assert_eq!(spans, 0),
+                        PolyStart::Rows(mut q, y) => {
+                            fresh_runs += 1;
+                            assert_eq!(band.run_poly(&mut q, y, (), &mut got), spans);
+                            state = Some(q);
+                        }
+                    }
+                    if let Some(q) = state.filter(|q| q.end > band.end_row()) {
+                        let pushed = q.as_quad().is_some_and(|quad| {
+                            ring.push_quad(&mut words, &quad, (7, band.end_row()), rgb)
+                        });
+                        let ahead = q.hi + 1 - q.lo;
+                        assert_eq!(pushed, ahead <= 3, "{poly:?} {q:?}");
+                    }
+                }
+                assert_eq!(got.0, want.0, "{poly:?} {sub} {b:?}");
+                y0 += rows;
+            }
+        }
+        assert!(
+            kept > 1000 && fresh_runs > 1000 && general > 100,
+            "{kept} {fresh_runs} {general}"
+        );
+    }
+}
