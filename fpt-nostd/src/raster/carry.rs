@@ -196,8 +196,11 @@ impl TriangleBand {
 /// 7.5 KiB at most. Measured against 64 (session 14): bench_city's band
 /// frames 0.03–1.35 % faster, socket's 16-row bands 2.0 k a frame faster
 /// with the same memory (4,567 words) and RAM; 96 gave less, 256 no more.
+/// Session 16, with the longer polygons carried too (as quads, [`poly`]):
+/// 192 against 128 took bench_city's band frames 0.0–41.7 k instructions
+/// lower (no view slower); 256 gave one view 48.5 k but another +1.0 k.
 /// A triangle beyond it is set up again in the next band.
-pub(crate) const MAX_KEPT: usize = 128;
+pub(crate) const MAX_KEPT: usize = 192;
 
 /// Most kept states a frame counts in the memory it used
 /// (`RenderStats::memory_used`, so the default memory of `fpt mcu-bench`
