@@ -80,27 +80,27 @@ impl Chain {
 /// fit either phase). From a lowest vertex this is exactly "two changes of
 /// vertical direction, or none": one pass of one comparison a vertex.
 pub(super) fn is_y_monotone(pts: &[ScreenPt], top: usize) -> bool {
-    let n = pts.len();
-    let mut prev = match pts.get(top) {
-        Some(p) => p.y,
-        None => return false,
+    let (Some(before), Some(after)) = (pts.get(..top), pts.get(top..)) else {
+        return false;
     };
+    let Some((first, after)) = after.split_first() else {
+        return false;
+    };
+    let mut prev = first.y;
     let mut rising = false; // false: still going down the screen
-    let mut i = top;
-    for _ in 0..n {
-        i += 1;
-        if i == n {
-            i = 0;
-        }
-        let y = pts[i].y;
+    let mut fits = |y: i32| {
         if y < prev {
             rising = true;
         } else if y > prev && rising {
             return false;
         }
         prev = y;
-    }
-    true
+        true
+    };
+    // The cyclic order from `top` as two plain slices (no index wrap or
+    // bounds check a vertex); the step back to `top` itself, a lowest
+    // vertex, never fails and is left out.
+    after.iter().all(|p| fits(p.y)) && before.iter().all(|p| fits(p.y))
 }
 
 /// Fills the y-monotone polygon `pts` within `b` (already intersected with
