@@ -17,22 +17,22 @@
 //!
 //! # Contract
 //!
-//! [`TriangleBand::start_poly`] then [`TriangleBand::run_poly`] emit
+//! [`TriangleBand::start_poly`] then [`TriangleBand::run_chains`] emit
 //! exactly the spans of `fill_polygon_in` for the same polygon and band
 //! (or decline, [`PolyStart::Outside`], before emitting anything, where
 //! that one takes its general path). The state [`TriangleBand::poly`]
 //! keeps (only with at most three corners ahead, else nothing: the next
 //! band sets the polygon up again, the same picture), resumed in the next
-//! band by `Ring::pop_quad` and `TriangleBand::run_quad`, emits exactly
+//! band by `Ring::pop_quad` and `TriangleBand::run_chains`, emits exactly
 //! what `fill_polygon_in` would there.
 
 use embedded_graphics::pixelcolor::Rgb888;
 
 use super::super::chain::{is_y_monotone, TriangleBand};
 use super::super::edge::{Dda32, SMALL};
-use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
+use super::super::scan::{Bbox, Paint, SpanSink};
 use super::super::transform::ScreenPt;
-use super::quad::Quad;
+use super::quad::{Chains, Quad};
 use super::Ring;
 
 /// Most corners of a polygon this path sets up; one with more takes the
@@ -42,24 +42,8 @@ pub(crate) const MAX_SIDES: usize = 8;
 /// The arc's room: the corners from the top, the top again after them.
 const ARC: usize = MAX_SIDES + 1;
 
-/// A polygon's fill state on some row, as [`Quad`]'s with a longer arc.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Poly {
-    /// The chain walking the vertex list forward, and its edge's end row.
-    l: Dda32,
-    ly1: i32,
-    /// The chain walking it backward, and its edge's end row.
-    r: Dda32,
-    ry1: i32,
-    /// The vertices from the top, in list order, the top again after
-    /// them: the forward chain's edge ends at `arc[lo]`, the backward
-    /// one's at `arc[hi]`; `arc[lo..=hi]` are the vertices still ahead.
-    arc: [ScreenPt; ARC],
-    lo: usize,
-    hi: usize,
-    /// One past the polygon's last row.
-    end: i32,
-}
+/// A polygon's fill state on some row: [`Quad`]'s with a longer arc.
+pub(crate) type Poly = Chains<ARC>;
 
 /// What [`TriangleBand::start_poly`] found.
 #[derive(Clone, Copy, Debug)]
@@ -71,44 +55,6 @@ pub(crate) enum PolyStart {
     Empty,
     /// The state to run from row `.1` (its chains not yet sought).
     Rows(Poly, i32),
-}
-
-/// The chain of `arc` from vertex `*at` one vertex on (`fwd`: forward)
-/// to the edge active on row `y`, as the quads' seek (and `Chain::seek`
-/// in [`crate::raster::chain`], without clamping the end row to a band);
-/// false where that one gives up.
-#[inline(always)]
-fn seek(
-    arc: &[ScreenPt; ARC],
-    (at, fwd): (&mut usize, bool),
-    (dda, y1): (&mut Dda32, &mut i32),
-    sub: u32,
-    y: i32,
-) -> bool {
-    for _ in 1..ARC {
-        let next = if fwd { *at + 1 } else { at.wrapping_sub(1) };
-        let (Some(&from), Some(&to)) = (arc.get(*at), arc.get(next)) else {
-            return false;
-        };
-        *at = next;
-        if to.y == from.y {
-            continue;
-        }
-        if to.y < from.y {
-            return false;
-        }
-        let (first, end) = Dda32::rows(from, to, sub);
-        if end <= y {
-            continue;
-        }
-        if first > y {
-            return false;
-        }
-        *y1 = end;
-        *dda = Dda32::start(from, to, sub, y);
-        return true;
-    }
-    false
 }
 
 impl Poly {
@@ -198,36 +144,6 @@ impl TriangleBand {
         PolyStart::Rows(poly, y)
     }
 
-    /// Fills `q`'s rows from `y` (its current row) to the band's end or
-    /// the polygon's, leaving it stepped to that row; returns the spans.
-    #[inline(always)]
-    pub(crate) fn run_poly<K: SpanSink>(
-        &self,
-        q: &mut Poly,
-        mut y: i32,
-        color: K::Color,
-        sink: &mut K,
-    ) -> usize {
-        let stop = q.end.min(self.b.y1);
-        let mut spans = 0;
-        let (mut l, mut ly1, mut r, mut ry1) = (q.l, q.ly1, q.r, q.ry1);
-        let (mut lo, mut hi) = (q.lo, q.hi);
-        while y < stop {
-            let ok = (ly1 > y || seek(&q.arc, (&mut lo, true), (&mut l, &mut ly1), self.sub, y))
-                && (ry1 > y || seek(&q.arc, (&mut hi, false), (&mut r, &mut ry1), self.sub, y));
-            if !ok {
-                // Where the chain fill gives up: nothing more, here or after.
-                q.end = y;
-                break;
-            }
-            let run = ly1.min(ry1).min(stop);
-            spans += pair_rows(&mut l, &mut r, Pair::Span, &self.b, y, run, color, sink);
-            y = run;
-        }
-        (q.l, q.ly1, q.r, q.ry1, q.lo, q.hi) = (l, ly1, r, ry1, lo, hi);
-        spans
-    }
-
     /// Sets up and fills polygon `pts` (record `here`, id `id`, cut by
     /// this band's end) and keeps it for the next band when at most three
     /// corners are left ahead (as a quad's entry); `None`, nothing
@@ -247,7 +163,7 @@ impl TriangleBand {
             PolyStart::Empty => Some(0),
             PolyStart::Rows(mut q, y) => {
                 let color = sink.color(&Paint { rgb, id });
-                let spans = self.run_poly(&mut q, y, color, sink) as u64;
+                let spans = self.run_chains(&mut q, y, color, sink) as u64;
                 if q.end > self.b.y1 {
                     if let Some(quad) = q.as_quad() {
                         ring.push_quad(words, &quad, (here, self.end_row()), rgb);
@@ -344,7 +260,10 @@ mod tests {
                         panic!("a kept polygon")
                     };
                     assert_eq!(c, rgb);
-                    assert_eq!(band.run_quad(&mut q, band.first_row(), (), &mut got), spans);
+                    assert_eq!(
+                        band.run_chains(&mut q, band.first_row(), (), &mut got),
+                        spans
+                    );
                     kept += 1;
                     if band.continues_quad(&q) {
                         assert!(ring.push_quad(&mut words, &q, (7, band.end_row()), rgb));
@@ -371,7 +290,7 @@ mod tests {
                         PolyStart::Empty => assert_eq!(spans, 0),
                         PolyStart::Rows(mut q, y) => {
                             fresh_runs += 1;
-                            assert_eq!(band.run_poly(&mut q, y, (), &mut got), spans);
+                            assert_eq!(band.run_chains(&mut q, y, (), &mut got), spans);
                             state = Some(q);
                         }
                     }

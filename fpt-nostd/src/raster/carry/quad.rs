@@ -6,10 +6,10 @@
 //!
 //! # Contract
 //!
-//! [`TriangleBand::start_quad`] then [`TriangleBand::run_quad`] emit
+//! [`TriangleBand::start_quad`] then [`TriangleBand::run_chains`] emit
 //! exactly the spans of `fill_polygon_in` for the same polygon and band
 //! (or decline, [`QuadStart::Outside`], before emitting anything, where
-//! that one takes its general path); [`TriangleBand::run_quad`] of the
+//! that one takes its general path); [`TriangleBand::run_chains`] of the
 //! state it left, resumed in the next band (through the ring's words,
 //! [`Ring::pop_quad`]), emits exactly what `fill_polygon_in` would there.
 
@@ -21,11 +21,13 @@ use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
 use super::super::transform::ScreenPt;
 use super::Ring;
 
-/// A four-sided polygon's fill state on some row (the pieces of split
-/// triangles; see [`crate::raster::chain::fill_monotone`] for the two chains):
-/// each chain's current edge, and the vertices still ahead of them.
+/// A polygon's fill state on some row, for an arc of `N` points (the
+/// four-sided pieces of split triangles here, `N` = 5; the longer
+/// polygons of [`super::poly`] share it with a longer arc): each chain's
+/// current edge, and the vertices still ahead of them (see
+/// [`crate::raster::chain::fill_monotone`] for the two chains).
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Quad {
+pub(crate) struct Chains<const N: usize> {
     /// The chain walking the vertex list forward, and its edge's end row.
     pub(super) l: Dda32,
     pub(super) ly1: i32,
@@ -35,12 +37,16 @@ pub(crate) struct Quad {
     /// The vertices from the top, in list order, the top again at the
     /// end: the forward chain's edge ends at `arc[lo]`, the backward
     /// one's at `arc[hi]`; `arc[lo..=hi]` are the vertices still ahead.
-    pub(super) arc: [ScreenPt; 5],
+    pub(super) arc: [ScreenPt; N],
     pub(super) lo: usize,
     pub(super) hi: usize,
     /// One past the polygon's last row.
     pub(crate) end: i32,
 }
+
+/// A four-sided polygon's fill state: its four corners from the top, the
+/// top again after them.
+pub(crate) type Quad = Chains<5>;
 
 /// What [`TriangleBand::start_quad`] found.
 #[derive(Clone, Copy, Debug)]
@@ -59,14 +65,14 @@ pub(crate) enum QuadStart {
 /// [`crate::raster::chain`] (without clamping the end row to a band: the state
 /// goes on in the next band); false where that one gives up.
 #[inline(always)]
-fn seek(
-    arc: &[ScreenPt; 5],
+pub(super) fn seek<const N: usize>(
+    arc: &[ScreenPt; N],
     (at, fwd): (&mut usize, bool),
     (dda, y1): (&mut Dda32, &mut i32),
     sub: u32,
     y: i32,
 ) -> bool {
-    for _ in 0..4 {
+    for _ in 0..N - 1 {
         let next = if fwd { *at + 1 } else { at.wrapping_sub(1) };
         let (Some(&from), Some(&to)) = (arc.get(*at), arc.get(next)) else {
             return false;
@@ -141,9 +147,9 @@ impl TriangleBand {
     /// As for a triangle, it goes on in the next band when `q.end` is past
     /// this band's end ([`TriangleBand::continues_quad`]).
     #[inline(always)]
-    pub(crate) fn run_quad<K: SpanSink>(
+    pub(crate) fn run_chains<K: SpanSink, const N: usize>(
         &self,
-        q: &mut Quad,
+        q: &mut Chains<N>,
         mut y: i32,
         color: K::Color,
         sink: &mut K,
@@ -186,7 +192,7 @@ impl TriangleBand {
             return 0;
         };
         let color = sink.color(&Paint { rgb, id: 0 });
-        let spans = self.run_quad(&mut q, self.first_row(), color, sink) as u64;
+        let spans = self.run_chains(&mut q, self.first_row(), color, sink) as u64;
         if keep && self.continues_quad(&q) {
             ring.push_quad(words, &q, (here, self.end_row()), rgb);
         }
@@ -209,7 +215,7 @@ impl TriangleBand {
             QuadStart::Empty => Some(0),
             QuadStart::Rows(mut q, y) => {
                 let color = sink.color(&Paint { rgb, id });
-                let spans = self.run_quad(&mut q, y, color, sink) as u64;
+                let spans = self.run_chains(&mut q, y, color, sink) as u64;
                 if self.continues_quad(&q) {
                     ring.push_quad(words, &q, (here, self.end_row()), rgb);
                 }
@@ -334,7 +340,7 @@ mod tests {
                         panic!("a quad")
                     };
                     assert_eq!(c, rgb);
-                    assert_eq!(band.run_quad(&mut q, band.first_row(), (), &mut got), n);
+                    assert_eq!(band.run_chains(&mut q, band.first_row(), (), &mut got), n);
                     kept += 1;
                     state = Some(q);
                 } else {
@@ -358,7 +364,7 @@ mod tests {
                         QuadStart::Empty => assert_eq!(n, 0),
                         QuadStart::Rows(mut q, y) => {
                             fresh_runs += 1;
-                            assert_eq!(band.run_quad(&mut q, y, (), &mut got), n);
+                            assert_eq!(band.run_chains(&mut q, y, (), &mut got), n);
                             state = Some(q);
                         }
                     }
