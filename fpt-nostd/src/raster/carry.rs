@@ -41,9 +41,7 @@ use super::transform::ScreenPt;
 
 mod poly;
 mod quad;
-mod side;
 use quad::Quad;
-use side::Side;
 
 /// Words (`u32`) a kept triangle takes in the ring.
 pub(crate) const WORDS: usize = 15;
@@ -234,9 +232,6 @@ pub(crate) struct Ring {
     incoming: usize,
     /// The most entries held at once since [`Ring::clear`]'s caller made it.
     most: usize,
-    /// The polygons kept with four or more corners ahead ([`side`]), in
-    /// the words past the ring's most.
-    side: Side,
 }
 
 impl Ring {
@@ -247,7 +242,6 @@ impl Ring {
             len: 0,
             incoming: 0,
             most: 0,
-            side: Side::new(),
         }
     }
 
@@ -256,7 +250,6 @@ impl Ring {
         self.head = 0;
         self.len = 0;
         self.incoming = 0;
-        self.side = Side::new();
     }
 
     /// The most entries held at once (the words used: `WORDS` each).
@@ -267,7 +260,6 @@ impl Ring {
     /// Starts a band: what the band before left unmet is dropped, and
     /// what it kept becomes this band's incoming.
     pub(crate) fn begin(&mut self, words: &[u32]) {
-        self.side.begin(words);
         let cap = capacity(words);
         if cap == 0 {
             self.clear();

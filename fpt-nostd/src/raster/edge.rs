@@ -359,15 +359,6 @@ pub(crate) struct Dda32 {
 }
 
 impl Dda32 {
-    /// A state of no edge (all zero), as `Default`'s, for constants.
-    pub(crate) const ZERO: Dda32 = Dda32 {
-        c: 0,
-        g: 0,
-        qs: 0,
-        rs: 0,
-        d: 0,
-    };
-
     /// The stepping state of the edge from `t` down to `b` (`t.y < b.y`)
     /// on row `y`, for endpoints within ±[`SMALL`], `sub ≤ 8` and `y` one
     /// of the edge's active rows (so the ranges of [`Edge::new_small`]

@@ -903,10 +903,9 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
         // Polygons of five or more corners the band cuts: set up by the
         // chains out of line, and kept (as quads) once at most three
         // corners are left ahead (`raster::carry::poly`).
-        if let (true, Some(band), true) = (CARRY_POLYS, &carry, n > 4) {
+        if let (true, Some(band), true) = (CARRY_POLYS, &carry, n > 4 && keep && e.end > y1) {
             if let Some(pts) = scratch.screen().get(..n) {
-                let rows = (e.first, e.end, keep);
-                if let Some(s) = band.poly(pts, (ring, words), (here, e.rgb, e.id), rows, sink) {
+                if let Some(s) = band.poly(pts, (ring, words), (here, e.rgb, e.id), sink) {
                     spans += s;
                     continue;
                 }

@@ -26,19 +26,21 @@
 //! band by `Ring::pop_quad` and `TriangleBand::run_chains`, emits exactly
 //! what `fill_polygon_in` would there.
 
+use embedded_graphics::pixelcolor::Rgb888;
+
 use super::super::chain::{is_y_monotone, TriangleBand};
 use super::super::edge::{Dda32, SMALL};
-use super::super::scan::Bbox;
+use super::super::scan::{Bbox, Paint, SpanSink};
 use super::super::transform::ScreenPt;
 use super::quad::{Chains, Quad};
-use super::side::arc_of;
+use super::Ring;
 
 /// Most corners of a polygon this path sets up; one with more takes the
 /// general fill.
 pub(crate) const MAX_SIDES: usize = 8;
 
 /// The arc's room: the corners from the top, the top again after them.
-pub(super) const ARC: usize = MAX_SIDES + 1;
+const ARC: usize = MAX_SIDES + 1;
 
 /// A polygon's fill state on some row: [`Quad`]'s with a longer arc.
 pub(crate) type Poly = Chains<ARC>;
@@ -51,28 +53,15 @@ pub(crate) enum PolyStart {
     Outside,
     /// Nothing to fill in this band.
     Empty,
-    /// The state to run from row `.1` (its chains not yet sought), and
-    /// the polygon's top corner (the arc's first).
-    Rows(Poly, i32, usize),
+    /// The state to run from row `.1` (its chains not yet sought).
+    Rows(Poly, i32),
 }
 
 impl Poly {
-    /// A state before any set-up (no rows).
-    pub(super) const EMPTY: Poly = Poly {
-        l: Dda32::ZERO,
-        ly1: 0,
-        r: Dda32::ZERO,
-        ry1: 0,
-        arc: [ScreenPt { x: 0, y: 0 }; ARC],
-        lo: 0,
-        hi: 0,
-        end: 0,
-    };
-
     /// The state as a four-sided polygon's, for the ring: the corners
     /// ahead at `arc[1..=count]`; `None` with more than three ahead (or
     /// before the chains' first seek).
-    pub(super) fn as_quad(&self) -> Option<Quad> {
+    fn as_quad(&self) -> Option<Quad> {
         let count = self.hi.wrapping_sub(self.lo).wrapping_add(1);
         if self.lo == 0 || count > 3 {
             return None;
@@ -132,7 +121,16 @@ impl TriangleBand {
         if y >= end.min(b.y1) {
             return PolyStart::Empty;
         }
-        let arc = arc_of(pts, t);
+        // The corners from the top, the top again after them (two
+        // copies, not an index modulo `n`: a division per corner).
+        let mut arc = [ScreenPt::default(); ARC];
+        let (head, tail) = pts.split_at(t.min(n));
+        for (dst, &p) in arc
+            .iter_mut()
+            .zip(tail.iter().chain(head).chain(tail.first()))
+        {
+            *dst = p;
+        }
         let poly = Poly {
             l: Dda32::default(),
             ly1: y,
@@ -143,7 +141,37 @@ impl TriangleBand {
             hi: n,
             end,
         };
-        PolyStart::Rows(poly, y, t)
+        PolyStart::Rows(poly, y)
+    }
+
+    /// Sets up and fills polygon `pts` (record `here`, id `id`, cut by
+    /// this band's end) and keeps it for the next band when at most three
+    /// corners are left ahead (as a quad's entry); `None`, nothing
+    /// emitted, when it is the general fill's
+    /// ([`TriangleBand::start_poly`]). Out of line: the replay's loop
+    /// keeps its registers for the triangles and quads.
+    #[inline(never)]
+    pub(crate) fn poly<K: SpanSink>(
+        &self,
+        pts: &[ScreenPt],
+        (ring, words): (&mut Ring, &mut [u32]),
+        (here, rgb, id): (usize, Rgb888, u32),
+        sink: &mut K,
+    ) -> Option<u64> {
+        match self.start_poly(pts) {
+            PolyStart::Outside => None,
+            PolyStart::Empty => Some(0),
+            PolyStart::Rows(mut q, y) => {
+                let color = sink.color(&Paint { rgb, id });
+                let spans = self.run_chains(&mut q, y, color, sink) as u64;
+                if q.end > self.b.y1 {
+                    if let Some(quad) = q.as_quad() {
+                        ring.push_quad(words, &quad, (here, self.end_row()), rgb);
+                    }
+                }
+                Some(spans)
+            }
+        }
     }
 }
 
@@ -155,7 +183,6 @@ mod tests {
     use super::super::super::scan::{fill_polygon_in, FillRule, SpanBounds};
     use super::super::WORDS;
     use super::*;
-    use embedded_graphics::pixelcolor::Rgb888;
     use std::vec::Vec;
 
     fn pt(x: i32, y: i32) -> ScreenPt {
@@ -261,7 +288,7 @@ mod tests {
                             assert!(n.is_ok());
                         }
                         PolyStart::Empty => assert_eq!(spans, 0),
-                        PolyStart::Rows(mut q, y, _) => {
+                        PolyStart::Rows(mut q, y) => {
                             fresh_runs += 1;
                             assert_eq!(band.run_chains(&mut q, y, (), &mut got), spans);
                             state = Some(q);
