@@ -795,7 +795,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         // outcome) skips shading and edge setup for one pass over its
         // vertices.
         // The fill's first pass, done once here for both.
-        let bbox = Bbox::of(pts);
+        let bbox = Bbox::seeded(pts);
         let (top, bot) = (bbox.top, bbox.bot);
         // Projected points are within ±SCREEN_LIMIT: the 32-bit row bounds
         // apply (and a 64-bit variable shift is not cheap on a 32-bit core).
