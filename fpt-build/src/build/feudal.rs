@@ -56,15 +56,25 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
     } else {
         let look = lookahead::applies(&table, ctx);
         let k = if look { ctx.look.candidates } else { 1 };
-        let splitters = choose_splitters(&mut table, ctx, k);
-        let s = splitters.first().copied().unwrap_or(0);
-        let [f, b, c] = table.counts(s);
         let aux = best_aux(&table, ctx, split_score);
+        // Without a lookahead only the better of the best member plane and
+        // the best auxiliary plane is used: members that cannot beat the
+        // auxiliary plane need not be counted.
+        let cap = if look {
+            None
+        } else {
+            aux.as_ref().map(|a| a.score)
+        };
+        let splitters = choose_splitters(&mut table, ctx, k, cap);
+        let member_score = splitters.first().map(|&s| {
+            let [f, b, c] = table.counts(s);
+            split_score(f, b, c)
+        });
         // The paper's greedy choice: the better-scored of the best member
         // plane and the best auxiliary plane.
         let mut options: Vec<Divide> = Vec::new();
         match aux {
-            Some(a) if a.score < split_score(f, b, c) => {
+            Some(a) if member_score.is_none_or(|m| a.score < m) => {
                 options.push(Divide::Aux(a));
                 options.extend(splitters.into_iter().map(Divide::Member));
             }
@@ -163,12 +173,9 @@ fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut Vec<usi
 /// Static step 2: peel off all absolute priority polygons, level by level.
 fn extract_levels(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) {
     let mut watch = Watch::new(absolute_slack);
-    t.probe_all(ctx);
-    for q in 0..t.len() {
-        if t.is_alive(q) && t.has_row(q) {
-            t.watch(&mut watch, q);
-        }
-    }
+    // Rows with a live witness are parked uncounted (`Table::watch`).
+    t.probe_all(ctx, false);
+    t.start_watch(&mut watch);
     loop {
         let due = t.due(&mut watch, ctx);
         let mut level = Level::default();
@@ -212,12 +219,8 @@ fn dynamic_phase(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) -> Optio
     // Rows known from the parent group are examined as they were there
     // (watched from bounds: they are counted when due).
     let mut watch = Watch::new(cut_slack);
-    t.probe_all(ctx);
-    for q in 0..t.len() {
-        if t.is_alive(q) && t.has_row(q) {
-            t.watch(&mut watch, q);
-        }
-    }
+    t.probe_all(ctx, false);
+    t.start_watch(&mut watch);
     for q in order {
         if !t.is_alive(q) {
             continue;
@@ -308,17 +311,20 @@ fn rank_cmp(a: &Rank, b: &Rank) -> Ordering {
 /// cannot qualify). Rows are counted exactly in ascending order of bound
 /// and stop being counted once the next bound is above the `k`-th best
 /// exact score: every row left has a score at least its bound, so none is
-/// better.
+/// better. With `uncut`, only rows that cut nothing qualify: rows with a
+/// live witness (a member they cut) are left out unprobed.
 fn best_by(
     t: &mut Table,
     ctx: &Ctx,
     k: usize,
+    uncut: bool,
     score: impl Fn([u32; 3]) -> Option<(u32, u32)>,
     bound: impl Fn([u32; 3], u32) -> Option<(u32, u32)>,
 ) -> Vec<usize> {
-    t.probe_all(ctx);
+    t.probe_all(ctx, !uncut);
     let mut cands: Vec<Rank> = (0..t.len())
         .filter(|&q| t.is_alive(q) && t.has_row(q))
+        .filter(|&q| !(uncut && t.has_live_witness(q)))
         .filter_map(|q| {
             let (c, u) = t.bounds(q);
             bound(c, u).map(|b| (b, geometric_key(ctx, t.ids[q]), q))
@@ -367,6 +373,7 @@ fn choose_separator(t: &mut Table, ctx: &Ctx) -> Option<usize> {
         t,
         ctx,
         1,
+        true,
         |[f, b, c]| (c == 0).then_some((0, f.abs_diff(b))),
         |[f, b, c], u| (c == 0).then_some((0, balance_bound(f, b, u))),
     )
@@ -395,24 +402,35 @@ fn split_score(f: u32, b: u32, c: u32) -> (u32, u32) {
 }
 
 /// Step 5: the fewest cuts, weighed against balance (see [`SPLIT_WEIGHT`]):
-/// the best `k` members, best first (never empty while a member is alive).
-fn choose_splitters(t: &mut Table, ctx: &Ctx, k: usize) -> Vec<usize> {
+/// the best `k` members, best first (never empty while a member is alive,
+/// without a `cap`). With a `cap` (the score of a plane that wins unless a
+/// member scores at most as well), rows that cannot score within it are
+/// not counted; the first member returned is still the best one if any
+/// scores within the cap, and none may be returned if none does.
+fn choose_splitters(
+    t: &mut Table,
+    ctx: &Ctx,
+    k: usize,
+    cap: Option<(u32, u32)>,
+) -> Vec<usize> {
     // Each true count is at least its bound, so the score is at least the
     // score of the cut bound with the balance bound (see `split_score`).
     let best = best_by(
         t,
         ctx,
         k,
+        false,
         |[f, b, c]| Some(split_score(f, b, c)),
         |[f, b, c], u| {
-            Some((
+            let bound = (
                 c.saturating_mul(SPLIT_WEIGHT)
                     .saturating_add(balance_bound(f, b, u)),
                 c,
-            ))
+            );
+            cap.is_none_or(|cap| bound <= cap).then_some(bound)
         },
     );
-    if best.is_empty() {
+    if best.is_empty() && cap.is_none() {
         return (0..t.len()).find(|&q| t.is_alive(q)).into_iter().collect();
     }
     best
@@ -427,6 +445,7 @@ fn choose_alternatives(t: &mut Table, ctx: &Ctx, k: usize) -> Vec<usize> {
         t,
         ctx,
         k,
+        false,
         |[f, b, c]| Some((c.saturating_mul(w).saturating_add(f.abs_diff(b)), c)),
         |[f, b, c], u| {
             Some((
