@@ -630,7 +630,7 @@ mod tests {
     /// that some probe did leave members undecided (else this tests
     /// nothing of the bounds).
     fn check_bounds(t: &mut Table, ctx: &Ctx) {
-        t.probe_all(ctx);
+        t.probe_all(ctx, true);
         let mut loose = 0;
         for q in (0..t.len()).filter(|&q| t.is_alive(q) && t.has_row(q)) {
             let (lo, u) = t.bounds(q);
