@@ -156,13 +156,48 @@ fn bunch(l: &mut Level, front: bool) -> &mut Vec<u32> {
     }
 }
 
-/// Puts `q` and the untaken polygons in its plane into `level`; returns
-/// the members taken.
-fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut Vec<usize>, ctx: &Ctx) {
+/// The members taken into the level being built, in order, with a mark
+/// per member: a level of the whole outer half of a large mesh takes tens
+/// of thousands, too many to look each one up in the list.
+struct Taken {
+    list: Vec<usize>,
+    mark: Vec<bool>,
+}
+
+impl Taken {
+    /// None taken of a group of `n` members.
+    fn new(n: usize) -> Taken {
+        Taken {
+            list: Vec::new(),
+            mark: vec![false; n],
+        }
+    }
+
+    fn contains(&self, q: usize) -> bool {
+        self.mark[q]
+    }
+
+    fn push(&mut self, q: usize) {
+        self.mark[q] = true;
+        self.list.push(q);
+    }
+
+    /// Forgets the members taken (for the next level).
+    fn clear(&mut self) {
+        for &q in &self.list {
+            self.mark[q] = false;
+        }
+        self.list.clear();
+    }
+}
+
+/// Puts `q` and the untaken polygons in its plane into `level`, and them
+/// into `taken`.
+fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut Taken, ctx: &Ctx) {
     bunch(level, front).push(t.ids[q]);
     taken.push(q);
     for (p, r) in t.coplanar(q, ctx) {
-        if taken.contains(&p) {
+        if taken.contains(p) {
             continue;
         }
         bunch(level, front == (r == Rel::Same)).push(t.ids[p]);
@@ -176,12 +211,13 @@ fn extract_levels(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) {
     // Rows with a live witness are parked uncounted (`Table::watch`).
     t.probe_all(ctx, false);
     t.start_watch(&mut watch);
+    let mut taken = Taken::new(t.len());
     loop {
         let due = t.due(&mut watch, ctx);
         let mut level = Level::default();
-        let mut taken = Vec::new();
+        taken.clear();
         for &q in &due {
-            if taken.contains(&q) {
+            if taken.contains(q) {
                 continue;
             }
             if let Some(front) = absolute(t, q) {
@@ -191,13 +227,13 @@ fn extract_levels(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) {
         if level.front.is_empty() && level.back.is_empty() {
             return;
         }
-        finish_level(t, &taken);
+        finish_level(t, &taken.list);
         for q in due {
             if t.is_alive(q) {
                 t.watch(&mut watch, q);
             }
         }
-        ctx.placed(taken.iter().map(|&q| t.ids[q]));
+        ctx.placed(taken.list.iter().map(|&q| t.ids[q]));
         levels.push(level);
     }
 }
@@ -221,6 +257,7 @@ fn dynamic_phase(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) -> Optio
     let mut watch = Watch::new(cut_slack);
     t.probe_all(ctx, false);
     t.start_watch(&mut watch);
+    let mut taken = Taken::new(t.len());
     for q in order {
         if !t.is_alive(q) {
             continue;
@@ -248,15 +285,15 @@ fn dynamic_phase(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) -> Optio
                 Some(Ok(r)) => return Some(r),
                 Some(Err((r, front))) => {
                     let mut level = Level::default();
-                    let mut taken = Vec::new();
+                    taken.clear();
                     take(t, r, front, &mut level, &mut taken, ctx);
-                    finish_level(t, &taken);
+                    finish_level(t, &taken.list);
                     for d in due {
                         if t.is_alive(d) {
                             t.watch(&mut watch, d);
                         }
                     }
-                    ctx.placed(taken.iter().map(|&q| t.ids[q]));
+                    ctx.placed(taken.list.iter().map(|&q| t.ids[q]));
                     levels.push(level);
                 }
                 None => {
@@ -343,14 +380,33 @@ fn best_by(
         if end == 0 {
             break;
         }
-        let batch: Vec<usize> = cands[next..next + end].iter().map(|c| c.2).collect();
+        let batch = &cands[next..next + end];
         next += end;
-        t.refresh(&batch, ctx);
-        for (i, &q) in batch.iter().enumerate() {
+        // Deeper bounds first: a row they show unable to beat the `k`-th
+        // best so far (which only gets better) is never counted.
+        let shallow: Vec<usize> = batch
+            .iter()
+            .map(|c| c.2)
+            .filter(|&q| !t.is_exact(q))
+            .collect();
+        t.deepen(&shallow, ctx);
+        let batch: Vec<(usize, [f64; 7])> = batch
+            .iter()
+            .filter(|c| {
+                let (counts, u) = t.bounds(c.2);
+                bound(counts, u).is_some_and(|b| {
+                    best.len() < k || rank_cmp(&(b, c.1, c.2), &best[k - 1]).is_lt()
+                })
+            })
+            .map(|c| (c.2, c.1))
+            .collect();
+        let rows: Vec<usize> = batch.iter().map(|c| c.0).collect();
+        t.refresh(&rows, ctx);
+        for &(q, key) in &batch {
             let Some(s) = score(t.counts(q)) else {
                 continue;
             };
-            let r = (s, cands[next - end + i].1, q);
+            let r = (s, key, q);
             let at = best.partition_point(|b| rank_cmp(b, &r).is_lt());
             if at < k {
                 best.insert(at, r);

@@ -144,6 +144,9 @@ fn adjust(c: &mut [u32; 3], x: &Polygon, plane: &Plane, tol: Tolerance, add: boo
 /// once), far fewer than the √n or more of a full count.
 const PROBE: usize = 48;
 
+/// Boxes and members a depth-first probe looks at ([`Table::deepen`]).
+const DEEP: usize = 384;
+
 /// `stamp` of a row never counted.
 const NEVER: u32 = u32::MAX;
 
@@ -310,6 +313,29 @@ impl Table {
         }
     }
 
+    /// Probes `rows` (alive, computed, not exact) depth first
+    /// ([`Bvh::probe_deep`], about [`DEEP`] boxes and members each): bounds
+    /// as of now that show most rows unable to win the choice of a
+    /// splitting plane without counting them.
+    pub fn deepen(&mut self, rows: &[usize], ctx: &Ctx) {
+        let (polys, tol) = (&ctx.polys, ctx.tol);
+        let found = count_rows(ctx.threads, rows, |q| {
+            let plane = polys[self.ids[q] as usize].plane;
+            self.bvh.probe_deep(&plane, q, &self.alive, tol, DEEP)
+        });
+        for (&q, p) in rows.iter().zip(found) {
+            self.counts[q] = p.counts;
+            self.undecided[q] = p.undecided;
+            self.stamp[q] = self.removed;
+            self.probed[q] = true;
+            if p.witness != NO_WITNESS {
+                self.witness[q] = p.witness;
+            } else if !self.has_live_witness(q) {
+                self.witness[q] = NO_WITNESS;
+            }
+        }
+    }
+
     /// Makes the counts of every alive computed row exact.
     #[cfg(test)]
     pub fn refresh_all(&mut self, ctx: &Ctx) {
@@ -368,6 +394,14 @@ impl Table {
     /// The alive members other than `q` in the plane of `q`, ascending,
     /// with their orientation against it.
     pub fn coplanar(&self, q: usize, ctx: &Ctx) -> Vec<(usize, Rel)> {
+        if self.alive[q] && self.is_exact(q) {
+            // Exact counts of an alive row cover every other alive member
+            // not in its plane: when they cover all, none is in it.
+            let [f, b, c] = self.counts[q];
+            if (f + b + c) as usize + 1 == self.alive_count {
+                return Vec::new();
+            }
+        }
         let plane = ctx.polys[self.ids[q] as usize].plane;
         self.bvh
             .coplanar(&plane, q, &self.alive, ctx.tol)
