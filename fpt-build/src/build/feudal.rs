@@ -330,6 +330,12 @@ fn key_cmp(a: &[f64; 7], b: &[f64; 7]) -> Ordering {
 /// counted beyond the rows needed.
 const BATCH: usize = 256;
 
+/// The budgets of the depth-first probes ([`Table::deepen`]) a candidate
+/// row gets in [`best_by`] before it is counted: most rows that cannot win
+/// are shown so by the first (a few leaves along the row's plane), most of
+/// the rest by the second; a count opens every leaf along the plane.
+const DEEPER: [usize; 2] = [64, 384];
+
 /// `(score, key, index)` of a candidate, compared lexicographically.
 type Rank = ((u32, u32), [f64; 7], usize);
 
@@ -380,26 +386,28 @@ fn best_by(
         if end == 0 {
             break;
         }
-        let batch = &cands[next..next + end];
+        let mut batch: Vec<(usize, [f64; 7])> =
+            cands[next..next + end].iter().map(|c| (c.2, c.1)).collect();
         next += end;
-        // Deeper bounds first: a row they show unable to beat the `k`-th
-        // best so far (which only gets better) is never counted.
-        let shallow: Vec<usize> = batch
-            .iter()
-            .map(|c| c.2)
-            .filter(|&q| !t.is_exact(q))
-            .collect();
-        t.deepen(&shallow, ctx);
-        let batch: Vec<(usize, [f64; 7])> = batch
-            .iter()
-            .filter(|c| {
-                let (counts, u) = t.bounds(c.2);
-                bound(counts, u).is_some_and(|b| {
-                    best.len() < k || rank_cmp(&(b, c.1, c.2), &best[k - 1]).is_lt()
-                })
-            })
-            .map(|c| (c.2, c.1))
-            .collect();
+        // Deeper bounds first, twice deeper: a row they show unable to
+        // beat the `k`-th best so far (which only gets better) is never
+        // counted.
+        for budget in DEEPER {
+            let shallow: Vec<usize> = batch
+                .iter()
+                .map(|c| c.0)
+                .filter(|&q| !t.is_exact(q))
+                .collect();
+            if shallow.is_empty() {
+                break;
+            }
+            t.deepen(&shallow, ctx, budget);
+            batch.retain(|&(q, key)| {
+                let (counts, u) = t.bounds(q);
+                bound(counts, u)
+                    .is_some_and(|b| best.len() < k || rank_cmp(&(b, key, q), &best[k - 1]).is_lt())
+            });
+        }
         let rows: Vec<usize> = batch.iter().map(|c| c.0).collect();
         t.refresh(&rows, ctx);
         for &(q, key) in &batch {
@@ -463,12 +471,7 @@ fn split_score(f: u32, b: u32, c: u32) -> (u32, u32) {
 /// member scores at most as well), rows that cannot score within it are
 /// not counted; the first member returned is still the best one if any
 /// scores within the cap, and none may be returned if none does.
-fn choose_splitters(
-    t: &mut Table,
-    ctx: &Ctx,
-    k: usize,
-    cap: Option<(u32, u32)>,
-) -> Vec<usize> {
+fn choose_splitters(t: &mut Table, ctx: &Ctx, k: usize, cap: Option<(u32, u32)>) -> Vec<usize> {
     // Each true count is at least its bound, so the score is at least the
     // score of the cut bound with the balance bound (see `split_score`).
     let best = best_by(

@@ -144,9 +144,6 @@ fn adjust(c: &mut [u32; 3], x: &Polygon, plane: &Plane, tol: Tolerance, add: boo
 /// once), far fewer than the √n or more of a full count.
 const PROBE: usize = 48;
 
-/// Boxes and members a depth-first probe looks at ([`Table::deepen`]).
-const DEEP: usize = 384;
-
 /// `stamp` of a row never counted.
 const NEVER: u32 = u32::MAX;
 
@@ -314,14 +311,14 @@ impl Table {
     }
 
     /// Probes `rows` (alive, computed, not exact) depth first
-    /// ([`Bvh::probe_deep`], about [`DEEP`] boxes and members each): bounds
+    /// ([`Bvh::probe_deep`], about `budget` boxes and members each): bounds
     /// as of now that show most rows unable to win the choice of a
     /// splitting plane without counting them.
-    pub fn deepen(&mut self, rows: &[usize], ctx: &Ctx) {
+    pub fn deepen(&mut self, rows: &[usize], ctx: &Ctx, budget: usize) {
         let (polys, tol) = (&ctx.polys, ctx.tol);
         let found = count_rows(ctx.threads, rows, |q| {
             let plane = polys[self.ids[q] as usize].plane;
-            self.bvh.probe_deep(&plane, q, &self.alive, tol, DEEP)
+            self.bvh.probe_deep(&plane, q, &self.alive, tol, budget)
         });
         for (&q, p) in rows.iter().zip(found) {
             self.counts[q] = p.counts;
