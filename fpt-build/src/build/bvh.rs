@@ -264,8 +264,8 @@ impl Bvh {
     }
 
     /// Classifies the alive members other than `skip` of `leaf` against
-    /// `plane` into `c`, noting a cut one in `witness`; returns how many
-    /// members it looked at.
+    /// `plane` into `found`'s counts, noting a cut one as its witness;
+    /// returns how many members it looked at.
     fn classify_leaf(
         &self,
         leaf: &Node,
@@ -273,8 +273,7 @@ impl Bvh {
         skip: usize,
         alive: &[bool],
         tol: Tolerance,
-        c: &mut [u32; 3],
-        witness: &mut u32,
+        found: &mut Probe,
     ) -> usize {
         let f = leaf.first as usize;
         for k in f..f + leaf.count as usize {
@@ -284,11 +283,11 @@ impl Bvh {
             }
             let v = &self.verts[self.vstart[k] as usize..self.vstart[k + 1] as usize];
             match plane.relation(v, tol) {
-                Relation::Front => c[0] += 1,
-                Relation::Back => c[1] += 1,
+                Relation::Front => found.counts[0] += 1,
+                Relation::Back => found.counts[1] += 1,
                 Relation::Cut => {
-                    c[2] += 1;
-                    *witness = (*witness).min(i as u32);
+                    found.counts[2] += 1;
+                    found.witness = found.witness.min(i as u32);
                 }
                 Relation::Coplanar => {}
             }
@@ -320,14 +319,13 @@ impl Bvh {
         budget: usize,
         seeds: &[u32],
     ) -> Probe {
-        let mut c = [0u32; 3];
-        let mut witness = NO_WITNESS;
+        let mut found = Probe {
+            counts: [0; 3],
+            undecided: 0,
+            witness: NO_WITNESS,
+        };
         if self.nodes.is_empty() {
-            return Probe {
-                counts: c,
-                undecided: 0,
-                witness,
-            };
+            return found;
         }
         let lim = tol.0 + MARGIN;
         let mut spent = 0;
@@ -347,7 +345,7 @@ impl Bvh {
                 continue;
             }
             opened[slot] = k;
-            spent += self.classify_leaf(leaf, plane, skip, alive, tol, &mut c, &mut witness);
+            spent += self.classify_leaf(leaf, plane, skip, alive, tol, &mut found);
         }
         // Largest undecided box first: each step decides as many members
         // as it can, so the undecided remainder falls fastest.
@@ -364,30 +362,26 @@ impl Bvh {
             }
             let (min, max) = box_range(plane, node.lo, node.hi);
             if min > lim {
-                c[0] += node.alive;
+                found.counts[0] += node.alive;
             } else if max < -lim {
-                c[1] += node.alive;
+                found.counts[1] += node.alive;
             } else if node.count == 0 {
                 for child in [node.first, node.first + 1] {
                     heap.push((self.nodes[child as usize].alive, child));
                 }
             } else {
-                spent += self.classify_leaf(node, plane, skip, alive, tol, &mut c, &mut witness);
+                spent += self.classify_leaf(node, plane, skip, alive, tol, &mut found);
             }
         }
         // `skip` may sit in an undecided box: it is not one of the others,
         // but counting it as undecided only loosens the bounds. So do the
         // seed leaves still in the heap.
-        let undecided = heap
+        found.undecided = heap
             .iter()
             .filter(|&&(_, k)| !opened.contains(&k))
             .map(|&(a, _)| a)
             .sum();
-        Probe {
-            counts: c,
-            undecided,
-            witness,
-        }
+        found
     }
 
     /// Lower bounds as [`Bvh::probe`] gives them, found depth first:
@@ -403,8 +397,11 @@ impl Bvh {
         tol: Tolerance,
         budget: usize,
     ) -> Probe {
-        let mut c = [0u32; 3];
-        let mut witness = NO_WITNESS;
+        let mut found = Probe {
+            counts: [0; 3],
+            undecided: 0,
+            witness: NO_WITNESS,
+        };
         let mut stack = Vec::with_capacity(64);
         if !self.nodes.is_empty() {
             stack.push(0u32);
@@ -422,22 +419,18 @@ impl Bvh {
             }
             let (min, max) = box_range(plane, node.lo, node.hi);
             if min > lim {
-                c[0] += node.alive;
+                found.counts[0] += node.alive;
             } else if max < -lim {
-                c[1] += node.alive;
+                found.counts[1] += node.alive;
             } else if node.count == 0 {
                 stack.push(node.first);
                 stack.push(node.first + 1);
             } else {
-                spent += self.classify_leaf(node, plane, skip, alive, tol, &mut c, &mut witness);
+                spent += self.classify_leaf(node, plane, skip, alive, tol, &mut found);
             }
         }
-        let undecided = stack.iter().map(|&k| self.nodes[k as usize].alive).sum();
-        Probe {
-            counts: c,
-            undecided,
-            witness,
-        }
+        found.undecided = stack.iter().map(|&k| self.nodes[k as usize].alive).sum();
+        found
     }
 
     /// The alive members other than `skip` that lie in `plane`, in

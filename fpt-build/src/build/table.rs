@@ -26,6 +26,17 @@
 //! valid (each true count is at least its bound), so the rows chosen, and
 //! the tree, are those of the exact table.
 //!
+//! Most rows are never counted at all in a large group: a row whose plane
+//! cuts a member is neither absolute nor separating while that member is
+//! alive. Probes and counts note such a member (the row's witness; a probe
+//! first opens the row's own leaf, its neighbours on the surface, which
+//! the plane of a facet on a saddle-shaped patch cuts), subgroups carry it
+//! over when it comes along, and a watched row with a live witness is
+//! parked on it ([`Table::watch`]) until it is removed. The choice of a
+//! splitting plane probes candidates depth first ([`Table::deepen`]) before
+//! counting them. None of this changes a choice: bounds stay valid, so the
+//! tree is the one of the exact table.
+//!
 //! Rows are counted through a bounding-volume hierarchy ([`super::bvh`]),
 //! so a row costs about √n classifications, and large batches of rows are
 //! counted on two threads when the build has one free. Every row computed counts the relations of the
@@ -656,12 +667,21 @@ mod tests {
         assert!(rows > 0);
     }
 
-    /// Probes every row stale after removals and checks that each true
-    /// count lies between its bound and its bound plus the undecided, and
-    /// that some probe did leave members undecided (else this tests
-    /// nothing of the bounds).
-    fn check_bounds(t: &mut Table, ctx: &Ctx) {
-        t.probe_all(ctx, true);
+    /// Probes every row stale after removals (breadth first from the
+    /// row's own leaf, or depth first with a `deep` budget) and checks that
+    /// each true count lies between its bound and its bound plus the
+    /// undecided, and that some probe did leave members undecided (else
+    /// this tests nothing of the bounds).
+    fn check_bounds(t: &mut Table, ctx: &Ctx, deep: Option<usize>) {
+        match deep {
+            Some(budget) => {
+                let rows: Vec<usize> = (0..t.len())
+                    .filter(|&q| t.is_alive(q) && t.has_row(q) && !t.is_exact(q))
+                    .collect();
+                t.deepen(&rows, ctx, budget);
+            }
+            None => t.probe_all(ctx, true),
+        }
         let mut loose = 0;
         for q in (0..t.len()).filter(|&q| t.is_alive(q) && t.has_row(q)) {
             let (lo, u) = t.bounds(q);
@@ -672,6 +692,21 @@ mod tests {
             loose += usize::from(u > 0);
         }
         assert!(loose > 0);
+    }
+
+    /// Every live witness is a member its row's plane cuts, and some rows
+    /// have one (the torus's inner half is saddle-shaped: each facet's
+    /// plane cuts some other facet).
+    fn check_witnesses(t: &Table, ctx: &Ctx) {
+        let mut witnessed = 0;
+        for q in (0..t.len()).filter(|&q| t.is_alive(q) && t.has_live_witness(q)) {
+            let plane = ctx.polys[t.ids[q] as usize].plane;
+            let w = t.witness[q];
+            assert_ne!(w as usize, q);
+            assert_eq!(ctx.classify(t.ids[w as usize], &plane), Rel::Cut, "row {q}");
+            witnessed += 1;
+        }
+        assert!(witnessed > 0);
     }
 
     /// The counts kept through the hierarchy, through removals (corrected
@@ -701,9 +736,13 @@ mod tests {
                 let p = ctx.rng.below(n);
                 t.remove(p);
             }
-            check_bounds(&mut t, &ctx);
+            check_bounds(&mut t, &ctx, None);
+            check_witnesses(&t, &ctx);
+            check_bounds(&mut t, &ctx, Some(16));
+            check_witnesses(&t, &ctx);
             t.refresh_all(&ctx);
             check(&t, &ctx);
+            check_witnesses(&t, &ctx);
         }
         // A plane that leaves most of the torus in front of it.
         let x = lo.x + 0.2 * (hi.x - lo.x);
@@ -728,6 +767,11 @@ mod tests {
             let mut sub = t.subtable(&front[..keep], &pieces, &mut ctx);
             // Rows derived from the parent are exact already; the others
             // are left uncounted and counted here.
+            // Witnesses carried from the parent are checked before any
+            // count of the subgroup could replace them.
+            if keep > 5 {
+                check_witnesses(&sub, &ctx);
+            }
             sub.refresh_all(&ctx);
             check(&sub, &ctx);
         }
