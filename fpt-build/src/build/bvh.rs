@@ -26,6 +26,20 @@ const MARGIN: f64 = 1e-12;
 /// Members per leaf, at most.
 const LEAF: usize = 6;
 
+/// No member found cut ([`Bvh::counts_witness`], [`Bvh::probe`]).
+pub const NO_WITNESS: u32 = u32::MAX;
+
+/// What a [`Bvh::probe`] found.
+#[derive(Clone, Copy, Debug)]
+pub struct Probe {
+    /// Lower bounds on the front, back and cut counts.
+    pub counts: [u32; 3],
+    /// Alive members left undecided.
+    pub undecided: u32,
+    /// A member the plane cuts, or [`NO_WITNESS`].
+    pub witness: u32,
+}
+
 #[derive(Clone, Copy, Debug)]
 struct Node {
     lo: DVec3,
@@ -211,8 +225,22 @@ impl Bvh {
     /// Front, back and cut counts of the alive members other than `skip`
     /// against `plane` (coplanar ones count in none).
     pub fn counts(&self, plane: &Plane, skip: usize, alive: &[bool], tol: Tolerance) -> [u32; 3] {
+        self.counts_witness(plane, skip, alive, tol).0
+    }
+
+    /// [`Bvh::counts`], with a member the plane cuts if any ([`NO_WITNESS`]
+    /// otherwise): a witness that the row is neither absolute nor
+    /// separating for as long as that member stays alive.
+    pub fn counts_witness(
+        &self,
+        plane: &Plane,
+        skip: usize,
+        alive: &[bool],
+        tol: Tolerance,
+    ) -> ([u32; 3], u32) {
         let mut c = [0u32; 3];
         let mut leaf = [0u32; 3];
+        let mut witness = NO_WITNESS;
         self.visit(
             plane,
             tol,
@@ -224,19 +252,61 @@ impl Bvh {
                 match plane.relation(verts, tol) {
                     Relation::Front => leaf[0] += 1,
                     Relation::Back => leaf[1] += 1,
-                    Relation::Cut => leaf[2] += 1,
+                    Relation::Cut => {
+                        leaf[2] += 1;
+                        witness = witness.min(i as u32);
+                    }
                     Relation::Coplanar => {}
                 }
             },
         );
-        [c[0] + leaf[0], c[1] + leaf[1], leaf[2]]
+        ([c[0] + leaf[0], c[1] + leaf[1], leaf[2]], witness)
+    }
+
+    /// Classifies the alive members other than `skip` of `leaf` against
+    /// `plane` into `found`'s counts, noting a cut one as its witness;
+    /// returns how many members it looked at.
+    fn classify_leaf(
+        &self,
+        leaf: &Node,
+        plane: &Plane,
+        skip: usize,
+        alive: &[bool],
+        tol: Tolerance,
+        found: &mut Probe,
+    ) -> usize {
+        let f = leaf.first as usize;
+        for k in f..f + leaf.count as usize {
+            let i = self.order[k] as usize;
+            if i == skip || !alive[i] {
+                continue;
+            }
+            let v = &self.verts[self.vstart[k] as usize..self.vstart[k + 1] as usize];
+            match plane.relation(v, tol) {
+                Relation::Front => found.counts[0] += 1,
+                Relation::Back => found.counts[1] += 1,
+                Relation::Cut => {
+                    found.counts[2] += 1;
+                    found.witness = found.witness.min(i as u32);
+                }
+                Relation::Coplanar => {}
+            }
+        }
+        leaf.count as usize
     }
 
     /// Lower bounds on the front, back and cut counts of the alive members
     /// other than `skip` against `plane`, found by opening at most about
     /// `budget` boxes (largest first) and classifying the members of the
-    /// leaves opened; returns them with the number of alive members left
-    /// undecided (0: the counts are exact, as [`Bvh::counts`] gives them).
+    /// leaves opened, with the number of alive members left undecided (0:
+    /// the counts are exact, as [`Bvh::counts`] gives them) and a member
+    /// found cut, if any ([`NO_WITNESS`] otherwise).
+    ///
+    /// The leaves of the members `seeds` are opened first: a row's own
+    /// leaf holds its neighbours on the surface, and on a saddle-shaped
+    /// patch the plane of a facet cuts some of those, which a probe from
+    /// the root rarely reaches (in a large group 48 boxes end far above
+    /// the leaves); the leaf of the row's last witness holds one it cut.
     /// Every member counted is counted by the same test as in
     /// [`Bvh::counts`], so each true count is at least its bound and at most
     /// its bound plus the undecided.
@@ -247,19 +317,99 @@ impl Bvh {
         alive: &[bool],
         tol: Tolerance,
         budget: usize,
-    ) -> ([u32; 3], u32) {
-        let mut c = [0u32; 3];
+        seeds: &[u32],
+    ) -> Probe {
+        let mut found = Probe {
+            counts: [0; 3],
+            undecided: 0,
+            witness: NO_WITNESS,
+        };
         if self.nodes.is_empty() {
-            return (c, 0);
+            return found;
         }
         let lim = tol.0 + MARGIN;
+        let mut spent = 0;
+        // Seed leaves classified already: skipped when the walk reaches
+        // them. A leaf the plane does not decide whole lies in boxes it
+        // does not decide either (each box holds its children's), so the
+        // walk opens every box down to it and counts none of its members
+        // twice; a leaf decided whole is left to the walk.
+        let mut opened = [u32::MAX; 2];
+        for (slot, &s) in seeds.iter().take(opened.len()).enumerate() {
+            let Some(&k) = self.leaf_of.get(s as usize) else {
+                continue;
+            };
+            let leaf = &self.nodes[k as usize];
+            let (min, max) = box_range(plane, leaf.lo, leaf.hi);
+            if leaf.alive == 0 || min > lim || max < -lim || opened.contains(&k) {
+                continue;
+            }
+            opened[slot] = k;
+            spent += self.classify_leaf(leaf, plane, skip, alive, tol, &mut found);
+        }
         // Largest undecided box first: each step decides as many members
         // as it can, so the undecided remainder falls fastest.
         let mut heap = std::collections::BinaryHeap::with_capacity(2 * budget + 2);
         heap.push((self.nodes[0].alive, 0u32));
-        let mut spent = 0;
         while spent < budget {
             let Some((_, k)) = heap.pop() else {
+                break;
+            };
+            spent += 1;
+            let node = &self.nodes[k as usize];
+            if node.alive == 0 || opened.contains(&k) {
+                continue;
+            }
+            let (min, max) = box_range(plane, node.lo, node.hi);
+            if min > lim {
+                found.counts[0] += node.alive;
+            } else if max < -lim {
+                found.counts[1] += node.alive;
+            } else if node.count == 0 {
+                for child in [node.first, node.first + 1] {
+                    heap.push((self.nodes[child as usize].alive, child));
+                }
+            } else {
+                spent += self.classify_leaf(node, plane, skip, alive, tol, &mut found);
+            }
+        }
+        // `skip` may sit in an undecided box: it is not one of the others,
+        // but counting it as undecided only loosens the bounds. So do the
+        // seed leaves still in the heap.
+        found.undecided = heap
+            .iter()
+            .filter(|&&(_, k)| !opened.contains(&k))
+            .map(|&(a, _)| a)
+            .sum();
+        found
+    }
+
+    /// Lower bounds as [`Bvh::probe`] gives them, found depth first:
+    /// boxes the plane passes through are opened down to their leaves, so
+    /// the members it cuts (which lie in those leaves) are found early. A
+    /// row whose score is mostly its cuts is shown unable to win by a few
+    /// dozen leaves, where a count opens every leaf along the plane.
+    pub fn probe_deep(
+        &self,
+        plane: &Plane,
+        skip: usize,
+        alive: &[bool],
+        tol: Tolerance,
+        budget: usize,
+    ) -> Probe {
+        let mut found = Probe {
+            counts: [0; 3],
+            undecided: 0,
+            witness: NO_WITNESS,
+        };
+        let mut stack = Vec::with_capacity(64);
+        if !self.nodes.is_empty() {
+            stack.push(0u32);
+        }
+        let lim = tol.0 + MARGIN;
+        let mut spent = 0;
+        while spent < budget {
+            let Some(k) = stack.pop() else {
                 break;
             };
             spent += 1;
@@ -269,35 +419,18 @@ impl Bvh {
             }
             let (min, max) = box_range(plane, node.lo, node.hi);
             if min > lim {
-                c[0] += node.alive;
+                found.counts[0] += node.alive;
             } else if max < -lim {
-                c[1] += node.alive;
+                found.counts[1] += node.alive;
             } else if node.count == 0 {
-                for child in [node.first, node.first + 1] {
-                    heap.push((self.nodes[child as usize].alive, child));
-                }
+                stack.push(node.first);
+                stack.push(node.first + 1);
             } else {
-                let f = node.first as usize;
-                for k in f..f + node.count as usize {
-                    let i = self.order[k] as usize;
-                    if i == skip || !alive[i] {
-                        continue;
-                    }
-                    let v = &self.verts[self.vstart[k] as usize..self.vstart[k + 1] as usize];
-                    match plane.relation(v, tol) {
-                        Relation::Front => c[0] += 1,
-                        Relation::Back => c[1] += 1,
-                        Relation::Cut => c[2] += 1,
-                        Relation::Coplanar => {}
-                    }
-                }
-                spent += node.count as usize;
+                spent += self.classify_leaf(node, plane, skip, alive, tol, &mut found);
             }
         }
-        // `skip` may sit in an undecided box: it is not one of the others,
-        // but counting it as undecided only loosens the bounds.
-        let undecided = heap.iter().map(|&(a, _)| a).sum();
-        (c, undecided)
+        found.undecided = stack.iter().map(|&k| self.nodes[k as usize].alive).sum();
+        found
     }
 
     /// The alive members other than `skip` that lie in `plane`, in

@@ -56,15 +56,25 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
     } else {
         let look = lookahead::applies(&table, ctx);
         let k = if look { ctx.look.candidates } else { 1 };
-        let splitters = choose_splitters(&mut table, ctx, k);
-        let s = splitters.first().copied().unwrap_or(0);
-        let [f, b, c] = table.counts(s);
         let aux = best_aux(&table, ctx, split_score);
+        // Without a lookahead only the better of the best member plane and
+        // the best auxiliary plane is used: members that cannot beat the
+        // auxiliary plane need not be counted.
+        let cap = if look {
+            None
+        } else {
+            aux.as_ref().map(|a| a.score)
+        };
+        let splitters = choose_splitters(&mut table, ctx, k, cap);
+        let member_score = splitters.first().map(|&s| {
+            let [f, b, c] = table.counts(s);
+            split_score(f, b, c)
+        });
         // The paper's greedy choice: the better-scored of the best member
         // plane and the best auxiliary plane.
         let mut options: Vec<Divide> = Vec::new();
         match aux {
-            Some(a) if a.score < split_score(f, b, c) => {
+            Some(a) if member_score.is_none_or(|m| a.score < m) => {
                 options.push(Divide::Aux(a));
                 options.extend(splitters.into_iter().map(Divide::Member));
             }
@@ -146,13 +156,48 @@ fn bunch(l: &mut Level, front: bool) -> &mut Vec<u32> {
     }
 }
 
-/// Puts `q` and the untaken polygons in its plane into `level`; returns
-/// the members taken.
-fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut Vec<usize>, ctx: &Ctx) {
+/// The members taken into the level being built, in order, with a mark
+/// per member: a level of the whole outer half of a large mesh takes tens
+/// of thousands, too many to look each one up in the list.
+struct Taken {
+    list: Vec<usize>,
+    mark: Vec<bool>,
+}
+
+impl Taken {
+    /// None taken of a group of `n` members.
+    fn new(n: usize) -> Taken {
+        Taken {
+            list: Vec::new(),
+            mark: vec![false; n],
+        }
+    }
+
+    fn contains(&self, q: usize) -> bool {
+        self.mark[q]
+    }
+
+    fn push(&mut self, q: usize) {
+        self.mark[q] = true;
+        self.list.push(q);
+    }
+
+    /// Forgets the members taken (for the next level).
+    fn clear(&mut self) {
+        for &q in &self.list {
+            self.mark[q] = false;
+        }
+        self.list.clear();
+    }
+}
+
+/// Puts `q` and the untaken polygons in its plane into `level`, and them
+/// into `taken`.
+fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut Taken, ctx: &Ctx) {
     bunch(level, front).push(t.ids[q]);
     taken.push(q);
     for (p, r) in t.coplanar(q, ctx) {
-        if taken.contains(&p) {
+        if taken.contains(p) {
             continue;
         }
         bunch(level, front == (r == Rel::Same)).push(t.ids[p]);
@@ -163,18 +208,16 @@ fn take(t: &Table, q: usize, front: bool, level: &mut Level, taken: &mut Vec<usi
 /// Static step 2: peel off all absolute priority polygons, level by level.
 fn extract_levels(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) {
     let mut watch = Watch::new(absolute_slack);
-    t.probe_all(ctx);
-    for q in 0..t.len() {
-        if t.is_alive(q) && t.has_row(q) {
-            t.watch(&mut watch, q);
-        }
-    }
+    // Rows with a live witness are parked uncounted (`Table::watch`).
+    t.probe_all(ctx, false);
+    t.start_watch(&mut watch);
+    let mut taken = Taken::new(t.len());
     loop {
         let due = t.due(&mut watch, ctx);
         let mut level = Level::default();
-        let mut taken = Vec::new();
+        taken.clear();
         for &q in &due {
-            if taken.contains(&q) {
+            if taken.contains(q) {
                 continue;
             }
             if let Some(front) = absolute(t, q) {
@@ -184,13 +227,13 @@ fn extract_levels(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) {
         if level.front.is_empty() && level.back.is_empty() {
             return;
         }
-        finish_level(t, &taken);
+        finish_level(t, &taken.list);
         for q in due {
             if t.is_alive(q) {
                 t.watch(&mut watch, q);
             }
         }
-        ctx.placed(taken.iter().map(|&q| t.ids[q]));
+        ctx.placed(taken.list.iter().map(|&q| t.ids[q]));
         levels.push(level);
     }
 }
@@ -212,12 +255,9 @@ fn dynamic_phase(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) -> Optio
     // Rows known from the parent group are examined as they were there
     // (watched from bounds: they are counted when due).
     let mut watch = Watch::new(cut_slack);
-    t.probe_all(ctx);
-    for q in 0..t.len() {
-        if t.is_alive(q) && t.has_row(q) {
-            t.watch(&mut watch, q);
-        }
-    }
+    t.probe_all(ctx, false);
+    t.start_watch(&mut watch);
+    let mut taken = Taken::new(t.len());
     for q in order {
         if !t.is_alive(q) {
             continue;
@@ -245,15 +285,15 @@ fn dynamic_phase(t: &mut Table, levels: &mut Vec<Level>, ctx: &mut Ctx) -> Optio
                 Some(Ok(r)) => return Some(r),
                 Some(Err((r, front))) => {
                     let mut level = Level::default();
-                    let mut taken = Vec::new();
+                    taken.clear();
                     take(t, r, front, &mut level, &mut taken, ctx);
-                    finish_level(t, &taken);
+                    finish_level(t, &taken.list);
                     for d in due {
                         if t.is_alive(d) {
                             t.watch(&mut watch, d);
                         }
                     }
-                    ctx.placed(taken.iter().map(|&q| t.ids[q]));
+                    ctx.placed(taken.list.iter().map(|&q| t.ids[q]));
                     levels.push(level);
                 }
                 None => {
@@ -290,6 +330,12 @@ fn key_cmp(a: &[f64; 7], b: &[f64; 7]) -> Ordering {
 /// counted beyond the rows needed.
 const BATCH: usize = 256;
 
+/// The budgets of the depth-first probes ([`Table::deepen`]) a candidate
+/// row gets in [`best_by`] before it is counted: most rows that cannot win
+/// are shown so by the first (a few leaves along the row's plane), most of
+/// the rest by the second; a count opens every leaf along the plane.
+const DEEPER: [usize; 2] = [64, 384];
+
 /// `(score, key, index)` of a candidate, compared lexicographically.
 type Rank = ((u32, u32), [f64; 7], usize);
 
@@ -308,17 +354,20 @@ fn rank_cmp(a: &Rank, b: &Rank) -> Ordering {
 /// cannot qualify). Rows are counted exactly in ascending order of bound
 /// and stop being counted once the next bound is above the `k`-th best
 /// exact score: every row left has a score at least its bound, so none is
-/// better.
+/// better. With `uncut`, only rows that cut nothing qualify: rows with a
+/// live witness (a member they cut) are left out unprobed.
 fn best_by(
     t: &mut Table,
     ctx: &Ctx,
     k: usize,
+    uncut: bool,
     score: impl Fn([u32; 3]) -> Option<(u32, u32)>,
     bound: impl Fn([u32; 3], u32) -> Option<(u32, u32)>,
 ) -> Vec<usize> {
-    t.probe_all(ctx);
+    t.probe_all(ctx, !uncut);
     let mut cands: Vec<Rank> = (0..t.len())
         .filter(|&q| t.is_alive(q) && t.has_row(q))
+        .filter(|&q| !(uncut && t.has_live_witness(q)))
         .filter_map(|q| {
             let (c, u) = t.bounds(q);
             bound(c, u).map(|b| (b, geometric_key(ctx, t.ids[q]), q))
@@ -337,14 +386,35 @@ fn best_by(
         if end == 0 {
             break;
         }
-        let batch: Vec<usize> = cands[next..next + end].iter().map(|c| c.2).collect();
+        let mut batch: Vec<(usize, [f64; 7])> =
+            cands[next..next + end].iter().map(|c| (c.2, c.1)).collect();
         next += end;
-        t.refresh(&batch, ctx);
-        for (i, &q) in batch.iter().enumerate() {
+        // Deeper bounds first, twice deeper: a row they show unable to
+        // beat the `k`-th best so far (which only gets better) is never
+        // counted.
+        for budget in DEEPER {
+            let shallow: Vec<usize> = batch
+                .iter()
+                .map(|c| c.0)
+                .filter(|&q| !t.is_exact(q))
+                .collect();
+            if shallow.is_empty() {
+                break;
+            }
+            t.deepen(&shallow, ctx, budget);
+            batch.retain(|&(q, key)| {
+                let (counts, u) = t.bounds(q);
+                bound(counts, u)
+                    .is_some_and(|b| best.len() < k || rank_cmp(&(b, key, q), &best[k - 1]).is_lt())
+            });
+        }
+        let rows: Vec<usize> = batch.iter().map(|c| c.0).collect();
+        t.refresh(&rows, ctx);
+        for &(q, key) in &batch {
             let Some(s) = score(t.counts(q)) else {
                 continue;
             };
-            let r = (s, cands[next - end + i].1, q);
+            let r = (s, key, q);
             let at = best.partition_point(|b| rank_cmp(b, &r).is_lt());
             if at < k {
                 best.insert(at, r);
@@ -367,6 +437,7 @@ fn choose_separator(t: &mut Table, ctx: &Ctx) -> Option<usize> {
         t,
         ctx,
         1,
+        true,
         |[f, b, c]| (c == 0).then_some((0, f.abs_diff(b))),
         |[f, b, c], u| (c == 0).then_some((0, balance_bound(f, b, u))),
     )
@@ -395,24 +466,30 @@ fn split_score(f: u32, b: u32, c: u32) -> (u32, u32) {
 }
 
 /// Step 5: the fewest cuts, weighed against balance (see [`SPLIT_WEIGHT`]):
-/// the best `k` members, best first (never empty while a member is alive).
-fn choose_splitters(t: &mut Table, ctx: &Ctx, k: usize) -> Vec<usize> {
+/// the best `k` members, best first (never empty while a member is alive,
+/// without a `cap`). With a `cap` (the score of a plane that wins unless a
+/// member scores at most as well), rows that cannot score within it are
+/// not counted; the first member returned is still the best one if any
+/// scores within the cap, and none may be returned if none does.
+fn choose_splitters(t: &mut Table, ctx: &Ctx, k: usize, cap: Option<(u32, u32)>) -> Vec<usize> {
     // Each true count is at least its bound, so the score is at least the
     // score of the cut bound with the balance bound (see `split_score`).
     let best = best_by(
         t,
         ctx,
         k,
+        false,
         |[f, b, c]| Some(split_score(f, b, c)),
         |[f, b, c], u| {
-            Some((
+            let bound = (
                 c.saturating_mul(SPLIT_WEIGHT)
                     .saturating_add(balance_bound(f, b, u)),
                 c,
-            ))
+            );
+            cap.is_none_or(|cap| bound <= cap).then_some(bound)
         },
     );
-    if best.is_empty() {
+    if best.is_empty() && cap.is_none() {
         return (0..t.len()).find(|&q| t.is_alive(q)).into_iter().collect();
     }
     best
@@ -427,6 +504,7 @@ fn choose_alternatives(t: &mut Table, ctx: &Ctx, k: usize) -> Vec<usize> {
         t,
         ctx,
         k,
+        false,
         |[f, b, c]| Some((c.saturating_mul(w).saturating_add(f.abs_diff(b)), c)),
         |[f, b, c], u| {
             Some((

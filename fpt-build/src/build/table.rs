@@ -26,12 +26,23 @@
 //! valid (each true count is at least its bound), so the rows chosen, and
 //! the tree, are those of the exact table.
 //!
+//! Most rows are never counted at all in a large group: a row whose plane
+//! cuts a member is neither absolute nor separating while that member is
+//! alive. Probes and counts note such a member (the row's witness; a probe
+//! first opens the row's own leaf, its neighbours on the surface, which
+//! the plane of a facet on a saddle-shaped patch cuts), subgroups carry it
+//! over when it comes along, and a watched row with a live witness is
+//! parked on it ([`Table::watch`]) until it is removed. The choice of a
+//! splitting plane probes candidates depth first ([`Table::deepen`]) before
+//! counting them. None of this changes a choice: bounds stay valid, so the
+//! tree is the one of the exact table.
+//!
 //! Rows are counted through a bounding-volume hierarchy ([`super::bvh`]),
 //! so a row costs about √n classifications, and large batches of rows are
 //! counted on two threads when the build has one free. Every row computed counts the relations of the
 //! paper's table (one per other member), as the paper counts its cost.
 
-use super::bvh::Bvh;
+use super::bvh::{Bvh, NO_WITNESS};
 use super::{Ctx, Threads, Work};
 use crate::geom::{Plane, Polygon, Relation, Tolerance};
 use std::cmp::Reverse;
@@ -75,6 +86,19 @@ pub struct Table {
     log: Vec<u32>,
     alive_count: usize,
     bvh: Bvh,
+    /// Per row: a member its plane cuts (local index), or [`NO_WITNESS`].
+    /// While that member is alive the row is neither absolute nor
+    /// separating, whatever else is removed: such a row needs no count.
+    witness: Vec<u32>,
+    /// Per member: the watched rows parked on it as their witness
+    /// ([`Table::watch`]), to be watched again when it is removed.
+    parked: Vec<Vec<u32>>,
+    /// Parked rows whose witness was removed, watched again by the next
+    /// [`Table::due`].
+    orphans: Vec<u32>,
+    /// Per row: probed since its counts were last exact ([`Table::due`]
+    /// counts a row due again rather than probe it twice).
+    probed: Vec<bool>,
 }
 
 /// Rows waiting until their counts could pass a test (see the module docs).
@@ -156,7 +180,24 @@ impl Table {
             removed: 0,
             log: Vec::new(),
             alive_count: m,
+            witness: vec![NO_WITNESS; m],
+            parked: vec![Vec::new(); m],
+            orphans: Vec::new(),
+            probed: vec![false; m],
         }
+    }
+
+    /// Whether row `q` has a witness still alive: a member its plane cuts.
+    pub fn has_live_witness(&self, q: usize) -> bool {
+        let w = self.witness[q];
+        w != NO_WITNESS && self.alive[w as usize]
+    }
+
+    /// Whether [`Table::refresh`] brings row `q` up to date by taking out
+    /// the few members removed since it was exact, not by a count.
+    fn cheap_refresh(&self, q: usize, limit: u32) -> bool {
+        let stamp = self.stamp[q];
+        stamp != NEVER && self.undecided[q] == 0 && self.removed - stamp <= limit
     }
 
     /// Number of members.
@@ -211,11 +252,10 @@ impl Table {
         let (polys, tol) = (&ctx.polys, ctx.tol);
         let counts = count_rows(ctx.threads, &rows, |q| {
             let plane = polys[self.ids[q] as usize].plane;
-            let stamp = self.stamp[q];
-            if stamp != NEVER && self.undecided[q] == 0 && self.removed - stamp <= limit {
+            if self.cheap_refresh(q, limit) {
                 // Take out the members removed since the counts were exact.
                 let mut c = self.counts[q];
-                for &x in &self.log[stamp as usize..] {
+                for &x in &self.log[self.stamp[q] as usize..] {
                     adjust(
                         &mut c,
                         &polys[self.ids[x as usize] as usize],
@@ -224,15 +264,22 @@ impl Table {
                         false,
                     );
                 }
-                c
+                let w = if self.has_live_witness(q) {
+                    self.witness[q]
+                } else {
+                    NO_WITNESS
+                };
+                (c, w)
             } else {
-                self.bvh.counts(&plane, q, &self.alive, tol)
+                self.bvh.counts_witness(&plane, q, &self.alive, tol)
             }
         });
-        for (q, c) in rows.into_iter().zip(counts) {
+        for (q, (c, w)) in rows.into_iter().zip(counts) {
             self.counts[q] = c;
             self.undecided[q] = 0;
             self.stamp[q] = self.removed;
+            self.witness[q] = w;
+            self.probed[q] = false;
         }
     }
 
@@ -240,20 +287,60 @@ impl Table {
     /// are not exact now are probed ([`Bvh::probe`], about [`PROBE`] boxes
     /// each) instead of counted, which is all the builders need of most
     /// rows: a row that cannot become absolute yet, or whose score cannot
-    /// beat the best one, never needs its exact counts.
-    pub fn probe_all(&mut self, ctx: &Ctx) {
+    /// beat the best one, never needs its exact counts. With `witnessed`
+    /// false, rows with a live witness ([`Table::has_live_witness`]) are
+    /// left as they are: a test that needs an uncut row skips them.
+    pub fn probe_all(&mut self, ctx: &Ctx, witnessed: bool) {
         let rows: Vec<usize> = (0..self.len())
             .filter(|&q| self.alive[q] && self.has_row[q] && self.stamp[q] != self.removed)
+            .filter(|&q| witnessed || !self.has_live_witness(q))
             .collect();
+        self.probe(&rows, ctx);
+    }
+
+    /// Probes `rows` (alive, computed): bounds as of now, and a witness if
+    /// the probe finds one (else the old one, if alive).
+    fn probe(&mut self, rows: &[usize], ctx: &Ctx) {
         let (polys, tol) = (&ctx.polys, ctx.tol);
-        let found = count_rows(ctx.threads, &rows, |q| {
+        let found = count_rows(ctx.threads, rows, |q| {
             let plane = polys[self.ids[q] as usize].plane;
-            self.bvh.probe(&plane, q, &self.alive, tol, PROBE)
+            // The row's own leaf, and its last witness's.
+            let seeds = [q as u32, self.witness[q]];
+            self.bvh.probe(&plane, q, &self.alive, tol, PROBE, &seeds)
         });
-        for (q, (c, u)) in rows.into_iter().zip(found) {
-            self.counts[q] = c;
-            self.undecided[q] = u;
+        for (&q, p) in rows.iter().zip(found) {
+            self.counts[q] = p.counts;
+            self.undecided[q] = p.undecided;
             self.stamp[q] = self.removed;
+            self.probed[q] = true;
+            if p.witness != NO_WITNESS {
+                self.witness[q] = p.witness;
+            } else if !self.has_live_witness(q) {
+                self.witness[q] = NO_WITNESS;
+            }
+        }
+    }
+
+    /// Probes `rows` (alive, computed, not exact) depth first
+    /// ([`Bvh::probe_deep`], about `budget` boxes and members each): bounds
+    /// as of now that show most rows unable to win the choice of a
+    /// splitting plane without counting them.
+    pub fn deepen(&mut self, rows: &[usize], ctx: &Ctx, budget: usize) {
+        let (polys, tol) = (&ctx.polys, ctx.tol);
+        let found = count_rows(ctx.threads, rows, |q| {
+            let plane = polys[self.ids[q] as usize].plane;
+            self.bvh.probe_deep(&plane, q, &self.alive, tol, budget)
+        });
+        for (&q, p) in rows.iter().zip(found) {
+            self.counts[q] = p.counts;
+            self.undecided[q] = p.undecided;
+            self.stamp[q] = self.removed;
+            self.probed[q] = true;
+            if p.witness != NO_WITNESS {
+                self.witness[q] = p.witness;
+            } else if !self.has_live_witness(q) {
+                self.witness[q] = NO_WITNESS;
+            }
         }
     }
 
@@ -308,11 +395,21 @@ impl Table {
         self.removed += 1;
         self.log.push(p as u32);
         self.bvh.remove(p);
+        let rows = std::mem::take(&mut self.parked[p]);
+        self.orphans.extend(rows);
     }
 
     /// The alive members other than `q` in the plane of `q`, ascending,
     /// with their orientation against it.
     pub fn coplanar(&self, q: usize, ctx: &Ctx) -> Vec<(usize, Rel)> {
+        if self.alive[q] && self.is_exact(q) {
+            // Exact counts of an alive row cover every other alive member
+            // not in its plane: when they cover all, none is in it.
+            let [f, b, c] = self.counts[q];
+            if (f + b + c) as usize + 1 == self.alive_count {
+                return Vec::new();
+            }
+        }
         let plane = ctx.polys[self.ids[q] as usize].plane;
         self.bvh
             .coplanar(&plane, q, &self.alive, ctx.tol)
@@ -337,17 +434,50 @@ impl Table {
         self.bvh.counts(plane, usize::MAX, &self.alive, ctx.tol)
     }
 
+    /// Starts watching every alive computed row with `w` (rows parked for
+    /// an earlier watch are parked afresh).
+    pub fn start_watch(&mut self, w: &mut Watch) {
+        self.parked.iter_mut().for_each(Vec::clear);
+        self.orphans.clear();
+        for q in 0..self.len() {
+            if self.alive[q] && self.has_row[q] {
+                self.watch(w, q);
+            }
+        }
+    }
+
     /// Starts watching row `q` (alive, computed, with exact counts or bounds
     /// as of its stamp: the slack of lower bounds is at most the true one,
-    /// so the row is due no later than it could first pass).
-    pub fn watch(&self, w: &mut Watch, q: usize) {
-        let at = u64::from(self.stamp[q]) + u64::from((w.slack)(self.counts[q]));
+    /// so the row is due no later than it could first pass). A row with a
+    /// live witness cannot pass until the witness is removed: it is parked
+    /// on it instead, and watched again then.
+    pub fn watch(&mut self, w: &mut Watch, q: usize) {
+        if self.has_live_witness(q) {
+            self.parked[self.witness[q] as usize].push(q as u32);
+            return;
+        }
+        let at = if self.stamp[q] == NEVER {
+            0
+        } else {
+            u64::from(self.stamp[q]) + u64::from((w.slack)(self.counts[q]))
+        };
         w.heap.push(Reverse((at, q as u32)));
     }
 
     /// The watched rows whose slack the removals may have used up, with
     /// exact counts, ascending; they are no longer watched.
+    ///
+    /// A row due whose counts a refresh would have to count again through
+    /// the hierarchy is probed first, once: if the probe finds a member it
+    /// cuts, or bounds that still leave slack, it is watched again
+    /// uncounted. Every row that could pass is among those returned.
     pub fn due(&mut self, w: &mut Watch, ctx: &Ctx) -> Vec<usize> {
+        for r in std::mem::take(&mut self.orphans) {
+            let r = r as usize;
+            if self.alive[r] && self.has_row[r] {
+                self.watch(w, r);
+            }
+        }
         let mut v = Vec::new();
         while let Some(&Reverse((at, q))) = w.heap.peek() {
             if at > u64::from(self.removed) {
@@ -361,8 +491,32 @@ impl Table {
         }
         v.sort_unstable();
         v.dedup();
-        self.refresh(&v, ctx);
-        v
+        let limit = incremental_limit(self.alive_count);
+        let probe: Vec<usize> = v
+            .iter()
+            .copied()
+            .filter(|&q| {
+                !self.is_exact(q)
+                    && !self.probed[q]
+                    && self.stamp[q] != self.removed
+                    && !self.cheap_refresh(q, limit)
+            })
+            .collect();
+        self.probe(&probe, ctx);
+        let mut rows = Vec::with_capacity(v.len());
+        for q in v {
+            let waits = self.has_live_witness(q)
+                || (self.stamp[q] == self.removed
+                    && !self.is_exact(q)
+                    && (w.slack)(self.counts[q]) > 0);
+            if waits {
+                self.watch(w, q);
+            } else {
+                rows.push(q);
+            }
+        }
+        self.refresh(&rows, ctx);
+        rows
     }
 
     /// The table of a subgroup: `members` (local indices of this table) and
@@ -399,6 +553,7 @@ impl Table {
         }
         // Entries of a known row against the new pieces are new relations.
         ctx.relations += (rows.len() * pieces.len()) as u64;
+        t.carry_witnesses(self, members, pieces, &origin, ctx);
         if gone.len() + pieces.len() < t.len() {
             let gone_ids: Vec<u32> = gone.iter().map(|&i| self.ids[i]).collect();
             let piece_ids: Vec<u32> = pieces.iter().map(|&(id, _)| id).collect();
@@ -435,6 +590,52 @@ impl Table {
     }
 }
 
+impl Table {
+    /// Carries the witnesses of `parent`'s rows into this subtable of it
+    /// (see [`Table::subtable`]): a witness that came along, or a piece of
+    /// one that was split, if the row's plane still cuts it (one
+    /// classification each, by the very test of a count).
+    fn carry_witnesses(
+        &mut self,
+        parent: &Table,
+        members: &[usize],
+        pieces: &[(u32, usize)],
+        origin: &[usize],
+        ctx: &Ctx,
+    ) {
+        let mut pos = vec![NO_WITNESS; parent.len()];
+        for (k, &i) in members.iter().enumerate() {
+            pos[i] = k as u32;
+        }
+        // Pieces of one polygon are contiguous: the first one's index.
+        let mut first_piece = vec![NO_WITNESS; parent.len()];
+        for (j, &(_, from)) in pieces.iter().enumerate().rev() {
+            first_piece[from] = (members.len() + j) as u32;
+        }
+        for (q, &o) in origin.iter().enumerate() {
+            let w = parent.witness[o];
+            if !self.has_row[q] || w == NO_WITNESS || !parent.alive[w as usize] {
+                continue;
+            }
+            let w = w as usize;
+            let plane = ctx.polys[self.ids[q] as usize].plane;
+            let cut = |x: usize| ctx.classify(self.ids[x], &plane) == Rel::Cut;
+            let found = if pos[w] != NO_WITNESS {
+                Some(pos[w] as usize).filter(|&x| cut(x))
+            } else if first_piece[w] != NO_WITNESS {
+                (first_piece[w] as usize..self.len())
+                    .take_while(|&x| pieces[x - members.len()].1 == w)
+                    .find(|&x| cut(x))
+            } else {
+                None
+            };
+            if let Some(x) = found {
+                self.witness[q] = x as u32;
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -466,12 +667,21 @@ mod tests {
         assert!(rows > 0);
     }
 
-    /// Probes every row stale after removals and checks that each true
-    /// count lies between its bound and its bound plus the undecided, and
-    /// that some probe did leave members undecided (else this tests
-    /// nothing of the bounds).
-    fn check_bounds(t: &mut Table, ctx: &Ctx) {
-        t.probe_all(ctx);
+    /// Probes every row stale after removals (breadth first from the
+    /// row's own leaf, or depth first with a `deep` budget) and checks that
+    /// each true count lies between its bound and its bound plus the
+    /// undecided, and that some probe did leave members undecided (else
+    /// this tests nothing of the bounds).
+    fn check_bounds(t: &mut Table, ctx: &Ctx, deep: Option<usize>) {
+        match deep {
+            Some(budget) => {
+                let rows: Vec<usize> = (0..t.len())
+                    .filter(|&q| t.is_alive(q) && t.has_row(q) && !t.is_exact(q))
+                    .collect();
+                t.deepen(&rows, ctx, budget);
+            }
+            None => t.probe_all(ctx, true),
+        }
         let mut loose = 0;
         for q in (0..t.len()).filter(|&q| t.is_alive(q) && t.has_row(q)) {
             let (lo, u) = t.bounds(q);
@@ -482,6 +692,21 @@ mod tests {
             loose += usize::from(u > 0);
         }
         assert!(loose > 0);
+    }
+
+    /// Every live witness is a member its row's plane cuts, and some rows
+    /// have one (the torus's inner half is saddle-shaped: each facet's
+    /// plane cuts some other facet).
+    fn check_witnesses(t: &Table, ctx: &Ctx) {
+        let mut witnessed = 0;
+        for q in (0..t.len()).filter(|&q| t.is_alive(q) && t.has_live_witness(q)) {
+            let plane = ctx.polys[t.ids[q] as usize].plane;
+            let w = t.witness[q];
+            assert_ne!(w as usize, q);
+            assert_eq!(ctx.classify(t.ids[w as usize], &plane), Rel::Cut, "row {q}");
+            witnessed += 1;
+        }
+        assert!(witnessed > 0);
     }
 
     /// The counts kept through the hierarchy, through removals (corrected
@@ -511,9 +736,13 @@ mod tests {
                 let p = ctx.rng.below(n);
                 t.remove(p);
             }
-            check_bounds(&mut t, &ctx);
+            check_bounds(&mut t, &ctx, None);
+            check_witnesses(&t, &ctx);
+            check_bounds(&mut t, &ctx, Some(16));
+            check_witnesses(&t, &ctx);
             t.refresh_all(&ctx);
             check(&t, &ctx);
+            check_witnesses(&t, &ctx);
         }
         // A plane that leaves most of the torus in front of it.
         let x = lo.x + 0.2 * (hi.x - lo.x);
@@ -538,6 +767,11 @@ mod tests {
             let mut sub = t.subtable(&front[..keep], &pieces, &mut ctx);
             // Rows derived from the parent are exact already; the others
             // are left uncounted and counted here.
+            // Witnesses carried from the parent are checked before any
+            // count of the subgroup could replace them.
+            if keep > 5 {
+                check_witnesses(&sub, &ctx);
+            }
             sub.refresh_all(&ctx);
             check(&sub, &ctx);
         }
