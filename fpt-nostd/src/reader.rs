@@ -14,7 +14,13 @@
 //!   extent, radius, `f32` vertices, run and switch planes);
 //! - compact polygon records ([`crate::format::FLAG_COMPACT`]): the layout's
 //!   widths (each ≤ 32 bits, ≤ 56 together), every colour index below the
-//!   colour table's length and the unused bits zero;
+//!   colour table's length and the unused bits zero; narrow records
+//!   ([`crate::format::FLAG_NARROW`]): the hidden_edges width ≤ 8, all five
+//!   ≤ 64 bits, the record length exactly what they need, the bits above
+//!   them zero;
+//! - shared switch planes ([`crate::format::FLAG_NARROW`]): every switch
+//!   names a plane record below `run_count + extra_planes`, and the extra
+//!   plane records have finite planes and an end of 0;
 //! - every vertex index is below the vertex count, every polygon has at least
 //!   3 vertices and the polygons tile the index list; every edge record
 //!   (optional section) has a known kind; every corner normal (optional
@@ -79,7 +85,8 @@
 //! static, dynamic and BSP trees, open and closed, in all three vertex
 //! formats, some with runs of several polygons, three (`compact_*`, session
 //! 10) with compact polygon records, one of them with two colours and the
-//! edge and normal sections; the seed meshes one OBJ,
+//! edge and normal sections, three (`narrow_*`, session 17, not yet fuzzed)
+//! with narrow records and shared switch planes; the seed meshes one OBJ,
 //! OFF, ASCII STL and ASCII PLY each. Of the `tree_walk` corpus after the
 //! first run, 99 inputs are valid trees (walked) and the other 107 are
 //! rejected with every one of the 15 kinds of [`FormatError`] between them.
@@ -812,7 +819,15 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
             // are still in the file (and `next` is then unused). Eight
             // bytes each, whatever the record length (≤ 8): the fields'
             // masks drop the next record's bits.
-            let r: [u8; 16] = rd(g.bytes, g.polygon_off(id));
+            // Borrowed, not copied: the next record's bytes are then read
+            // straight from the file (a copy to the stack, to be read at a
+            // variable offset, cost more than the bit fields).
+            let off = g.polygon_off(id);
+            let r: &[u8; 16] = off
+                .checked_add(16)
+                .and_then(|end| g.bytes.get(off..end))
+                .and_then(|s| s.try_into().ok())
+                .unwrap_or(&[0; 16]);
             // The next record starts `rec_len` (1 to 8) bytes in: written
             // so that the compiler sees it is at most 8, and the slice
             // below needs no check (a general variable slice of `r` cost
@@ -1105,6 +1120,18 @@ impl<'a> Tree<'a> {
     /// ([`FLAG_NARROW`]).
     pub fn has_shared_planes(&self) -> bool {
         self.w.shared
+    }
+
+    /// What the compact records add to the sections
+    /// ([`Sections::with_records`]); `None` for 16-byte records.
+    pub fn records(&self) -> Option<crate::format::Records> {
+        self.g.compact.then(|| crate::format::Records {
+            colours: self.colour_count(),
+            narrow: self.w.shared.then(|| crate::format::Narrow {
+                record_len: self.g.rec_len,
+                extra_planes: self.extra_plane_count(),
+            }),
+        })
     }
 
     /// Plane records stored after the runs for switches whose plane no run
