@@ -25,7 +25,11 @@
 //! - polygon records are compact (8 bytes: bit fields as narrow as the
 //!   largest value of each needs, colours in a table of the distinct ones
 //!   in order of first use) unless [`SerializeOptions::compact`] is off or
-//!   the fields need more than 56 bits together.
+//!   the fields need more than 56 bits together;
+//! - with [`SerializeOptions::narrow`] (the default), a record takes only
+//!   the bytes its five fields need, and a switch's plane is the index of
+//!   a plane record: the first run with that exact plane, or one stored
+//!   after the runs ([`fpt_nostd::format::FLAG_NARROW`]).
 //!
 //! Every tree whose bunches hold each polygon exactly once, with at least 3
 //! finite vertices each, serializes; the output passes
@@ -39,6 +43,7 @@ use fpt_nostd::format::{
     crc32, header as h, polygon as pg, Counts, Sections, UpAxis, FLAG_CLOSED, HEADER_LEN, MAGIC,
     MAX_SHIFT, NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION,
 };
+use fpt_nostd::format::{Narrow, Records, FLAG_NARROW, NARROW_LEN, SWITCH_REF_LEN};
 use fpt_nostd::format::{COMPACT_HIDDEN_SHIFT, COMPACT_POLYGON_LEN, FLAG_COMPACT};
 use fpt_nostd::format::{EDGE_LEN, FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 use glam::DVec3;
@@ -69,6 +74,10 @@ pub struct SerializeOptions {
     /// mesh of a million faces still fits); `false` writes the 16-byte
     /// records of the files made before compact records existed.
     pub compact: bool,
+    /// With `compact`: narrow records and shared switch planes
+    /// ([`fpt_nostd::format::FLAG_NARROW`]), when the five fields fit in
+    /// 64 bits; `false` writes the 8-byte records of sessions 10 to 16.
+    pub narrow: bool,
 }
 
 impl Default for SerializeOptions {
@@ -79,6 +88,7 @@ impl Default for SerializeOptions {
             up: UpAxis::Y,
             crease_deg: DEFAULT_CREASE_DEG,
             compact: true,
+            narrow: true,
         }
     }
 }
@@ -512,17 +522,26 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         normals: if smooth { count(indices.len())? } else { 0 },
     };
     let layout = if opts.compact {
-        compact_layout(tree, &order, &first_index, &runs, &hidden)
+        compact_layout(tree, &order, &first_index, &runs, &hidden, opts.narrow)
     } else {
         None
     };
-    let s = Sections::with_compact(
-        &counts,
-        opts.vertex_format,
-        index_size,
-        layout.as_ref().map(|l| l.colours.len() as u32),
-    )
-    .ok_or(SerializeError::TooLarge)?;
+    // Shared switch planes: each switch names the first run with its exact
+    // plane, or a plane record after the runs.
+    let (switch_refs, extra_planes) = if layout.as_ref().is_some_and(|l| l.narrow.is_some()) {
+        share_planes(&runs, &switch_planes)?
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let records = layout.as_ref().map(|l| Records {
+        colours: l.colours.len() as u32,
+        narrow: l.narrow.map(|(_, record_len)| Narrow {
+            record_len,
+            extra_planes: extra_planes.len() as u32,
+        }),
+    });
+    let s = Sections::with_records(&counts, opts.vertex_format, index_size, records.as_ref())
+        .ok_or(SerializeError::TooLarge)?;
 
     let mut out = Vec::with_capacity(s.file_len);
     out.extend_from_slice(&MAGIC);
@@ -536,7 +555,12 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         edge_flag
             | normal_flag
             | if tree.closed { FLAG_CLOSED } else { 0 }
-            | if layout.is_some() { FLAG_COMPACT } else { 0 },
+            | if layout.is_some() { FLAG_COMPACT } else { 0 }
+            | if records.is_some_and(|r| r.narrow.is_some()) {
+                FLAG_NARROW
+            } else {
+                0
+            },
     );
     put_u32(&mut out, effects);
     out.extend_from_slice(&[
@@ -580,6 +604,12 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         put_u32(&mut out, l.colours.len() as u32);
         debug_assert_eq!(out.len(), s.colours);
         l.colours.iter().for_each(|c| out.extend_from_slice(c));
+        if let Some((hidden_bits, record_len)) = l.narrow {
+            out.resize(s.narrow, 0);
+            out.extend_from_slice(&[hidden_bits, record_len, 0, 0]);
+            put_u32(&mut out, extra_planes.len() as u32);
+            debug_assert_eq!(out.len(), s.narrow + NARROW_LEN);
+        }
     }
     out.resize(s.vertices, 0);
     out.extend_from_slice(&vertex_bytes);
@@ -590,8 +620,11 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         match &layout {
             Some(l) => {
                 let colour = l.colour_index[&p.color];
-                out.extend_from_slice(&l.pack([first, run, p.source, colour], mask).to_le_bytes());
-                debug_assert_eq!(out.len() - start, COMPACT_POLYGON_LEN);
+                let r = l.pack([first, run, p.source, colour], mask).to_le_bytes();
+                let len = l
+                    .narrow
+                    .map_or(COMPACT_POLYGON_LEN, |(_, n)| usize::from(n));
+                out.extend_from_slice(&r[..len]);
             }
             None => {
                 put_u32(&mut out, first);
@@ -639,7 +672,14 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         put_plane(&mut out, plane);
         put_u32(&mut out, end);
     }
-    debug_assert_eq!(out.len(), s.runs + runs.len() * RUN_LEN);
+    for &plane in &extra_planes {
+        put_plane(&mut out, plane);
+        put_u32(&mut out, 0);
+    }
+    debug_assert_eq!(
+        out.len(),
+        s.runs + (runs.len() + extra_planes.len()) * RUN_LEN
+    );
     out.resize(s.bunches, 0);
     bunch_offsets.iter().for_each(|&o| put_u32(&mut out, o));
     out.resize(s.nodes, 0);
@@ -648,7 +688,12 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         .flatten()
         .for_each(|&x| put_u32(&mut out, x));
     out.resize(s.switches, 0);
-    switch_planes.iter().for_each(|&p| put_plane(&mut out, p));
+    if records.is_some_and(|r| r.narrow.is_some()) {
+        switch_refs.iter().for_each(|&i| put_u32(&mut out, i));
+        debug_assert_eq!(out.len(), s.switches + switch_refs.len() * SWITCH_REF_LEN);
+    } else {
+        switch_planes.iter().for_each(|&p| put_plane(&mut out, p));
+    }
     out.resize(s.crc, 0);
     let crc = crc32(&out);
     put_u32(&mut out, crc);
@@ -673,11 +718,15 @@ struct CompactLayout {
     colours: Vec<[u8; 3]>,
     /// Each colour's position in `colours`.
     colour_index: HashMap<[u8; 3], u32>,
+    /// Narrow records ([`fpt_nostd::format::FLAG_NARROW`]): the bits of
+    /// hidden_edges and the record length in bytes.
+    narrow: Option<(u8, u8)>,
 }
 
 impl CompactLayout {
     /// The record of one polygon: the four fields from bit 0 up, each in
-    /// its width, and the outline mask in the top byte.
+    /// its width, and the outline mask in the top byte (narrow records:
+    /// right after them, in its own width).
     fn pack(&self, fields: [u32; 4], hidden: u8) -> u64 {
         let mut r = 0u64;
         let mut shift = 0u32;
@@ -686,8 +735,38 @@ impl CompactLayout {
             r |= u64::from(f) << shift;
             shift += u32::from(w);
         }
+        if self.narrow.is_some() {
+            debug_assert!(shift + u32::from(bits(u32::from(hidden))) <= 64);
+            return r | u64::from(hidden).wrapping_shl(shift);
+        }
         r | u64::from(hidden) << COMPACT_HIDDEN_SHIFT
     }
+}
+
+/// The switch records of a file with shared planes: for each switch plane,
+/// the index of the first run with that exact plane (bit for bit), or of a
+/// plane record after the runs; and those extra planes, each stored once.
+#[allow(clippy::type_complexity)]
+fn share_planes(
+    runs: &[([f32; 4], u32)],
+    switch_planes: &[[f32; 4]],
+) -> Result<(Vec<u32>, Vec<[f32; 4]>), SerializeError> {
+    let key = |p: &[f32; 4]| p.map(f32::to_bits);
+    let mut index: HashMap<[u32; 4], u32> = HashMap::new();
+    for (r, (plane, _)) in runs.iter().enumerate() {
+        index.entry(key(plane)).or_insert(count_u32(r)?);
+    }
+    let mut extra = Vec::new();
+    let mut refs = Vec::with_capacity(switch_planes.len());
+    for p in switch_planes {
+        let next = count_u32(runs.len() + extra.len())?;
+        let i = *index.entry(key(p)).or_insert_with(|| {
+            extra.push(*p);
+            next
+        });
+        refs.push(i);
+    }
+    Ok((refs, extra))
 }
 
 /// Bits to hold every value up to `max`.
@@ -704,6 +783,7 @@ fn compact_layout(
     first_index: &[u32],
     runs: &[([f32; 4], u32)],
     hidden: &[u8],
+    narrow: bool,
 ) -> Option<CompactLayout> {
     debug_assert_eq!(order.len(), hidden.len());
     let mut colours = Vec::new();
@@ -724,10 +804,15 @@ fn compact_layout(
         bits(u32::try_from(colours.len().saturating_sub(1)).ok()?),
     ];
     let used: u32 = widths.iter().map(|&w| u32::from(w)).sum();
-    (used <= COMPACT_HIDDEN_SHIFT).then_some(CompactLayout {
+    let hidden_bits = bits(u32::from(hidden.iter().copied().max().unwrap_or(0)));
+    let total = used + u32::from(hidden_bits);
+    // Narrow when the five fields fit a u64, else the 8-byte records.
+    let narrow = (narrow && total <= 64).then(|| (hidden_bits, total.div_ceil(8).max(1) as u8));
+    (used <= COMPACT_HIDDEN_SHIFT || narrow.is_some()).then_some(CompactLayout {
         widths,
         colours,
         colour_index,
+        narrow,
     })
 }
 

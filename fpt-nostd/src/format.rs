@@ -8,7 +8,7 @@
 //!
 //! # Layout
 //!
-//! `header · [layout · colours] · vertices · polygons · indices · [edges] · [normals] · runs · bunches · nodes · switches · crc`
+//! `header · [layout · colours · [narrow]] · vertices · polygons · indices · [edges] · [normals] · runs · [extra planes] · bunches · nodes · switches · crc`
 //!
 //! The bracketed sections are optional: present only when the header's
 //! flags say so (version 3, see below); a version 2 file never has them.
@@ -31,7 +31,7 @@
 //! | 4 | `u16` | version | [`VERSION`] (3; version 2 had no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (112) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
-//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; other bits must be 0 |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; other bits must be 0 |
 //! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
@@ -114,6 +114,41 @@
 //! Every colour index must be below `colour_count` (else
 //! [`FormatError::BadColour`]); the other fields mean what they mean in a
 //! 16-byte record and are checked the same way.
+//!
+//! ## Narrow records and shared switch planes (flag [`FLAG_NARROW`])
+//!
+//! Written by default since session 17 (`fpt build --records compact`
+//! writes the 8-byte records above, `wide` the 16-byte ones; every reader
+//! of this crate takes all three). Three things change, each sized per
+//! file so that small files pay for small numbers only:
+//!
+//! **Narrow layout** ([`NARROW_LEN`] = 8 bytes, after the colour table,
+//! which thus stays at a fixed offset; the vertices follow it):
+//!
+//! | offset | type | field |
+//! |---:|---|---|
+//! | 0 | `u8` | bits of hidden_edges, `0..=8` (the largest mask's) |
+//! | 1 | `u8` | record_len: bytes of one polygon record, exactly `⌈(sum of the five widths) / 8⌉`, at least 1 |
+//! | 2 | `u16` | 0 |
+//! | 4 | `u32` | extra_planes: plane records stored after the runs (see below) |
+//!
+//! The layout section's four widths are each at most 32; the five add up
+//! to at most 64; anything else is `BadHeader("layout")`.
+//!
+//! **Polygon records** (`polygon_count` × record_len bytes): the first
+//! record_len bytes of a little-endian `u64` holding, from bit 0 up,
+//! first_index, run, source, colour index and hidden_edges, each in its
+//! width, the bits above them zero (else [`FormatError::BadColour`]).
+//! A curved model's triangles need 5 to 7 bytes instead of 8.
+//!
+//! **Shared switch planes**: a switch's plane is nearly always the plane of
+//! some run (a feudal switch is a polygon's plane). The run section holds
+//! `run_count + extra_planes` records of [`RUN_LEN`] bytes: the runs, then
+//! the switch planes that no run has, whose end field is 0. A switch record
+//! is then [`SWITCH_REF_LEN`] = 4 bytes, a `u32` index below
+//! `run_count + extra_planes` of the record whose plane (its first 16 bytes)
+//! is the switch's, bit for bit. The walk's facing test reads the same
+//! floats as from a 16-byte switch record, so the order is the same.
 //!
 //! ## Vertex index list (`index_count` entries of `index_size` bytes)
 //!
@@ -202,7 +237,7 @@
 //! construction, checkable in one pass without allocation (see
 //! [`crate::reader`]); a BSP tree is stored the same way, with no levels.
 //!
-//! ## Switch nodes (`switch_count` entries of [`SWITCH_LEN`] = 16 bytes)
+//! ## Switch nodes (`switch_count` entries of [`SWITCH_LEN`] = 16 bytes, or of 4 with [`FLAG_NARROW`])
 //!
 //! | offset | type | field |
 //! |---:|---|---|
@@ -236,6 +271,16 @@ pub const FLAG_COMPACT: u32 = 1 << 3;
 /// Bit of a compact record where hidden_edges starts; the other fields
 /// fit below it.
 pub const COMPACT_HIDDEN_SHIFT: u32 = 56;
+/// Header flag (with [`FLAG_COMPACT`] only): narrow records and shared
+/// switch planes: polygon records of the layout's length, a 16-byte
+/// layout section, and switch records that name a plane record.
+pub const FLAG_NARROW: u32 = 1 << 4;
+/// Length of the narrow layout section of a file with [`FLAG_NARROW`]
+/// (after the colour table).
+pub const NARROW_LEN: usize = 8;
+/// Length of one switch record of a file with [`FLAG_NARROW`]: the index
+/// of its plane record.
+pub const SWITCH_REF_LEN: usize = 4;
 /// Length of one run record.
 pub const RUN_LEN: usize = 20;
 /// Length of one connecting node record.
@@ -532,6 +577,9 @@ pub enum FormatError {
     BadBunches,
     /// This connecting node breaks the bunch tiling or the switch numbering.
     BadNode(u32),
+    /// This switch names a plane record past the runs and extra planes
+    /// ([`FLAG_NARROW`]).
+    BadSwitch(u32),
     /// Some connecting nodes cannot be reached from the root.
     NotATree,
     /// The header's maximum depth differs from the tree's depth.
@@ -559,6 +607,7 @@ impl fmt::Display for FormatError {
             FormatError::BadRuns => f.write_str("plane runs do not tile the polygons"),
             FormatError::BadBunches => f.write_str("bunch offsets do not tile the runs"),
             FormatError::BadNode(n) => write!(f, "invalid connecting node {n}"),
+            FormatError::BadSwitch(k) => write!(f, "switch {k} names no plane record"),
             FormatError::NotATree => f.write_str("node graph is not a tree"),
             FormatError::DepthMismatch => f.write_str("tree depth differs from the header's"),
         }
@@ -595,6 +644,25 @@ pub struct Counts {
     pub normals: u32,
 }
 
+/// What compact polygon records add to a file's sections (see
+/// [`Sections::with_records`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Records {
+    /// Entries in the colour table.
+    pub colours: u32,
+    /// With [`FLAG_NARROW`]: the record length and the extra planes.
+    pub narrow: Option<Narrow>,
+}
+
+/// The sizes [`FLAG_NARROW`] sets (from its 16-byte layout section).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Narrow {
+    /// Bytes of one polygon record, 1 to 8.
+    pub record_len: u8,
+    /// Plane records after the runs: the switch planes that no run has.
+    pub extra_planes: u32,
+}
+
 /// Byte offsets of the sections of a file, computed from its counts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Sections {
@@ -603,6 +671,9 @@ pub struct Sections {
     pub layout: usize,
     /// Start of the colour table (ditto).
     pub colours: usize,
+    /// Start of the narrow layout section ([`FLAG_NARROW`]; where the
+    /// vertices start without it).
+    pub narrow: usize,
     /// Start of the vertex section.
     pub vertices: usize,
     /// Start of the polygon section.
@@ -645,6 +716,21 @@ impl Sections {
         index_size: usize,
         colours: Option<u32>,
     ) -> Option<Sections> {
+        let records = colours.map(|colours| Records {
+            colours,
+            narrow: None,
+        });
+        Sections::with_records(counts, format, index_size, records.as_ref())
+    }
+
+    /// The layout of a file as [`Sections::new`], with the compact records
+    /// `records` describes (`None`: 16-byte records).
+    pub fn with_records(
+        counts: &Counts,
+        format: VertexFormat,
+        index_size: usize,
+        records: Option<&Records>,
+    ) -> Option<Sections> {
         // u64 arithmetic: every product of a u32 count and a record length
         // fits, so only the final length needs checking.
         fn next(start: u64, count: u32, len: usize) -> u64 {
@@ -652,22 +738,33 @@ impl Sections {
             (end + 3) & !3
         }
         let l = HEADER_LEN as u64;
-        let (ct, v, poly_len) = match colours {
-            Some(n) => {
+        let (ct, nw, v, poly_len) = match records {
+            Some(r) => {
                 let ct = l + LAYOUT_LEN as u64;
-                (ct, next(ct, n, COLOUR_LEN), COMPACT_POLYGON_LEN)
+                let nw = next(ct, r.colours, COLOUR_LEN);
+                match r.narrow {
+                    Some(n) => (ct, nw, nw + NARROW_LEN as u64, usize::from(n.record_len)),
+                    None => (ct, nw, nw, COMPACT_POLYGON_LEN),
+                }
             }
-            None => (l, l, POLYGON_LEN),
+            None => (l, l, l, POLYGON_LEN),
         };
+        // Shared switch planes: the plane records not of a run follow the
+        // runs, and a switch record is the index of one.
+        let (extra, switch_len) = match records.and_then(|r| r.narrow) {
+            Some(n) => (n.extra_planes, SWITCH_REF_LEN),
+            None => (0, SWITCH_LEN),
+        };
+        let plane_records = counts.runs.checked_add(extra)?;
         let p = next(v, counts.vertices, format.vertex_len());
         let i = next(p, counts.polygons, poly_len);
         let e = next(i, counts.indices, index_size);
         let nm = next(e, counts.edges, EDGE_LEN);
         let r = next(nm, counts.normals, NORMAL_LEN);
-        let b = next(r, counts.runs, RUN_LEN);
+        let b = next(r, plane_records, RUN_LEN);
         let n = next(b, counts.bunches.checked_add(1)?, 4);
         let s = next(n, counts.nodes, NODE_LEN);
-        let c = next(s, counts.switches, SWITCH_LEN);
+        let c = next(s, counts.switches, switch_len);
         let end = c + CRC_LEN as u64;
         if end > u64::from(u32::MAX) {
             return None;
@@ -678,6 +775,7 @@ impl Sections {
         Some(Sections {
             layout: cv(l)?,
             colours: cv(ct)?,
+            narrow: cv(nw)?,
             vertices: cv(v)?,
             polygons: cv(p)?,
             indices: cv(i)?,
@@ -796,94 +894,4 @@ pub(crate) fn rd_f32x3(b: &[u8], off: usize) -> [f32; 3] {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn crc32_is_the_zlib_one() {
-        // The standard check value of CRC-32/ISO-HDLC.
-        assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
-        assert_eq!(crc32(b""), 0);
-    }
-
-    #[test]
-    fn vertex_format_names_round_trip() {
-        for f in VertexFormat::ALL {
-            assert_eq!(VertexFormat::from_name(f.name()), Some(f));
-            assert_eq!(VertexFormat::from_code(f.code()), Some(f));
-        }
-        assert_eq!(VertexFormat::from_name("f64"), None);
-        assert_eq!(VertexFormat::from_code(3), None);
-    }
-
-    #[test]
-    fn sections_are_padded_and_ordered() {
-        let c = Counts {
-            vertices: 3,
-            polygons: 1,
-            indices: 3,
-            bunches: 1,
-            nodes: 1,
-            switches: 0,
-            runs: 1,
-            edges: 0,
-            normals: 0,
-        };
-        let s = Sections::new(&c, VertexFormat::Q16, 2).unwrap();
-        assert_eq!(s.vertices, HEADER_LEN);
-        assert_eq!(s.polygons, HEADER_LEN + 20); // 18 bytes padded to 20
-        assert_eq!(s.indices, s.polygons + POLYGON_LEN);
-        assert_eq!(s.runs, s.indices + 8); // 6 bytes padded to 8
-        assert_eq!(s.edges, s.runs);
-        let with_edges = Sections::new(&Counts { edges: 3, ..c }, VertexFormat::Q16, 2).unwrap();
-        assert_eq!(with_edges.edges, s.edges);
-        assert_eq!(with_edges.runs, s.runs + 3 * EDGE_LEN);
-        assert_eq!(with_edges.file_len, s.file_len + 3 * EDGE_LEN);
-        let both = Counts {
-            edges: 3,
-            normals: 3,
-            ..c
-        };
-        let both = Sections::new(&both, VertexFormat::Q16, 2).unwrap();
-        assert_eq!(both.normals, with_edges.runs);
-        assert_eq!(both.runs, both.normals + 12); // 9 bytes padded to 12
-        assert_eq!(s.bunches, s.runs + RUN_LEN);
-        assert_eq!(s.nodes, s.bunches + 8);
-        assert_eq!(s.switches, s.nodes + NODE_LEN);
-        assert_eq!(s.crc, s.switches);
-        assert_eq!(s.file_len, s.crc + CRC_LEN);
-        let huge = Counts {
-            vertices: u32::MAX,
-            ..c
-        };
-        assert_eq!(Sections::new(&huge, VertexFormat::F32, 4), None);
-        let max_bunches = Counts {
-            bunches: u32::MAX,
-            ..c
-        };
-        assert_eq!(Sections::new(&max_bunches, VertexFormat::F32, 4), None);
-        // Compact: layout and colours after the header, 8-byte polygons.
-        let k = Sections::with_compact(&c, VertexFormat::Q16, 2, Some(2)).unwrap();
-        assert_eq!((k.layout, k.colours), (HEADER_LEN, HEADER_LEN + LAYOUT_LEN));
-        assert_eq!(k.vertices, k.colours + 8); // 6 bytes padded to 8
-        assert_eq!(k.indices, k.polygons + COMPACT_POLYGON_LEN);
-        assert_eq!(k.file_len, s.file_len + LAYOUT_LEN + 8 - 8);
-        assert_eq!((s.layout, s.colours), (HEADER_LEN, HEADER_LEN));
-    }
-
-    #[test]
-    fn readers_do_not_panic_out_of_range() {
-        let b = [1u8, 2, 3, 4, 5];
-        assert_eq!(rd_u32(&b, 0), 0x0403_0201);
-        assert_eq!(rd_u32(&b, 2), 0);
-        assert_eq!(rd_u32(&b, usize::MAX), 0);
-        assert_eq!(rd_u8(&b, 9), 0);
-        assert_eq!(rd_i16(&b, 3), 0x0504);
-        let s = [1u8, 0, 0, 0, 2, 0, 0, 0, 3];
-        assert_eq!(le_u32(&rec::<4>(&s, 1), 0), 2);
-        assert_eq!(rec::<4>(&s, 2), [0; 4]); // only one byte left
-        assert_eq!(rec::<4>(&s, usize::MAX), [0; 4]);
-        assert_eq!(le_u32(&[7u8; 4], 1), 0); // field past the record
-        assert_eq!(le_f32(&1.5f32.to_le_bytes(), 0), 1.5);
-    }
-}
+mod tests;

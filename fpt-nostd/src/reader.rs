@@ -14,7 +14,13 @@
 //!   extent, radius, `f32` vertices, run and switch planes);
 //! - compact polygon records ([`crate::format::FLAG_COMPACT`]): the layout's
 //!   widths (each ≤ 32 bits, ≤ 56 together), every colour index below the
-//!   colour table's length and the unused bits zero;
+//!   colour table's length and the unused bits zero; narrow records
+//!   ([`crate::format::FLAG_NARROW`]): the hidden_edges width ≤ 8, all five
+//!   ≤ 64 bits, the record length exactly what they need, the bits above
+//!   them zero;
+//! - shared switch planes ([`crate::format::FLAG_NARROW`]): every switch
+//!   names a plane record below `run_count + extra_planes`, and the extra
+//!   plane records have finite planes and an end of 0;
 //! - every vertex index is below the vertex count, every polygon has at least
 //!   3 vertices and the polygons tile the index list; every edge record
 //!   (optional section) has a known kind; every corner normal (optional
@@ -79,7 +85,8 @@
 //! static, dynamic and BSP trees, open and closed, in all three vertex
 //! formats, some with runs of several polygons, three (`compact_*`, session
 //! 10) with compact polygon records, one of them with two colours and the
-//! edge and normal sections; the seed meshes one OBJ,
+//! edge and normal sections, three (`narrow_*`, session 17, not yet fuzzed)
+//! with narrow records and shared switch planes; the seed meshes one OBJ,
 //! OFF, ASCII STL and ASCII PLY each. Of the `tree_walk` corpus after the
 //! first run, 99 inputs are valid trees (walked) and the other 107 are
 //! rejected with every one of the 15 kinds of [`FormatError`] between them.
@@ -95,7 +102,7 @@ use crate::format::{
     Q16_MAX, RUN_LEN, SWITCH_LEN, VERSION,
 };
 use crate::format::{
-    rd_u64, COLOUR_LEN, COMPACT_HIDDEN_SHIFT, COMPACT_POLYGON_LEN, FLAG_COMPACT, LAYOUT_LEN,
+    rd_u64, COLOUR_LEN, COMPACT_POLYGON_LEN, FLAG_COMPACT, FLAG_NARROW, LAYOUT_LEN, SWITCH_REF_LEN,
 };
 use crate::format::{EDGE_LEN, FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 
@@ -166,6 +173,10 @@ struct Geometry<'a> {
     /// and building the mask for every field read cost the Cortex-M4F
     /// walk 1.6–2.0 % of a frame). All zero for 16-byte records.
     fields: CompactFields,
+    /// Bytes of one polygon record: 16, 8 for compact records, the
+    /// layout's record_len with [`FLAG_NARROW`]. A byte, like the next
+    /// field: this struct is copied into every [`PolygonRef`].
+    rec_len: u8,
     vertices: usize,
     polygons: usize,
     indices: usize,
@@ -188,29 +199,40 @@ struct Geometry<'a> {
 /// width (see [`Geometry::compact_field`]).
 #[derive(Clone, Copy, Debug, Default)]
 struct CompactFields {
-    /// First bit of first_index, run, source and colour index.
-    shift: [u8; 4],
-    /// `2^width − 1` of each.
+    /// First bit of first_index, run, source, colour index and
+    /// hidden_edges.
+    shift: [u8; 5],
+    /// `2^width − 1` of the first four.
     mask: [u32; 4],
+    /// `2^width − 1` of hidden_edges (at most 8 bits).
+    hidden_mask: u8,
 }
 
 impl CompactFields {
     /// The fields of a layout with these widths (each ≤ 32: validated by
     /// the caller; a wider one would only give a wrong mask, not a panic).
-    fn new(widths: [u8; 4]) -> CompactFields {
+    fn new(widths: [u8; 5]) -> CompactFields {
         let mut f = CompactFields::default();
         let mut at = 0u8;
-        for ((shift, mask), &w) in f.shift.iter_mut().zip(&mut f.mask).zip(&widths) {
+        let mut masks = [0u32; 5];
+        for ((shift, mask), &w) in f.shift.iter_mut().zip(&mut masks).zip(&widths) {
             *shift = at;
             *mask = 1u64.wrapping_shl(u32::from(w)).wrapping_sub(1) as u32;
             at = at.wrapping_add(w);
         }
+        f.mask = [masks[0], masks[1], masks[2], masks[3]];
+        f.hidden_mask = masks[4] as u8;
         f
     }
 
-    /// Bits used by the four fields together.
+    /// Bits used by the first four fields together.
     fn used_bits(&self) -> u32 {
         u32::from(self.shift[3]) + self.mask[3].count_ones()
+    }
+
+    /// Bits used by all five fields (hidden_edges included).
+    fn record_bits(&self) -> u32 {
+        u32::from(self.shift[4]) + self.hidden_mask.count_ones()
     }
 }
 
@@ -322,12 +344,8 @@ impl<'a> Geometry<'a> {
 
     #[inline]
     fn polygon_off(&self, id: u32) -> usize {
-        let len = if self.compact {
-            COMPACT_POLYGON_LEN
-        } else {
-            POLYGON_LEN
-        };
-        self.polygons.wrapping_add((id as usize).wrapping_mul(len))
+        self.polygons
+            .wrapping_add((id as usize).wrapping_mul(usize::from(self.rec_len)))
     }
 
     /// Field `k` (0 first_index, 1 run, 2 source, 3 colour index) of the
@@ -345,11 +363,15 @@ impl<'a> Geometry<'a> {
         rd_u64(self.bytes, self.polygon_off(id))
     }
 
-    /// Field `k` of the compact record `r` (see [`Geometry::compact_field`]).
+    /// Field `k` of the compact record `r` (see [`Geometry::compact_field`];
+    /// `k` = 4 is hidden_edges).
     #[inline(always)]
     fn field_of(&self, r: u64, k: usize) -> u32 {
         let f = &self.fields;
-        let k = k & 3;
+        if k >= 4 {
+            let h = r.wrapping_shr(u32::from(f.shift[4])) as u32;
+            return h & u32::from(f.hidden_mask);
+        }
         if k == 0 {
             // first_index starts at bit 0: no shift at all.
             return (r as u32) & f.mask[0];
@@ -423,7 +445,7 @@ impl<'a> Geometry<'a> {
     #[inline]
     fn polygon_hidden(&self, id: u32) -> u8 {
         if self.compact {
-            (self.compact_record(id) >> COMPACT_HIDDEN_SHIFT) as u8
+            self.compact_field(id, 4) as u8
         } else {
             rd_u8(self.bytes, self.polygon_off(id).wrapping_add(pg::COLOR + 3))
         }
@@ -475,8 +497,14 @@ pub(crate) struct WalkData<'a> {
     bunches: &'a [u8],
     /// `node_count` records of [`NODE_LEN`] bytes.
     nodes: &'a [u8],
-    /// `switch_count` records of [`SWITCH_LEN`] bytes.
+    /// `switch_count` records of [`SWITCH_LEN`] bytes, or of
+    /// [`SWITCH_REF_LEN`] with shared planes ([`FLAG_NARROW`]).
     switches: &'a [u8],
+    /// Whether the switch records index plane records ([`FLAG_NARROW`]):
+    /// `runs` then holds `run_count + extra_planes` records, the runs and
+    /// then the extra planes (the walk reads a run only by an index below
+    /// `run_count`, so the extra ones are only ever read as planes).
+    shared: bool,
 }
 
 impl<'a> WalkData<'a> {
@@ -533,10 +561,38 @@ impl<'a> WalkData<'a> {
     }
 
     /// The record of switch `k < switch_count`: its plane's normal and
-    /// offset.
+    /// offset (with shared planes, the first 16 bytes of the plane record
+    /// it names; one bounds check either way).
     #[inline(always)]
     pub(crate) fn switch_record(&self, k: u32) -> [u8; SWITCH_LEN] {
-        rec::<SWITCH_LEN>(self.switches, k as usize)
+        let (section, at) = if self.shared {
+            let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
+            (self.runs, (i as usize).wrapping_mul(RUN_LEN))
+        } else {
+            (self.switches, (k as usize).wrapping_mul(SWITCH_LEN))
+        };
+        at.checked_add(SWITCH_LEN)
+            .and_then(|end| section.get(at..end))
+            .and_then(|r| r.try_into().ok())
+            .unwrap_or([0; SWITCH_LEN])
+    }
+
+    /// The plane index of switch `k` with shared planes (`None` without
+    /// them or past the end).
+    #[inline]
+    pub(crate) fn switch_plane_index(&self, k: u32) -> Option<u32> {
+        let at = (k as usize).checked_mul(SWITCH_REF_LEN)?;
+        let r = self.switches.get(at..at.checked_add(SWITCH_REF_LEN)?)?;
+        self.shared
+            .then(|| u32::from_le_bytes(r.try_into().unwrap_or([0; 4])))
+    }
+
+    /// Plane record `i` of the shared planes (`run_count + extra_planes`
+    /// of them): its plane and end field.
+    #[inline]
+    pub(crate) fn plane_record(&self, i: u32) -> (Plane, u32) {
+        let r = rec::<RUN_LEN>(self.runs, i as usize);
+        (Plane::from_record(&r), le_u32(&r, rn::END))
     }
 
     /// The plane of switch `k < switch_count`.
@@ -741,9 +797,10 @@ pub(crate) struct PolygonAt<'t, 'a> {
     /// first index), and loading and range-checking the record for each
     /// cost the Cortex-M4F frame more than the bit fields themselves.
     rec: u64,
-    /// The next polygon's compact record (read with this one's: its first
-    /// index ends this one's index range); unused for the last polygon.
-    next: u64,
+    /// The low 32 bits of the next polygon's compact record (read with
+    /// this one's: its first index ends this one's index range); unused
+    /// for the last polygon.
+    next: u32,
 }
 
 impl<'t, 'a> PolygonAt<'t, 'a> {
@@ -759,11 +816,30 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         let (rec, next) = if g.compact {
             // Both records in one read: the polygon section is followed by
             // at least the index list, so 16 bytes from the last record
-            // are still in the file (and the second half is then unused).
-            let r: [u8; 16] = rd(g.bytes, g.polygon_off(id));
-            let (a, b) = r.split_at(8);
-            let word = |h: &[u8]| u64::from_le_bytes(h.try_into().unwrap_or([0; 8]));
-            (word(a), word(b))
+            // are still in the file (and `next` is then unused). Eight
+            // bytes each, whatever the record length (≤ 8): the fields'
+            // masks drop the next record's bits.
+            // Borrowed, not copied: the next record's bytes are then read
+            // straight from the file (a copy to the stack, to be read at a
+            // variable offset, cost more than the bit fields).
+            let off = g.polygon_off(id);
+            let r: &[u8; 16] = off
+                .checked_add(16)
+                .and_then(|end| g.bytes.get(off..end))
+                .and_then(|s| s.try_into().ok())
+                .unwrap_or(&[0; 16]);
+            // The next record starts `rec_len` (1 to 8) bytes in: written
+            // so that the compiler sees it is at most 8, and the slice
+            // below needs no check (a general variable slice of `r` cost
+            // the Cortex-M4F frame 0.2 %). Only its first index is read,
+            // which is at most 32 bits from its start.
+            let at = usize::from(g.rec_len.wrapping_sub(1) & 7) + 1;
+            let lo: [u8; 8] = r.get(..8).and_then(|h| h.try_into().ok()).unwrap_or([0; 8]);
+            let nx: [u8; 4] = r
+                .get(at..at + 4)
+                .and_then(|h| h.try_into().ok())
+                .unwrap_or([0; 4]);
+            (u64::from_le_bytes(lo), u32::from_le_bytes(nx))
         } else {
             (0, 0)
         };
@@ -807,7 +883,7 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         let (first, end) = if self.g.compact {
             let first = self.g.field_of(self.rec, 0);
             let end = if self.id < self.g.polygon_count.saturating_sub(1) {
-                self.g.field_of(self.next, 0)
+                self.g.field_of(u64::from(self.next), 0)
             } else {
                 self.g.index_count
             };
@@ -860,7 +936,8 @@ impl<'a> Tree<'a> {
         }
 
         let flags = rd_u32(bytes, h::FLAGS);
-        if flags & !(FLAG_CLOSED | FLAG_EDGES | FLAG_NORMALS | FLAG_COMPACT) != 0 {
+        let known = FLAG_CLOSED | FLAG_EDGES | FLAG_NORMALS | FLAG_COMPACT | FLAG_NARROW;
+        if flags & !known != 0 || (flags & FLAG_NARROW != 0 && flags & FLAG_COMPACT == 0) {
             return Err(FormatError::BadHeader("flags"));
         }
         let format = VertexFormat::from_code(rd_u8(bytes, h::VERTEX_FORMAT))
@@ -899,21 +976,12 @@ impl<'a> Tree<'a> {
         // A compact file's layout: read before the section sizes, which
         // depend on its colour count.
         let compact = flags & FLAG_COMPACT != 0;
-        let (widths, colour_count) = if compact {
-            if len < HEADER_LEN + LAYOUT_LEN + CRC_LEN {
-                return Err(FormatError::SectionSizes);
-            }
-            let w = rd::<4>(bytes, HEADER_LEN);
-            let sum: u32 = w.iter().map(|&x| u32::from(x)).sum();
-            if w.iter().any(|&x| x > 32) || sum > COMPACT_HIDDEN_SHIFT {
-                return Err(FormatError::BadHeader("layout"));
-            }
-            (w, Some(rd_u32(bytes, HEADER_LEN + 4)))
-        } else {
-            ([0; 4], None)
-        };
-        let s = Sections::with_compact(&counts, format, usize::from(index_size), colour_count)
+        let (widths, records) = layout::read(bytes, flags)?;
+        let colour_count = records.map(|r| r.colours);
+        let s = Sections::with_records(&counts, format, usize::from(index_size), records.as_ref())
             .ok_or(FormatError::SectionSizes)?;
+        let narrow = records.and_then(|r| r.narrow);
+        let extra_planes = narrow.map_or(0, |n| n.extra_planes);
         if s.file_len != len {
             return Err(FormatError::SectionSizes);
         }
@@ -944,17 +1012,26 @@ impl<'a> Tree<'a> {
                 .and_then(|end| bytes.get(start..end))
                 .ok_or(FormatError::SectionSizes)
         };
+        let shared = narrow.is_some();
+        let switch_len = if shared { SWITCH_REF_LEN } else { SWITCH_LEN };
         let w = WalkData {
-            runs: section(s.runs, counts.runs, RUN_LEN)?,
+            runs: section(s.runs, counts.runs.saturating_add(extra_planes), RUN_LEN)?,
             bunches: section(s.bunches, counts.bunches.saturating_add(1), 4)?,
             nodes: section(s.nodes, counts.nodes, NODE_LEN)?,
-            switches: section(s.switches, counts.switches, SWITCH_LEN)?,
+            switches: section(s.switches, counts.switches, switch_len)?,
+            shared,
+        };
+        let rec_len = match (compact, narrow) {
+            (_, Some(n)) => usize::from(n.record_len),
+            (true, None) => COMPACT_POLYGON_LEN,
+            (false, None) => POLYGON_LEN,
         };
         let g = Geometry {
             bytes,
             has_edges: counts.edges != 0,
             compact,
-            fields: CompactFields::new(widths),
+            fields: widths,
+            rec_len: rec_len as u8,
             vertices: s.vertices,
             polygons: s.polygons,
             indices: s.indices,
@@ -1007,7 +1084,7 @@ impl<'a> Tree<'a> {
         tree.check_runs()?;
         tree.check_bunches()?;
         tree.level_count = tree.check_nodes()?;
-        tree.check_switches()?;
+        tree.check_switches(extra_planes)?;
         tree.check_depth()?;
         Ok(tree)
     }
@@ -1033,17 +1110,48 @@ impl<'a> Tree<'a> {
         }
     }
 
+    /// Bytes of one polygon record: 16, 8 (compact) or the narrow layout's
+    /// record length ([`FLAG_NARROW`]).
+    pub fn record_len(&self) -> usize {
+        usize::from(self.g.rec_len)
+    }
+
+    /// Whether the switch records name shared plane records
+    /// ([`FLAG_NARROW`]).
+    pub fn has_shared_planes(&self) -> bool {
+        self.w.shared
+    }
+
+    /// What the compact records add to the sections
+    /// ([`Sections::with_records`]); `None` for 16-byte records.
+    pub fn records(&self) -> Option<crate::format::Records> {
+        self.g.compact.then(|| crate::format::Records {
+            colours: self.colour_count(),
+            narrow: self.w.shared.then(|| crate::format::Narrow {
+                record_len: self.g.rec_len,
+                extra_planes: self.extra_plane_count(),
+            }),
+        })
+    }
+
+    /// Plane records stored after the runs for switches whose plane no run
+    /// has (0 without [`FLAG_NARROW`]).
+    pub fn extra_plane_count(&self) -> u32 {
+        (self.w.runs.len() / RUN_LEN).saturating_sub(self.counts.runs as usize) as u32
+    }
+
     /// Bytes of each section, in file order, with its name (padding
     /// counted in the section it follows; the header includes nothing
     /// else): what `fpt info` prints. Sections a file does not have are
     /// left out.
-    pub fn section_bytes(&self) -> [(&'static str, usize); 13] {
+    pub fn section_bytes(&self) -> [(&'static str, usize); 14] {
         let s = self.sections;
         let n = self.g.bytes.len();
         [
             ("header", s.layout),
             ("layout", s.colours - s.layout),
-            ("colours", s.vertices - s.colours),
+            ("colours", s.narrow - s.colours),
+            ("narrow layout", s.vertices - s.narrow),
             ("vertices", s.polygons - s.vertices),
             ("polygons", s.indices - s.polygons),
             ("indices", s.edges - s.indices),
@@ -1264,6 +1372,7 @@ impl<'a> Tree<'a> {
     }
 }
 
+mod layout;
 mod normals;
 mod validate;
 mod vertices;

@@ -60,17 +60,27 @@ impl Tree<'_> {
     }
 
     /// Compact records: every colour index is below the colour count, and
-    /// the bits between the colour index and hidden_edges are zero (so a
+    /// the bits between the fields and the end of the record (8-byte
+    /// records: between the colour index and hidden_edges) are zero (so a
     /// file has one encoding). Nothing to check for 16-byte records.
     pub(super) fn check_colours(&self, colour_count: u32) -> Result<(), FormatError> {
         if !self.g.compact {
             return Ok(());
         }
-        let used = self.g.fields.used_bits();
-        let spare = (1u64 << (COMPACT_HIDDEN_SHIFT - used.min(COMPACT_HIDDEN_SHIFT))) - 1;
+        let (lo, hi) = if self.w.shared {
+            let bits = u32::from(self.g.rec_len) * 8;
+            (self.g.fields.record_bits().min(bits), bits)
+        } else {
+            (
+                self.g.fields.used_bits().min(COMPACT_HIDDEN_SHIFT),
+                COMPACT_HIDDEN_SHIFT,
+            )
+        };
+        // Bits lo..hi of the record (hi ≤ 64, lo ≤ hi).
+        let spare = u64::MAX.checked_shr(64 - (hi - lo)).unwrap_or(0);
         for p in 0..self.counts.polygons {
             let r = rd_u64(self.g.bytes, self.g.polygon_off(p));
-            let padding = r.wrapping_shr(used) & spare;
+            let padding = r.checked_shr(lo).unwrap_or(0) & spare;
             if self.g.polygon_colour_index(p) >= colour_count || padding != 0 {
                 return Err(FormatError::BadColour(p));
             }
@@ -166,9 +176,26 @@ impl Tree<'_> {
         u32::try_from(levels).map_err(|_| FormatError::BadBunches)
     }
 
-    /// Switch planes finite.
-    pub(super) fn check_switches(&self) -> Result<(), FormatError> {
+    /// Switch planes finite. With shared planes, every switch names a plane
+    /// record below `run_count + extra`, and the `extra` records after the
+    /// runs have finite planes and an end field of 0.
+    pub(super) fn check_switches(&self, extra: u32) -> Result<(), FormatError> {
+        let runs = self.counts.runs;
+        for i in runs..runs.saturating_add(extra) {
+            let (plane, end) = self.w.plane_record(i);
+            if !plane.is_finite() {
+                return Err(FormatError::NonFinite("extra planes"));
+            }
+            if end != 0 {
+                return Err(FormatError::BadRuns);
+            }
+        }
         for k in 0..self.counts.switches {
+            if let Some(i) = self.w.switch_plane_index(k) {
+                if u64::from(i) >= u64::from(runs) + u64::from(extra) {
+                    return Err(FormatError::BadSwitch(k));
+                }
+            }
             if !self.w.switch_plane(k).is_finite() {
                 return Err(FormatError::NonFinite("switch planes"));
             }

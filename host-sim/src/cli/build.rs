@@ -328,7 +328,8 @@ pub fn run(a: &BuildArgs) -> CliResult {
         effects: Some(effects.bits()),
         up,
         crease_deg: a.crease,
-        compact: a.records == "compact",
+        compact: a.records != "wide",
+        narrow: a.records == "narrow",
     };
     let bytes = crate::serialize::serialize(&tree, &opts)?;
     // Stats first: if it cannot be written, no tree file appears either.

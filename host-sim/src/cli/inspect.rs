@@ -181,12 +181,23 @@ pub fn info(a: &InfoArgs) -> CliResult {
     println!("levels:            {}", t.level_count());
     println!("connecting nodes:  {}", t.node_count());
     println!("switch nodes:      {}", t.switch_count());
+    if t.has_shared_planes() {
+        println!(
+            "switch planes:     shared with the runs, {} extra plane records",
+            t.extra_plane_count()
+        );
+    }
     println!("max depth:         {}", t.max_depth());
     println!("bytes per polygon: {per_polygon}");
     if t.is_compact() {
         println!(
-            "polygon records:   compact, {} bytes each, {} colours in the table",
-            fpt_nostd::format::COMPACT_POLYGON_LEN,
+            "polygon records:   {}, {} bytes each, {} colours in the table",
+            if t.has_shared_planes() {
+                "narrow"
+            } else {
+                "compact"
+            },
+            t.record_len(),
             t.colour_count()
         );
     } else {

@@ -145,10 +145,13 @@ pub struct BuildArgs {
     /// normals are averaged only over faces within this angle.
     #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
     pub crease: f32,
-    /// Polygon records: `compact` (8 bytes a polygon and a colour table,
-    /// when the fields fit) or `wide` (16 bytes, as files written before
-    /// compact records existed; for comparisons and older readers).
-    #[arg(long, default_value = "compact", value_parser = ["compact", "wide"])]
+    /// Polygon records: `narrow` (bit fields in as few bytes as they need,
+    /// a colour table, and switch planes shared with the runs), `compact`
+    /// (8 bytes a polygon and a colour table, as files of sessions 10–16)
+    /// or `wide` (16 bytes, as files written before compact records
+    /// existed); for comparisons and older readers. `narrow` and `compact`
+    /// fall back to `wide` when the fields do not fit.
+    #[arg(long, default_value = "narrow", value_parser = ["narrow", "compact", "wide"])]
     pub records: String,
 }
 

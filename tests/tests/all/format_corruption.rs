@@ -128,13 +128,15 @@ proptest! {
         closed: bool,
         bsp: bool,
         format in 0usize..3,
-        compact: bool,
+        records in 0usize..3,
         c in corruption(),
     ) {
         let t = random_tree(seed, n, closed, bsp, 1.0, DVec3::new(0.5, -2.0, 1.0));
+        // Wide, compact and narrow records (shared switch planes).
         let opts = SerializeOptions {
             vertex_format: VertexFormat::ALL[format],
-            compact,
+            compact: records > 0,
+            narrow: records == 2,
             ..SerializeOptions::default()
         };
         let original = serialize(&t, &opts).unwrap();
@@ -175,14 +177,16 @@ fn some_corruptions_pass_validation() {
     assert!(exercise(&bytes));
 }
 
+/// Where the section `name` of a valid `tree` starts.
+fn section_start(tree: &Tree<'_>, name: &str) -> usize {
+    let parts = tree.section_bytes();
+    let at = parts.iter().position(|&(n, _)| n == name).unwrap();
+    parts[..at].iter().map(|&(_, b)| b).sum()
+}
+
 /// Where the polygon section of a valid `tree` starts.
 fn polygon_section(tree: &Tree<'_>) -> usize {
-    let parts = tree.section_bytes();
-    let at = parts
-        .iter()
-        .position(|&(name, _)| name == "polygons")
-        .unwrap();
-    parts[..at].iter().map(|&(_, b)| b).sum()
+    section_start(tree, "polygons")
 }
 
 #[test]
@@ -201,9 +205,13 @@ fn compact_records_are_validated() {
         for (i, p) in t.polygons.iter_mut().enumerate() {
             p.color = [(i % 3) as u8 * 40, 7, 9];
         }
-        let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+        let compact = SerializeOptions {
+            narrow: false,
+            ..SerializeOptions::default()
+        };
+        let bytes = serialize(&t, &compact).unwrap();
         let tree = Tree::from_bytes(&bytes).unwrap();
-        assert!(tree.is_compact());
+        assert!(tree.is_compact() && !tree.has_shared_planes());
         let w: [u8; 4] = bytes[HEADER_LEN..HEADER_LEN + 4].try_into().unwrap();
         let used: u32 = w.iter().map(|&x| u32::from(x)).sum();
         assert!(used < 56, "small trees leave spare bits");
@@ -249,4 +257,93 @@ fn compact_records_are_validated() {
         assert!(exercise(&b));
     }
     assert!(out_of_range > 0, "no tree left room for a bad colour index");
+}
+
+#[test]
+fn narrow_records_and_shared_planes_are_validated() {
+    use fpt_nostd::format::{FormatError, FLAG_COMPACT, HEADER_LEN};
+    let reject = |bytes: &[u8], edit: &dyn Fn(&mut Vec<u8>)| {
+        let mut b = bytes.to_vec();
+        edit(&mut b);
+        fix_length_and_crc(&mut b);
+        Tree::from_bytes(&b).err()
+    };
+    let mut spare_bits = 0;
+    for seed in 0..16 {
+        // BSP trees: every node a switch, so there are switch records.
+        let t = random_tree(seed, 8, seed % 2 == 0, true, 1.0, DVec3::ZERO);
+        let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+        let tree = Tree::from_bytes(&bytes).unwrap();
+        assert!(tree.has_shared_planes() && tree.switch_count() > 0);
+        let ext = section_start(&tree, "narrow layout");
+        let len = tree.record_len();
+        assert!((1..=8).contains(&len));
+        assert_eq!(usize::from(bytes[ext + 1]), len);
+        // The record length must be exactly what the widths need, the
+        // hidden_edges width at most 8, the reserved bytes zero.
+        let layout = Some(FormatError::BadHeader("layout"));
+        assert_eq!(reject(&bytes, &|b| b[ext + 1] += 1), layout);
+        assert_eq!(reject(&bytes, &|b| b[ext] = 9), layout);
+        assert_eq!(reject(&bytes, &|b| b[ext + 2] = 1), layout);
+        // The narrow flag needs the compact one.
+        let flags = Some(FormatError::BadHeader("flags"));
+        assert_eq!(reject(&bytes, &|b| b[12] &= !(FLAG_COMPACT as u8)), flags);
+        // A set bit above the fields, inside the last record.
+        let w: u32 = bytes[HEADER_LEN..HEADER_LEN + 4]
+            .iter()
+            .map(|&x| u32::from(x))
+            .sum::<u32>()
+            + u32::from(bytes[ext]);
+        let last = polygon_section(&tree) + len * (tree.polygon_count() as usize - 1);
+        if w < 8 * len as u32 {
+            let bit = w as usize;
+            let last_poly = tree.polygon_count() - 1;
+            assert_eq!(
+                reject(&bytes, &|b| b[last + bit / 8] |= 1 << (bit % 8)),
+                Some(FormatError::BadColour(last_poly))
+            );
+            spare_bits += 1;
+        }
+        // A switch naming a plane record past the runs and extra planes.
+        let sw = section_start(&tree, "switches");
+        let past = tree.run_count() + tree.extra_plane_count();
+        assert_eq!(
+            reject(&bytes, &|b| b[sw..sw + 4]
+                .copy_from_slice(&past.to_le_bytes())),
+            Some(FormatError::BadSwitch(0))
+        );
+        // Naming another run's plane is a valid file (another order).
+        let mut b = bytes.clone();
+        b[sw..sw + 4].copy_from_slice(&0u32.to_le_bytes());
+        fix_length_and_crc(&mut b);
+        assert!(exercise(&b));
+        // An extra plane (made here from the last run record) must have an
+        // end of 0 and a finite plane.
+        let runs = section_start(&tree, "runs");
+        let with_extra = |end: u32, nan: bool| {
+            let mut b = bytes.clone();
+            let at = runs + 20 * tree.run_count() as usize;
+            let mut rec = b[at - 20..at].to_vec();
+            rec[16..20].copy_from_slice(&end.to_le_bytes());
+            if nan {
+                rec[0..4].copy_from_slice(&f32::NAN.to_le_bytes());
+            }
+            let e = tree.extra_plane_count() as usize;
+            b.splice(at + 20 * e..at + 20 * e, rec);
+            let n = tree.extra_plane_count() + 1;
+            b[ext + 4..ext + 8].copy_from_slice(&n.to_le_bytes());
+            fix_length_and_crc(&mut b);
+            b
+        };
+        assert!(exercise(&with_extra(0, false)));
+        assert_eq!(
+            Tree::from_bytes(&with_extra(1, false)).err(),
+            Some(FormatError::BadRuns)
+        );
+        assert_eq!(
+            Tree::from_bytes(&with_extra(0, true)).err(),
+            Some(FormatError::NonFinite("extra planes"))
+        );
+    }
+    assert!(spare_bits > 0, "no tree left a spare bit in its records");
 }

@@ -99,10 +99,10 @@ fn check_round_trip(t: &FpTree, bytes: &[u8], f: VertexFormat) -> Vec<u32> {
     order
 }
 
-/// `compact` (compact records) and `wide` (16-byte records, as older files
-/// have) are the same tree: every polygon field reads the same, and the
-/// sizes differ by exactly the 8 bytes a polygon saved less the layout and
-/// the colour table.
+/// `compact` (compact or narrow records) and `wide` (16-byte records, as
+/// older files have) are the same tree: every polygon field reads the same,
+/// and with 8-byte records the sizes differ by exactly the 8 bytes a
+/// polygon saved less the layout and the colour table.
 fn same_polygons(compact: &[u8], wide: &[u8]) {
     let (c, w) = (
         Tree::from_bytes(compact).unwrap(),
@@ -127,9 +127,16 @@ fn same_polygons(compact: &[u8], wide: &[u8]) {
         let fast: Vec<u32> = c.polygon_vertex_indices(id).collect();
         assert_eq!(fast, ia, "polygon {id}");
     }
-    let n = c.polygon_count() as usize;
-    let table = (3 * c.colour_count() as usize).next_multiple_of(4);
-    assert_eq!(compact.len() + 8 * n, wide.len() + 8 + table);
+    // The record kinds as the reader reports them (the switch planes,
+    // shared or not, are checked by the walks of `check_round_trip`).
+    let (rc, rw) = (c.records().unwrap(), w.records());
+    assert_eq!(rw, None);
+    assert_eq!(c.has_shared_planes(), rc.narrow.is_some());
+    if rc.narrow.is_none() {
+        let n = c.polygon_count() as usize;
+        let table = (3 * c.colour_count() as usize).next_multiple_of(4);
+        assert_eq!(compact.len() + 8 * n, wide.len() + 8 + table);
+    }
 }
 
 /// Compares the no_std walk with the reference walk for `views`; returns
@@ -178,6 +185,23 @@ fn random_trees_round_trip_in_every_format() {
             .unwrap();
             assert_eq!(check_round_trip(&t, &wide, f), order);
             same_polygons(&bytes, &wide);
+            // And the 8-byte compact records of sessions 10 to 16.
+            let compact = serialize(
+                &t,
+                &SerializeOptions {
+                    narrow: false,
+                    ..opts(f)
+                },
+            )
+            .unwrap();
+            assert_eq!(check_round_trip(&t, &compact, f), order);
+            same_polygons(&compact, &wide);
+            assert!(Tree::from_bytes(&compact)
+                .unwrap()
+                .records()
+                .unwrap()
+                .narrow
+                .is_none());
             if f == VertexFormat::F32 {
                 // Grid corners are far apart: only exact duplicates merge.
                 let r = Tree::from_bytes(&bytes).unwrap();

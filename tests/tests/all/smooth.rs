@@ -128,7 +128,7 @@ fn with_crc(mut v: Vec<u8>) -> Vec<u8> {
 fn a_corrupt_or_truncated_section_is_rejected() {
     let bytes = torus(smooth_fx(), 30.0);
     let t = Tree::from_bytes(&bytes).expect("tree");
-    let s = Sections::with_compact(
+    let s = Sections::with_records(
         &Counts {
             vertices: t.vertex_count(),
             polygons: t.polygon_count(),
@@ -142,7 +142,7 @@ fn a_corrupt_or_truncated_section_is_rejected() {
         },
         t.vertex_format(),
         usize::from(t.index_size()),
-        t.is_compact().then(|| t.colour_count()),
+        t.records().as_ref(),
     )
     .expect("layout");
     assert_eq!(s.file_len, bytes.len());

@@ -1,0 +1,126 @@
+//! Tests of the layout constants and field readers.
+
+use super::*;
+
+#[test]
+fn crc32_is_the_zlib_one() {
+    // The standard check value of CRC-32/ISO-HDLC.
+    assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
+    assert_eq!(crc32(b""), 0);
+}
+
+#[test]
+fn vertex_format_names_round_trip() {
+    for f in VertexFormat::ALL {
+        assert_eq!(VertexFormat::from_name(f.name()), Some(f));
+        assert_eq!(VertexFormat::from_code(f.code()), Some(f));
+    }
+    assert_eq!(VertexFormat::from_name("f64"), None);
+    assert_eq!(VertexFormat::from_code(3), None);
+}
+
+#[test]
+fn sections_are_padded_and_ordered() {
+    let c = Counts {
+        vertices: 3,
+        polygons: 1,
+        indices: 3,
+        bunches: 1,
+        nodes: 1,
+        switches: 0,
+        runs: 1,
+        edges: 0,
+        normals: 0,
+    };
+    let s = Sections::new(&c, VertexFormat::Q16, 2).unwrap();
+    assert_eq!(s.vertices, HEADER_LEN);
+    assert_eq!(s.polygons, HEADER_LEN + 20); // 18 bytes padded to 20
+    assert_eq!(s.indices, s.polygons + POLYGON_LEN);
+    assert_eq!(s.runs, s.indices + 8); // 6 bytes padded to 8
+    assert_eq!(s.edges, s.runs);
+    let with_edges = Sections::new(&Counts { edges: 3, ..c }, VertexFormat::Q16, 2).unwrap();
+    assert_eq!(with_edges.edges, s.edges);
+    assert_eq!(with_edges.runs, s.runs + 3 * EDGE_LEN);
+    assert_eq!(with_edges.file_len, s.file_len + 3 * EDGE_LEN);
+    let both = Counts {
+        edges: 3,
+        normals: 3,
+        ..c
+    };
+    let both = Sections::new(&both, VertexFormat::Q16, 2).unwrap();
+    assert_eq!(both.normals, with_edges.runs);
+    assert_eq!(both.runs, both.normals + 12); // 9 bytes padded to 12
+    assert_eq!(s.bunches, s.runs + RUN_LEN);
+    assert_eq!(s.nodes, s.bunches + 8);
+    assert_eq!(s.switches, s.nodes + NODE_LEN);
+    assert_eq!(s.crc, s.switches);
+    assert_eq!(s.file_len, s.crc + CRC_LEN);
+    let huge = Counts {
+        vertices: u32::MAX,
+        ..c
+    };
+    assert_eq!(Sections::new(&huge, VertexFormat::F32, 4), None);
+    let max_bunches = Counts {
+        bunches: u32::MAX,
+        ..c
+    };
+    assert_eq!(Sections::new(&max_bunches, VertexFormat::F32, 4), None);
+    // Compact: layout and colours after the header, 8-byte polygons.
+    let k = Sections::with_compact(&c, VertexFormat::Q16, 2, Some(2)).unwrap();
+    assert_eq!((k.layout, k.colours), (HEADER_LEN, HEADER_LEN + LAYOUT_LEN));
+    assert_eq!(k.vertices, k.colours + 8); // 6 bytes padded to 8
+    assert_eq!(k.indices, k.polygons + COMPACT_POLYGON_LEN);
+    assert_eq!(k.file_len, s.file_len + LAYOUT_LEN + 8 - 8);
+    assert_eq!((s.layout, s.colours), (HEADER_LEN, HEADER_LEN));
+}
+
+#[test]
+fn readers_do_not_panic_out_of_range() {
+    let b = [1u8, 2, 3, 4, 5];
+    assert_eq!(rd_u32(&b, 0), 0x0403_0201);
+    assert_eq!(rd_u32(&b, 2), 0);
+    assert_eq!(rd_u32(&b, usize::MAX), 0);
+    assert_eq!(rd_u8(&b, 9), 0);
+    assert_eq!(rd_i16(&b, 3), 0x0504);
+    let s = [1u8, 0, 0, 0, 2, 0, 0, 0, 3];
+    assert_eq!(le_u32(&rec::<4>(&s, 1), 0), 2);
+    assert_eq!(rec::<4>(&s, 2), [0; 4]); // only one byte left
+    assert_eq!(rec::<4>(&s, usize::MAX), [0; 4]);
+    assert_eq!(le_u32(&[7u8; 4], 1), 0); // field past the record
+    assert_eq!(le_f32(&1.5f32.to_le_bytes(), 0), 1.5);
+}
+
+#[test]
+fn narrow_sections_follow_the_colours_and_share_planes() {
+    let c = Counts {
+        vertices: 3,
+        polygons: 3,
+        indices: 9,
+        bunches: 1,
+        nodes: 3,
+        switches: 1,
+        runs: 2,
+        edges: 0,
+        normals: 0,
+    };
+    let compact = Sections::with_compact(&c, VertexFormat::Q16, 2, Some(2)).unwrap();
+    let records = Records {
+        colours: 2,
+        narrow: Some(Narrow {
+            record_len: 5,
+            extra_planes: 1,
+        }),
+    };
+    let n = Sections::with_records(&c, VertexFormat::Q16, 2, Some(&records)).unwrap();
+    // The colour table stays where it was; the narrow layout follows it.
+    assert_eq!(n.colours, compact.colours);
+    assert_eq!(n.narrow, compact.vertices);
+    assert_eq!(n.vertices, n.narrow + NARROW_LEN);
+    assert_eq!(compact.narrow, compact.vertices);
+    // Three 5-byte records, padded to 16; the runs and one extra plane;
+    // one 4-byte switch record.
+    assert_eq!(n.indices, n.polygons + 16);
+    assert_eq!(n.bunches, n.runs + 3 * RUN_LEN);
+    assert_eq!(n.crc, n.switches + SWITCH_REF_LEN);
+    assert_eq!(compact.crc, compact.switches + SWITCH_LEN);
+}
