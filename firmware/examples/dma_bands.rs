@@ -44,10 +44,10 @@ use fail::fail;
 static TREE: &[u8] = include_bytes!("../trees/vise.fpt");
 const SIZE: u32 = 240;
 const ROWS: u32 = 16;
-/// `fpt info trees/vise.fpt`: `TreeRenderer<P, 62>`, depth 27.
-const V: usize = 62;
+/// `fpt info trees/vise.fpt`: `TreeRenderer<P, 56>`, depth 23.
+const V: usize = 56;
 const N: usize = 40;
-/// One walk a frame (`fpt info`: 5,816 words).
+/// One walk a frame (`fpt info`: 4,032 words).
 const MEMORY_WORDS: usize = 6144;
 const FRAMES: u32 = 3;
 const BAND_WORDS: usize = (SIZE * ROWS) as usize;

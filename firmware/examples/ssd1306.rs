@@ -42,8 +42,8 @@ use fail::fail;
 static TREE: &[u8] = include_bytes!("../trees/vise.fpt");
 const WIDTH: u32 = 128;
 const HEIGHT: u32 = 64;
-/// `fpt info trees/vise.fpt`: `TreeRenderer<P, 62>`, depth 27.
-const V: usize = 62;
+/// `fpt info trees/vise.fpt`: `TreeRenderer<P, 56>`, depth 23.
+const V: usize = 56;
 const N: usize = 40;
 const FRAMES: u32 = 4;
 /// Bytes of the 1-bit frame: 64 rows of 16 bytes.

@@ -51,13 +51,13 @@ const SIZE: u32 = 240;
 /// framebuffer.
 const ROWS: u32 = 16;
 /// The vertex capacity `fpt info trees/vise.fpt` prints
-/// (`TreeRenderer<P, 62>`); the renderer checks it against the tree's
+/// (`TreeRenderer<P, 56>`); the renderer checks it against the tree's
 /// header and refuses a tree that needs more.
-const V: usize = 62;
-/// The walk stack: `fpt info` prints the tree's depth (27), a few more
+const V: usize = 56;
+/// The walk stack: `fpt info` prints the tree's depth (23), a few more
 /// levels leave room for a rebuilt tree.
 const N: usize = 40;
-/// Working memory for one walk a frame (`fpt info`: 5,816 words for the
+/// Working memory for one walk a frame (`fpt info`: 4,032 words for the
 /// vise; less gives the same picture with more walks).
 const MEMORY_WORDS: usize = 6144;
 /// Frames this run draws (a product loops forever).

@@ -6,8 +6,8 @@
 //!
 //! On the host, once: `fpt build part.stl -o part.fpt` (the
 //! `host-sim` crate's command-line tool). The tree's header records what a
-//! renderer needs; `fpt info part.fpt` prints it ("TreeRenderer<P, 62>",
-//! walk stack `N = 27`, the working memory), and the renderer checks it
+//! renderer needs; `fpt info part.fpt` prints it ("TreeRenderer<P, 56>",
+//! walk stack `N = 23`, the working memory), and the renderer checks it
 //! before drawing: too small a capacity is a [`render::CapacityError`]
 //! naming it and what it must be, never a polygon skipped. In the
 //! firmware, the tree is bytes in flash, the renderer a `static` (its
@@ -28,7 +28,7 @@
 //!
 //! // f32 with an FPU (`IntPrecision<4>` on a Cortex-M0), 4 sub-pixel
 //! // bits, and the vertex capacity `fpt info` prints for the tree.
-//! type Renderer = TreeRenderer<FloatLibm<4>, 62>;
+//! type Renderer = TreeRenderer<FloatLibm<4>, 56>;
 //! // Built at compile time, taken once: never on the stack.
 //! static RENDERER: ConstStaticCell<Renderer> =
 //!     ConstStaticCell::new(Renderer::new(240, 240).expect("a 240×240 display"));
@@ -45,7 +45,7 @@
 //!     let tree = Tree::from_bytes(TREE).expect("a valid tree");
 //!     let r = RENDERER.take();
 //!     let band = BAND.take();
-//!     let mut memory = [0u32; 6144]; // `fpt info`: 5,816 words for one walk
+//!     let mut memory = [0u32; 6144]; // `fpt info`: 4,032 words for one walk
 //!     for i in 0..3 {
 //!         // Frame the bounding sphere: yaw, pitch 25°, 60° fov; z-up part.
 //!         let yaw = i as f32 * 0.1;

@@ -9,7 +9,7 @@
 //!
 //! static TREE: &[u8] = include_bytes!("../../firmware/trees/vise.fpt");
 //! let tree = Tree::from_bytes(TREE).unwrap();
-//! let mut r = TreeRenderer::<FloatLibm<4>, 62>::new(64, 64).unwrap();
+//! let mut r = TreeRenderer::<FloatLibm<4>, 56>::new(64, 64).unwrap();
 //! let orbit = Orbit::framing::<Libm>(tree.bounding_radius(), 0.5, 0.4, 1.0, 1.0);
 //! let frame = Frame::relative(&tree, &orbit.camera_up::<Libm>(1.0, Up::Z));
 //! r.renderer.set_light(frame.light());
@@ -20,7 +20,7 @@
 //! let too_small: Result<_, RenderError> = TreeRenderer::<FloatLibm<4>, 8>::new(64, 64)
 //!     .unwrap()
 //!     .render::<40, _>(&tree, &frame, &mut fb);
-//! assert!(matches!(too_small, Err(RenderError::Capacity(CapacityError::Vertices { need: 62, .. }))));
+//! assert!(matches!(too_small, Err(RenderError::Capacity(CapacityError::Vertices { need: 56, .. }))));
 //! ```
 
 pub use crate::raster::{
