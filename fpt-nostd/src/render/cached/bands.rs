@@ -1,0 +1,713 @@
+//! The band half of the cached pipeline: the frame's walk (in
+//! `cached.rs`) has filled the display list and the vertex cache once;
+//! [`draw_bands`] and [`bands_into`] replay the list band by band
+//! (`replay`), carrying the triangles, quads and polygons a band cuts
+//! into the next (`crate::raster::carry`), and hand each finished band to
+//! the caller's [`BandStore`]. Split out of `cached.rs`, whose module
+//! docs state the contract.
+
+use core::cell::Cell;
+use core::marker::PhantomData;
+
+use super::super::probe::{Phase, Probe};
+use super::super::{BandBuffer, FaceIds, Frame, RenderError};
+use super::{begin_frame, cacheable, fill, frame_effects, prefill, take_cache, Step, Walk};
+use crate::effects::{for_frame, Compiled, Effects, ForPipeline};
+use crate::order::{memo_words, Order, MEMO};
+use crate::raster::carry::{Ring, Start, CARRY, NEED_KEPT, WORDS as CARRY_WORDS};
+use crate::raster::list::{DisplayList, Entry, Kind, Points};
+use crate::raster::renderer::Ready;
+use crate::raster::transform::ScreenPt;
+use crate::raster::vcache::{Slot, VertexCache};
+use crate::raster::{
+    Band, Framebuffer, Outcome, Paint, PixelFormat, Precision, RenderStats, Renderer, Scratch,
+    SpanBounds, SpanSink,
+};
+use crate::reader::Tree;
+
+/// Replays the records of `list` that touch rows `[y0, y1)` into `sink`;
+/// returns the spans. `carry`: the triangles kept by the band before
+/// (resumed where they stopped instead of set up again) and the words
+/// they live in; with `keep`, the band after this one comes from the same
+/// list, and the triangles this band cuts are kept for it
+/// ([`crate::raster::carry`]).
+#[allow(clippy::too_many_arguments)]
+fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
+    r: &Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    tree: &Tree<'_>,
+    list: &DisplayList<'_>,
+    cache: &VertexCache<'_>,
+    (y0, y1): (i32, i32),
+    sink: &mut K,
+    (ring, words, keep): (&mut Ring, &mut [u32], bool),
+) -> u64 {
+    let mut spans = 0;
+    // The band's own records when the list has a band index; else every
+    // record of the groups that overlap the band (whole groups that miss
+    // it are skipped unread). One loop over either, so that the fill is
+    // inlined once.
+    let indexed = list.band(y0);
+    let groups = (0..list.groups())
+        .filter_map(|g| list.group(g))
+        .filter(|_| indexed.is_none());
+    let scanned = groups
+        .filter(|&(first, end, _, _)| end > y0 && first < y1)
+        .flat_map(|(_, _, start, stop)| {
+            let mut at = start;
+            // Each record's rows tested from its first words only.
+            core::iter::from_fn(move || loop {
+                let (first, end, next) = list.rows_at(at).filter(|_| at < stop)?;
+                let here = at;
+                at = next;
+                if end > y0 && first < y1 {
+                    return Some(here);
+                }
+            })
+        });
+    let records = indexed
+        .unwrap_or(&[])
+        .iter()
+        .map(|&at| usize::from(at))
+        .chain(scanned);
+    // Triangles by polygon (most records) go straight to the triangle
+    // fill with the band's bounds found once here: what `fill_ready`
+    // does for each, without its per-record checks.
+    let tri = r.triangle_band::<X, K, V>(scratch, sink);
+    // Kept triangles carry their colour, not their id: only for sinks
+    // that paint without ids.
+    let carry = tri.filter(|_| CARRY && !K::NEEDS_ID && !words.is_empty());
+    if CARRY {
+        ring.begin(words);
+    }
+    let keep = keep && carry.is_some();
+    let mut want = if CARRY { ring.peek(words) } else { None };
+    for here in records {
+        if let Some(band) = &carry {
+            // The incoming triangles are among this band's records, in the
+            // same order: one comparison a record. One that is not where
+            // expected (it cannot be) is dropped, never drawn.
+            while let Some((at, row)) = want {
+                if at >= here && row == band.first_row() {
+                    break;
+                }
+                ring.skip(words);
+                want = ring.peek(words);
+            }
+            if want.is_some_and(|(at, _)| at == here) {
+                if CARRY_QUADS && ring.next_is_quad(words) {
+                    spans += band.resume_quad(ring, words, (here, keep), sink);
+                    want = ring.peek(words);
+                    continue;
+                }
+                if let Some((mut t, rgb)) = ring.pop(words) {
+                    want = ring.peek(words);
+                    let color = sink.color(&Paint { rgb, id: 0 });
+                    spans += band.run(&mut t, band.first_row(), color, sink) as u64;
+                    if keep && band.continues(&t) {
+                        ring.push(words, &t, (here, band.end_row()), rgb);
+                    }
+                    continue;
+                }
+            }
+        }
+        let Some(rec) = list.record(here) else {
+            break;
+        };
+        let e = rec.entry;
+        // (A record by polygon has `n = 0`: its count is the tree's, and
+        // the scratch bounds it below.)
+        if rec.n > V {
+            continue;
+        }
+        let mut ok = true;
+        let n = match rec.kind {
+            Kind::Polygon => {
+                // Recorded by polygon only when every vertex was cached.
+                let Some(i) = list.polygon(&rec) else {
+                    continue;
+                };
+                let mut n = 0;
+                for v in tree.polygon_vertex_indices(i) {
+                    match (scratch.screen_mut().get_mut(n), cache.get(v)) {
+                        (Some(dst), Slot::Point(p)) => *dst = p,
+                        _ => ok = false,
+                    }
+                    n += 1;
+                }
+                n
+            }
+            Kind::Indices => {
+                for (dst, &v) in scratch.screen_mut().iter_mut().zip(list.indices(&rec)) {
+                    match cache.get(u32::from(v)) {
+                        Slot::Point(p) => *dst = p,
+                        // Recorded by index only when cached: not reached.
+                        _ => ok = false,
+                    }
+                }
+                rec.n
+            }
+            Kind::Inline => {
+                for (i, dst) in scratch.screen_mut()[..rec.n].iter_mut().enumerate() {
+                    *dst = list.inline_point(&rec, i);
+                }
+                rec.n
+            }
+        };
+        if !ok {
+            continue;
+        }
+        if let (Some(band), 3) = (&tri, n) {
+            if let [a, b, c, ..] = *scratch.screen() {
+                let color = sink.color(&Paint {
+                    rgb: e.rgb,
+                    id: e.id,
+                });
+                if !(keep && e.end > y1 && ring.has_room(words)) {
+                    // Nothing can be kept (the last band of the walk, a
+                    // triangle whose rows end in this band, a full ring, or
+                    // a core without the carry): the plain
+                    // triangle fill, cheaper than the set-up that keeps
+                    // (measured: with it here, socket's bands in 3,675
+                    // words cost 1 % more than before the carry).
+                    if let Some(s) = band.fill([a, b, c], color, sink) {
+                        spans += s as u64;
+                        continue;
+                    }
+                } else {
+                    match band.start([a, b, c]) {
+                        Start::Outside => {}
+                        Start::Empty => continue,
+                        Start::Rows(mut t, y) => {
+                            spans += band.run(&mut t, y, color, sink) as u64;
+                            if keep && band.continues(&t) {
+                                ring.push(words, &t, (here, band.end_row()), e.rgb);
+                            }
+                            continue;
+                        }
+                    }
+                }
+            }
+        }
+        // The four-sided pieces of split triangles the band cuts: set up
+        // once and carried like the triangles (else the general fill's
+        // box, monotonicity pass and chain seeks in every band).
+        if let (true, Some(band), 4, true) = (CARRY_QUADS, &carry, n, keep && e.end > y1) {
+            if let [a, b, c, d, ..] = *scratch.screen() {
+                if let Some(s) = band.quad([a, b, c, d], (ring, words), (here, e.rgb, e.id), sink) {
+                    spans += s;
+                    continue;
+                }
+            }
+        }
+        // Polygons of five or more corners the band cuts: set up by the
+        // chains out of line, and kept (as quads) once at most three
+        // corners are left ahead (`raster::carry::poly`).
+        if let (true, Some(band), true) = (CARRY_POLYS, &carry, n > 4 && keep && e.end > y1) {
+            if let Some(pts) = scratch.screen().get(..n) {
+                if let Some(s) = band.poly(pts, (ring, words), (here, e.rgb, e.id), sink) {
+                    spans += s;
+                    continue;
+                }
+            }
+        }
+        let ready = Ready {
+            n,
+            // The fill computes the box if it needs it (not for a
+            // triangle).
+            bbox: None,
+            first: e.first,
+            end: e.end,
+            rgb: e.rgb,
+            clipped: e.clipped,
+            depth: 0.0,
+        };
+        if let Outcome::Drawn { spans: s } =
+            r.fill_ready::<X, K, V>(scratch, &ready, e.id, e.hidden, sink)
+        {
+            spans += s as u64;
+        }
+    }
+    spans
+}
+
+/// Whether the replay carries the four-sided pieces of split triangles
+/// across band edges as it does triangles (with [`CARRY`]).
+const CARRY_QUADS: bool = CARRY;
+
+/// Whether the replay sets up the polygons of five or more corners a band
+/// cuts by their own path and carries them (with [`CARRY`]).
+const CARRY_POLYS: bool = CARRY;
+
+/// Band `y0` (of `rows` rows in a `size` frame) as a framebuffer over
+/// `buf`, cleared to `background`.
+fn open_band<'b, F: PixelFormat>(
+    buf: &'b mut [F::Word],
+    (w, h): (i32, i32),
+    rows: i32,
+    y0: i32,
+    background: F::Color,
+) -> Result<Framebuffer<'b, F>, RenderError> {
+    let n = rows.min(h - y0) as u32;
+    let mut fb = Framebuffer::<F>::new(buf, w as u32, n).map_err(RenderError::Band)?;
+    fb.fill_all(background);
+    Ok(fb)
+}
+
+/// A frame band by band through `band`'s buffer, with one walk per group
+/// of bands whose polygons fit the display list in `memory` (see the module
+/// docs); each finished band goes to `emit` with its first row (`emit`
+/// returning `false` ends the frame there, with the counters so far), outside
+/// the probe's measurement.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn draw_bands<P, E, F, Pr, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    ids: FaceIds,
+    memory: &mut [u32],
+    band: BandBuffer<'_, F>,
+    probe: &Pr,
+    emit: impl FnMut(i32, &Framebuffer<'_, F>) -> bool,
+) -> Result<RenderStats, RenderError>
+where
+    P: Precision,
+    E: Compiled,
+    F: PixelFormat,
+    Pr: Probe,
+{
+    let BandBuffer {
+        buf,
+        rows,
+        background,
+    } = band;
+    let mut one = OneBuffer {
+        buf: Some(buf),
+        emit,
+    };
+    let out = bands::<P, E, F, _, Pr, N, V>(
+        tree,
+        frame,
+        r,
+        scratch,
+        (ids, memory),
+        (rows, background),
+        &mut one,
+        probe,
+    );
+    if out.is_err() {
+        // Every error leaves the probe running.
+        probe.stop();
+    }
+    out
+}
+
+/// Where the band loop takes the storage of each band and where it
+/// hands the finished band: one buffer reused for every band
+/// ([`OneBuffer`]), or two in turns while a display transfer sends the
+/// other (`render::double`).
+pub(crate) trait BandStore<'b, F: PixelFormat> {
+    /// The storage for the next band; `None` ends the frame.
+    fn take(&mut self) -> Option<&'b mut [F::Word]>;
+    /// Band `y` is finished in `fb`; `false` ends the frame.
+    fn emit(&mut self, y: i32, fb: Framebuffer<'b, F>) -> bool;
+}
+
+/// One band buffer, lent to `emit` for each finished band and reused.
+struct OneBuffer<'b, F: PixelFormat, X> {
+    buf: Option<&'b mut [F::Word]>,
+    emit: X,
+}
+
+impl<'b, F: PixelFormat, X> BandStore<'b, F> for OneBuffer<'b, F, X>
+where
+    X: FnMut(i32, &Framebuffer<'_, F>) -> bool,
+{
+    fn take(&mut self) -> Option<&'b mut [F::Word]> {
+        self.buf.take()
+    }
+
+    fn emit(&mut self, y: i32, fb: Framebuffer<'b, F>) -> bool {
+        let go = (self.emit)(y, &fb);
+        self.buf = Some(fb.into_storage());
+        go
+    }
+}
+
+/// [`draw_bands`] with the bands' storage from `store` and `rows` rows a
+/// band cleared to `background`; the probe is left running on an error.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn bands_into<'b, P, E, F, S, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    (ids, memory): (FaceIds, &mut [u32]),
+    (rows, background): (u32, F::Color),
+    store: &mut S,
+) -> Result<RenderStats, RenderError>
+where
+    P: Precision,
+    E: Compiled,
+    F: PixelFormat,
+    S: BandStore<'b, F>,
+{
+    bands::<P, E, F, S, super::super::NoProbe, N, V>(
+        tree,
+        frame,
+        r,
+        scratch,
+        (ids, memory),
+        (rows, background),
+        store,
+        &super::super::NoProbe,
+    )
+}
+
+/// [`draw_bands`] but for stopping the probe on an error: the frame's
+/// effects settled, the bands drawn by the code compiled without the
+/// switched effects that are off ([`for_frame`]).
+#[allow(clippy::too_many_arguments)]
+fn bands<'b, P, E, F, S, Pr, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    (ids, memory): (FaceIds, &mut [u32]),
+    (rows, background): (u32, F::Color),
+    store: &mut S,
+    probe: &Pr,
+) -> Result<RenderStats, RenderError>
+where
+    P: Precision,
+    E: Compiled,
+    F: PixelFormat,
+    S: BandStore<'b, F>,
+    Pr: Probe,
+{
+    // The caller has started the probe (before its own set-up).
+    probe.enter(Phase::Xform);
+    let active = frame_effects(r, tree);
+    let code = Bands::<'_, '_, '_, 'b, P, E, F, S, Pr, N, V> {
+        tree,
+        frame,
+        r,
+        scratch,
+        ids,
+        memory,
+        rows,
+        background,
+        store,
+        probe,
+        active,
+        band: PhantomData,
+    };
+    for_frame::<E, _>(active, code)
+}
+
+/// The arguments of [`bands`], handed to the code [`for_frame`] picks.
+struct Bands<'x, 't, 'p, 'b, P, E, F, S, Pr, const N: usize, const V: usize>
+where
+    P: Precision,
+    E: Compiled,
+    F: PixelFormat,
+{
+    tree: &'x Tree<'t>,
+    frame: &'x Frame,
+    r: &'x mut Renderer<P, E>,
+    scratch: &'x mut Scratch<P, V>,
+    ids: FaceIds,
+    memory: &'x mut [u32],
+    rows: u32,
+    background: F::Color,
+    store: &'x mut S,
+    probe: &'p Pr,
+    active: Effects,
+    /// The lifetime of the bands' storage (`S: BandStore<'b, F>`).
+    band: PhantomData<&'b ()>,
+}
+
+impl<'b, P, E, F, S, Pr, const N: usize, const V: usize> ForPipeline
+    for Bands<'_, '_, '_, 'b, P, E, F, S, Pr, N, V>
+where
+    P: Precision,
+    E: Compiled,
+    F: PixelFormat,
+    S: BandStore<'b, F>,
+    Pr: Probe,
+{
+    type Output = Result<RenderStats, RenderError>;
+
+    #[inline(always)]
+    fn run<X: Compiled>(self) -> Self::Output {
+        let Bands {
+            tree,
+            frame,
+            r,
+            scratch,
+            ids,
+            memory,
+            rows,
+            background,
+            store,
+            probe,
+            active,
+            band: _,
+        } = self;
+        bands_as::<P, E, X, F, S, Pr, N, V>(
+            tree,
+            frame,
+            r,
+            scratch,
+            (ids, memory),
+            (rows, background),
+            store,
+            (probe, active),
+        )
+    }
+}
+
+/// [`bands`] compiled for pipeline `X`; out of line and with its
+/// references as parameters, as [`direct_as`](super::direct_as).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn bands_as<'b, P, E, X, F, S, Pr, const N: usize, const V: usize>(
+    tree: &Tree<'_>,
+    frame: &Frame,
+    r: &mut Renderer<P, E>,
+    scratch: &mut Scratch<P, V>,
+    (ids, memory): (FaceIds, &mut [u32]),
+    (rows, background): (u32, F::Color),
+    store: &mut S,
+    (probe, active): (&Pr, Effects),
+) -> Result<RenderStats, RenderError>
+where
+    P: Precision,
+    E: Compiled,
+    X: Compiled,
+    F: PixelFormat,
+    S: BandStore<'b, F>,
+    Pr: Probe,
+{
+    let (source, fx, turn) = begin_frame::<P, E, X>(r, tree, frame, active);
+    let outlines = r.effects_as::<X>().contains(Effects::OUTLINE);
+    // A frame that walks the tree more than once tests each plane once:
+    // the facing memo comes first (a few dozen words), when the memory
+    // has room for it beside a cache and the walk uses memos (`MEMO`:
+    // cores without an FPU).
+    let memo_n = memo_words(tree);
+    let memo_n = if MEMO && memory.len() >= 8 * memo_n {
+        memo_n
+    } else {
+        0
+    };
+    let (memo, memory) = memory.split_at_mut(memo_n);
+    memo.fill(0);
+    let memo = Cell::from_mut(&mut *memo).as_slice_of_cells();
+    // Made once a frame and restarted for every walk (it is large).
+    Order::<N>::check_depth(tree).map_err(RenderError::Order)?;
+    let mut order = Order::<N>::unchecked(tree, frame.view, fx.cull, memo);
+    // The cache takes at most three quarters of the memory (the list the
+    // rest): a vertex missing from the cache is transformed again by each
+    // of its polygons in every walk, which costs more than the walk a
+    // smaller list adds (measured on a Cortex-M0, README "Small RAM").
+    let most = memory.len() - memory.len() / 4;
+    // Indexed only: the display list records polygons by vertex index
+    // for the replay, which a tagged cache may have evicted by then.
+    let (mut cache, rest) = take_cache(memory, tree, (cacheable::<P, E, X>(r), false), most);
+    prefill(r, tree, source, &mut cache);
+    let list_words = bytemuck::cast_slice_mut(rest);
+    let needs_id = <Band<'_, Framebuffer<'_, F>> as SpanSink>::NEEDS_ID;
+    let mut list = DisplayList::new(list_words, needs_id, outlines);
+    let screen = r.viewport_bounds();
+    let (w, h) = (screen.x1, screen.y1);
+    let rows = rows.clamp(1, h.max(1) as u32) as i32;
+    let mut spans = 0u64;
+    let mut stats: Option<RenderStats> = None;
+    let mut y = 0;
+    let mut walks = 0;
+    // Triangles cut by a band's end, kept for the next band of the same
+    // walk in the words the list leaves ([`crate::raster::carry`]).
+    let mut ring = Ring::new();
+    while y < h {
+        walks += 1;
+        list.clear();
+        ring.clear();
+        // The list does not keep colour planes: with smooth shading every
+        // band is filled as its walk goes (one walk per band).
+        let smooth = X::SET.contains(Effects::SMOOTH) && fx.smooth;
+        let cut = Cell::new(if smooth { y + rows } else { h });
+        // The records a band, counted as the walk pushes them, for the
+        // band index (a pass over the records less).
+        list.tally_bands(y, rows, cut.get());
+        // The list overflowed for band `y` alone: the rest of this walk
+        // fills it directly.
+        let mut direct = smooth;
+        probe.enter(Phase::Fill);
+        let Some(buf) = store.take() else {
+            probe.stop();
+            return Ok(stats.unwrap_or_default());
+        };
+        let mut fb = open_band::<F>(buf, (w, h), rows, y, background)?;
+        let mut walk = Walk {
+            tree,
+            source,
+            fx,
+            ids,
+            cache: &mut cache,
+            turn,
+        };
+        let reach = || SpanBounds {
+            y0: y,
+            y1: cut.get(),
+            ..screen
+        };
+        walk.run::<P, E, X, Pr, N, V>(
+            &mut order,
+            r,
+            scratch,
+            probe,
+            stats.is_none(),
+            reach,
+            |r, s, ready, poly, face, cache| {
+                if direct {
+                    let band = &mut Band::new(&mut fb, y);
+                    spans += fill::<P, E, X, _, Pr, V>(r, s, ready, face, band, probe);
+                    return Step::Next;
+                }
+                let e = Entry {
+                    first: ready.first.clamp(0, h),
+                    end: ready.end.clamp(0, h),
+                    rgb: ready.rgb,
+                    id: face.id,
+                    hidden: face.hidden_edges,
+                    clipped: ready.clipped,
+                };
+                loop {
+                    let pts = match poly {
+                        Some(i) if i <= u32::from(u16::MAX) => Points::Polygon(i as u16),
+                        Some(_) => Points::Indices(s.active().get(..ready.n).unwrap_or(&[])),
+                        None => Points::Inline(s.screen().get(..ready.n).unwrap_or(&[])),
+                    };
+                    if list.push(&e, pts) {
+                        return Step::Next;
+                    }
+                    let left = (cut.get() - y + rows - 1) / rows;
+                    if left <= 1 {
+                        break;
+                    }
+                    // Keep the top five sixths of the bands still
+                    // covered: a larger step wastes a walk whenever a bit
+                    // more would have fitted, a smaller one costs more
+                    // overflows, each a pass over the list (measured on a
+                    // Cortex-M0, socket, 8-row bands in 1,635 words, median
+                    // frame: 3/4 11.79 M, 5/6 10.64 M, 7/8 10.77 M, 9/10
+                    // 10.89 M, 15/16 11.06 M; README "Small RAM").
+                    cut.set(y + rows * (left * 5 / 6).clamp(1, left - 1));
+                    list.retain_rows_below(cut.get());
+                    if e.first >= cut.get() {
+                        return Step::Next;
+                    }
+                }
+                // Not even band `y` fits: draw what is recorded into it, then
+                // this polygon (prepared again: the replay used the scratch)
+                // and the rest of the walk straight into it.
+                probe.enter(Phase::Fill);
+                // The replay uses the scratch, where this polygon's points
+                // are: on cores with an FPU they are kept aside and put
+                // back for its fill, so that the walk's callback never asks
+                // for a polygon again (the walk's loop without that path
+                // measured 3 % cheaper on socket's 16-row bands); the
+                // Cortex-M0 prepares it again (no stack for the copy).
+                let mut kept = [ScreenPt::default(); V];
+                let n = ready.n.min(V);
+                if CARRY {
+                    if let (Some(k), Some(p)) = (kept.get_mut(..n), s.screen().get(..n)) {
+                        k.copy_from_slice(p);
+                    }
+                }
+                // The replay scans the groups (no band index).
+                list.seal();
+                spans += replay::<P, E, X, _, V>(
+                    r,
+                    s,
+                    tree,
+                    &list,
+                    cache,
+                    (y, y + rows),
+                    &mut Band::new(&mut fb, y),
+                    (&mut Ring::new(), &mut [], false),
+                );
+                list.clear();
+                direct = true;
+                if !CARRY {
+                    return Step::Again;
+                }
+                if let (Some(p), Some(k)) = (s.screen_mut().get_mut(..n), kept.get(..n)) {
+                    p.copy_from_slice(k);
+                }
+                let band = &mut Band::new(&mut fb, y);
+                spans += fill::<P, E, X, _, Pr, V>(r, s, ready, face, band, probe);
+                Step::Next
+            },
+        );
+        if stats.is_none() {
+            stats = Some(r.stats());
+        }
+        // Band `y`, opened and cleared before the walk: filled during it
+        // (`direct`, and then `cut` is its end) or from the list now.
+        if !direct {
+            probe.enter(Phase::Fill);
+            // Each band then reads only its own records (when the words
+            // the list leaves hold the index; else it scans, as before).
+            if cut.get() > y + rows {
+                list.index_bands(y, rows, cut.get());
+            }
+            let mut sink = Band::new(&mut fb, y);
+            let keep = y + rows < cut.get();
+            let (view, words) = list.replay_parts();
+            let carry = (&mut ring, words, keep);
+            let band = (y, y + rows);
+            spans +=
+                replay::<P, E, X, _, V>(r, scratch, tree, &view, &cache, band, &mut sink, carry);
+        }
+        probe.stop();
+        if !store.emit(y, fb) {
+            return Ok(stats.unwrap_or_default());
+        }
+        probe.start(Phase::Fill);
+        let mut y0 = y + rows;
+        while y0 < cut.get() {
+            probe.enter(Phase::Fill);
+            let Some(buf) = store.take() else {
+                probe.stop();
+                return Ok(stats.unwrap_or_default());
+            };
+            let mut fb = open_band::<F>(buf, (w, h), rows, y0, background)?;
+            let mut sink = Band::new(&mut fb, y0);
+            let keep = y0 + rows < cut.get();
+            let (view, words) = list.replay_parts();
+            let carry = (&mut ring, words, keep);
+            let band = (y0, y0 + rows);
+            spans +=
+                replay::<P, E, X, _, V>(r, scratch, tree, &view, &cache, band, &mut sink, carry);
+            probe.stop();
+            if !store.emit(y0, fb) {
+                return Ok(stats.unwrap_or_default());
+            }
+            probe.start(Phase::Fill);
+            y0 += rows;
+        }
+        y = cut.get();
+    }
+    probe.stop();
+    let mut stats = stats.unwrap_or_default();
+    stats.spans = spans;
+    stats.walks = walks;
+    // The ring's states beyond `NEED_KEPT` are counted as unused: the
+    // ring takes only the words left, so fewer cost speed, not a picture.
+    list.note_spare_used(ring.most().min(NEED_KEPT) * CARRY_WORDS);
+    stats.memory_used = (memo_n + cache.words() + list.peak().div_ceil(2)) as u32;
+    Ok(stats)
+}
