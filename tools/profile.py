@@ -14,40 +14,17 @@ import re
 import subprocess
 import sys
 
+import qemu_log
+
 
 def main():
     log, elf = sys.argv[1], sys.argv[2]
     top = int(sys.argv[3]) if len(sys.argv) > 3 else 40
-    blocks = {}  # block start pc -> instruction addresses
-    cur = None
-    execs = collections.Counter()
-    sym_of = {}
-    with open(log, errors="replace") as f:
-        for line in f:
-            if line.startswith("IN:"):
-                cur = None
-                continue
-            m = re.match(r"0x([0-9a-f]{8}):\s", line)
-            if m:
-                pc = int(m.group(1), 16)
-                if cur is None:
-                    cur = pc
-                    blocks[cur] = []
-                blocks[cur].append(pc)
-                continue
-            m = re.match(r"Trace \d+: 0x[0-9a-f]+ \[[0-9a-f]+/([0-9a-f]+)/[0-9a-f]+/[0-9a-f]+\] (\S*)", line)
-            if m:
-                pc = int(m.group(1), 16)
-                execs[pc] += 1
-                sym_of[pc] = m.group(2)
-                cur = None
-    per_insn = collections.Counter()
+    blocks, execs, sym_of = qemu_log.read(log)
+    per_insn = qemu_log.per_instruction(blocks, execs)
     by_sym = collections.Counter()
     for pc, k in execs.items():
-        insns = blocks.get(pc, [pc])
-        by_sym[sym_of[pc]] += k * len(insns)
-        for a in insns:
-            per_insn[a] += k
+        by_sym[sym_of[pc]] += k * len(blocks.get(pc, [pc]))
     total = sum(per_insn.values())
     print(f"total {total} instructions\n\nper symbol:")
     for s, v in by_sym.most_common(15):

@@ -18,6 +18,8 @@ import re
 import subprocess
 import sys
 
+import qemu_log
+
 # (phase, pattern of a function name), tried in order for each inline
 # frame from the innermost out.
 PHASES = [
@@ -44,36 +46,9 @@ PHASES = [
 ]
 
 
-def counts(log):
-    """Instructions executed at each address."""
-    blocks, cur, execs = {}, None, collections.Counter()
-    with open(log, errors="replace") as f:
-        for line in f:
-            if line.startswith("IN:"):
-                cur = None
-                continue
-            m = re.match(r"0x([0-9a-f]{8}):\s", line)
-            if m:
-                pc = int(m.group(1), 16)
-                if cur is None:
-                    cur = pc
-                    blocks[cur] = []
-                blocks[cur].append(pc)
-                continue
-            m = re.match(r"Trace \d+: 0x[0-9a-f]+ \[[0-9a-f]+/([0-9a-f]+)/", line)
-            if m:
-                execs[int(m.group(1), 16)] += 1
-                cur = None
-    per = collections.Counter()
-    for pc, k in execs.items():
-        for a in blocks.get(pc, [pc]):
-            per[a] += k
-    return per
-
-
 def phases(log, elf):
     """Instructions per phase."""
-    per = counts(log)
+    per = qemu_log.per_instruction(*qemu_log.read(log)[:2])
     addrs = sorted(per)
     out = subprocess.run(
         ["llvm-addr2line", "-e", elf, "-f", "-C", "-i", "-a"] + [hex(a) for a in addrs],
