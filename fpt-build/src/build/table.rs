@@ -42,7 +42,7 @@
 //! counted on two threads when the build has one free. Every row computed counts the relations of the
 //! paper's table (one per other member), as the paper counts its cost.
 
-use super::bvh::{Bvh, NO_WITNESS};
+use super::bvh::{Bvh, Probe, NO_WITNESS};
 use super::{Ctx, Threads, Work};
 use crate::geom::{Plane, Polygon, Relation, Tolerance};
 use std::cmp::Reverse;
@@ -308,17 +308,7 @@ impl Table {
             let seeds = [q as u32, self.witness[q]];
             self.bvh.probe(&plane, q, &self.alive, tol, PROBE, &seeds)
         });
-        for (&q, p) in rows.iter().zip(found) {
-            self.counts[q] = p.counts;
-            self.undecided[q] = p.undecided;
-            self.stamp[q] = self.removed;
-            self.probed[q] = true;
-            if p.witness != NO_WITNESS {
-                self.witness[q] = p.witness;
-            } else if !self.has_live_witness(q) {
-                self.witness[q] = NO_WITNESS;
-            }
-        }
+        self.take_probes(rows, found);
     }
 
     /// Probes `rows` (alive, computed, not exact) depth first
@@ -331,6 +321,12 @@ impl Table {
             let plane = polys[self.ids[q] as usize].plane;
             self.bvh.probe_deep(&plane, q, &self.alive, tol, budget)
         });
+        self.take_probes(rows, found);
+    }
+
+    /// Stores what probes of `rows` found: bounds as of now, and a witness
+    /// if the probe found one (else the old one, if alive).
+    fn take_probes(&mut self, rows: &[usize], found: Vec<Probe>) {
         for (&q, p) in rows.iter().zip(found) {
             self.counts[q] = p.counts;
             self.undecided[q] = p.undecided;
