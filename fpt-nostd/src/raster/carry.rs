@@ -495,16 +495,92 @@ const QUAD: u32 = 1 << 26;
 
 #[cfg(test)]
 mod tests {
+    //! The carry's tests, and the set-up the tests of its triangles, quads
+    //! and polygons share: a random shape and the sweep of random bands it
+    //! is drawn in (below), so that each test states only what it checks
+    //! of the ring.
+
     extern crate std;
-    use super::super::edge::SMALL;
-    use super::super::scan::SpanBounds;
+    use super::super::edge::{Edge, SMALL};
+    use super::super::scan::{fill_polygon_in, FillRule, SpanBounds};
     use super::*;
+    use crate::raster::tests::Rng;
     use std::vec::Vec;
 
     use super::super::chain::tests::Rec;
 
-    fn pt(x: i32, y: i32) -> ScreenPt {
+    pub(super) fn pt(x: i32, y: i32) -> ScreenPt {
         ScreenPt { x, y }
+    }
+
+    /// Case `k` of a random carry test: its sub-pixel bits, the bound `m`
+    /// of its corners (±`m`; every fifth case the largest small
+    /// coordinate), and `n` random corners, put in order around their
+    /// centre when `around` (convex, as most of bench_city's polygons are;
+    /// some with two corners on one row, or one column).
+    pub(super) fn corners(
+        rng: &mut Rng,
+        k: usize,
+        n: usize,
+        around: bool,
+    ) -> (u32, i32, Vec<ScreenPt>) {
+        let sub = [0u32, 2, 4, 8][k % 4];
+        let small = k.is_multiple_of(5);
+        let m = if small { SMALL - 1 } else { 40 << sub };
+        let mut poly: Vec<ScreenPt> = (0..n)
+            .map(|_| pt(rng.range(-m, m), rng.range(-m, m)))
+            .collect();
+        if around {
+            if k % 7 == 1 {
+                poly[1].y = poly[0].y;
+                poly[3].x = poly[2].x;
+            }
+            let cx = poly.iter().map(|p| p.x).sum::<i32>() / n as i32;
+            let cy = poly.iter().map(|p| p.y).sum::<i32>() / n as i32;
+            poly.sort_by(|a, b| {
+                let aa = f64::from(a.y - cy).atan2(f64::from(a.x - cx));
+                let ab = f64::from(b.y - cy).atan2(f64::from(b.x - cx));
+                aa.total_cmp(&ab)
+            });
+        }
+        (sub, m, poly)
+    }
+
+    /// The bands a shape of [`corners`] is drawn in, top to bottom: of one
+    /// random width and height (1 to 13 rows), from above the shape to
+    /// below it.
+    pub(super) fn bands(rng: &mut Rng, m: i32, sub: u32) -> impl Iterator<Item = TriangleBand> {
+        let (x0, x1) = (rng.range(-30, 30), 30 + rng.range(-30, 30).abs());
+        let rows = 1 + rng.range(-12, 12).abs();
+        let y = (m >> sub) + 1;
+        (-y..=y).step_by(rows as usize).map(move |y0| TriangleBand {
+            sub,
+            b: SpanBounds {
+                x0,
+                y0,
+                x1,
+                y1: y0 + rows,
+            },
+        })
+    }
+
+    /// `poly`'s spans in `band` by the general fill (`fill_polygon_in`,
+    /// the replay's path without the carry) into `rec`; their count.
+    pub(super) fn general_fill(poly: &[ScreenPt], band: &TriangleBand, rec: &mut Rec) -> usize {
+        let (mut edges, mut active) = ([Edge::ZERO; 8], [0u16; 8]);
+        let filled = fill_polygon_in(
+            poly,
+            None,
+            band.sub,
+            FillRule::NonZero,
+            &band.b,
+            &mut edges,
+            &mut active,
+            (),
+            rec,
+        );
+        let Ok(spans) = filled else { panic!("fill") };
+        spans
     }
 
     /// Random triangles drawn in bands of random heights: resuming the
@@ -514,27 +590,16 @@ mod tests {
     /// `chain`), and a triangle is kept exactly while rows are left.
     #[test]
     fn kept_triangles_equal_a_fresh_set_up_in_every_band() {
-        let mut rng = crate::raster::tests::Rng(2121);
+        let mut rng = Rng(2121);
         let mut words = [0u32; 3 * WORDS];
         let mut kept = 0;
         for k in 0..4000 {
-            let sub = [0u32, 2, 4, 8][k % 4];
-            let m = if k % 5 == 0 { SMALL - 1 } else { 40 << sub };
-            let mut rnd = |m: i32| rng.range(-m, m);
-            let tri = [pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m)), pt(rnd(m), rnd(m))];
-            let (x0, x1) = (rnd(30), 30 + rnd(30).abs());
-            let rows = 1 + rnd(12).abs();
+            let (sub, m, tri) = corners(&mut rng, k, 3, false);
+            let tri = [tri[0], tri[1], tri[2]];
             let mut ring = Ring::new();
             let rgb = Rgb888::new(k as u8, 2, 3);
-            let mut y0 = -(m >> sub) - 1;
-            while y0 <= (m >> sub) + 1 {
-                let b = SpanBounds {
-                    x0,
-                    y0,
-                    x1,
-                    y1: y0 + rows,
-                };
-                let band = TriangleBand { sub, b };
+            for band in bands(&mut rng, m, sub) {
+                let (b, y0) = (band.b, band.b.y0);
                 let mut fresh = Rec(Vec::new(), b);
                 let want = band.fill(tri, (), &mut fresh);
                 ring.begin(&words);
@@ -557,7 +622,6 @@ mod tests {
                 if let Some(t) = state.filter(|t| band.continues(t)) {
                     assert!(ring.push(&mut words, &t, (7, band.end_row()), rgb));
                 }
-                y0 += rows;
             }
         }
         assert!(kept > 1000, "{kept}");

@@ -179,15 +179,11 @@ impl TriangleBand {
 mod tests {
     extern crate std;
     use super::super::super::chain::tests::Rec;
-    use super::super::super::edge::{Edge, SMALL};
-    use super::super::super::scan::{fill_polygon_in, FillRule, SpanBounds};
+    use super::super::tests::{bands, corners, general_fill};
     use super::super::WORDS;
     use super::*;
+    use crate::raster::tests::Rng;
     use std::vec::Vec;
-
-    fn pt(x: i32, y: i32) -> ScreenPt {
-        ScreenPt { x, y }
-    }
 
     /// Random polygons of five to eight corners (convex ones, as most of
     /// bench_city's are, and any others) drawn in bands of random
@@ -199,58 +195,17 @@ mod tests {
     /// exactly while it has rows left and at most three corners ahead.
     #[test]
     fn kept_polygons_equal_the_polygon_fill_in_every_band() {
-        let mut rng = crate::raster::tests::Rng(7373);
+        let mut rng = Rng(7373);
         let mut words = [0u32; 2 * WORDS];
         let (mut kept, mut fresh_runs, mut general) = (0, 0, 0);
         for k in 0..4000 {
-            let sub = [0u32, 2, 4, 8][k % 4];
-            let m = if k % 5 == 0 { SMALL - 1 } else { 40 << sub };
-            let mut rnd = |m: i32| rng.range(-m, m);
-            let n = 5 + k % 4;
-            let mut poly: Vec<ScreenPt> = (0..n).map(|_| pt(rnd(m), rnd(m))).collect();
-            if k % 3 != 0 {
-                // Convex-ish: the corners in order around their centre
-                // (some with two corners on one row, or one column).
-                if k % 7 == 1 {
-                    poly[1].y = poly[0].y;
-                    poly[3].x = poly[2].x;
-                }
-                let cx = poly.iter().map(|p| p.x).sum::<i32>() / n as i32;
-                let cy = poly.iter().map(|p| p.y).sum::<i32>() / n as i32;
-                poly.sort_by(|a, b| {
-                    let aa = f64::from(a.y - cy).atan2(f64::from(a.x - cx));
-                    let ab = f64::from(b.y - cy).atan2(f64::from(b.x - cx));
-                    aa.total_cmp(&ab)
-                });
-            }
-            let (x0, x1) = (rnd(30), 30 + rnd(30).abs());
-            let rows = 1 + rnd(12).abs();
+            let (sub, m, poly) = corners(&mut rng, k, 5 + k % 4, k % 3 != 0);
             let mut ring = Ring::new();
             let rgb = Rgb888::new(k as u8, 2, 3);
-            let mut y0 = -(m >> sub) - 1;
-            while y0 <= (m >> sub) + 1 {
-                let b = SpanBounds {
-                    x0,
-                    y0,
-                    x1,
-                    y1: y0 + rows,
-                };
-                let band = TriangleBand { sub, b };
+            for band in bands(&mut rng, m, sub) {
+                let (b, y0) = (band.b, band.b.y0);
                 let mut want = Rec(Vec::new(), b);
-                let (mut edges, mut active) = ([Edge::ZERO; 8], [0u16; 8]);
-                let rule = FillRule::NonZero;
-                let filled = fill_polygon_in(
-                    &poly,
-                    None,
-                    sub,
-                    rule,
-                    &b,
-                    &mut edges,
-                    &mut active,
-                    (),
-                    &mut want,
-                );
-                let Ok(spans) = filled else { panic!("fill") };
+                let spans = general_fill(&poly, &band, &mut want);
                 ring.begin(&words);
                 let mut got = Rec(Vec::new(), b);
                 if let Some((at, row)) = ring.peek(&words) {
@@ -273,19 +228,7 @@ mod tests {
                     match band.start_poly(&poly) {
                         PolyStart::Outside => {
                             general += 1;
-                            let (mut edges, mut active) = ([Edge::ZERO; 8], [0u16; 8]);
-                            let n = fill_polygon_in(
-                                &poly,
-                                None,
-                                sub,
-                                rule,
-                                &b,
-                                &mut edges,
-                                &mut active,
-                                (),
-                                &mut got,
-                            );
-                            assert!(n.is_ok());
+                            general_fill(&poly, &band, &mut got);
                         }
                         PolyStart::Empty => assert_eq!(spans, 0),
                         PolyStart::Rows(mut q, y) => {
@@ -303,7 +246,6 @@ mod tests {
                     }
                 }
                 assert_eq!(got.0, want.0, "{poly:?} {sub} {b:?}");
-                y0 += rows;
             }
         }
         assert!(

@@ -235,15 +235,11 @@ impl TriangleBand {
 mod tests {
     extern crate std;
     use super::super::super::chain::tests::Rec;
-    use super::super::super::edge::SMALL;
-    use super::super::super::scan::SpanBounds;
+    use super::super::tests::{bands, corners, general_fill};
     use super::super::{Start, WORDS};
     use super::*;
+    use crate::raster::tests::Rng;
     use std::vec::Vec;
-
-    fn pt(x: i32, y: i32) -> ScreenPt {
-        ScreenPt { x, y }
-    }
 
     /// Random four-sided polygons (convex ones, as the pieces of split
     /// triangles are, and any others) drawn in bands of random heights:
@@ -253,65 +249,19 @@ mod tests {
     /// there, the general fill's path the replay takes without the carry.
     #[test]
     fn kept_quads_equal_the_polygon_fill_in_every_band() {
-        use super::super::super::edge::Edge;
-        use super::super::super::scan::{fill_polygon_in, FillRule};
-        let mut rng = crate::raster::tests::Rng(4545);
+        let mut rng = Rng(4545);
         let mut words = [0u32; 4 * WORDS];
         let (mut kept, mut fresh_runs, mut general) = (0, 0, 0);
         for k in 0..4000 {
-            let sub = [0u32, 2, 4, 8][k % 4];
-            let m = if k % 5 == 0 { SMALL - 1 } else { 40 << sub };
-            let mut rnd = |m: i32| rng.range(-m, m);
-            let mut quad = [
-                pt(rnd(m), rnd(m)),
-                pt(rnd(m), rnd(m)),
-                pt(rnd(m), rnd(m)),
-                pt(rnd(m), rnd(m)),
-            ];
-            if k % 3 != 0 {
-                // Convex: the corners in order around their centre
-                // (some with two corners on one row, or one column).
-                if k % 7 == 1 {
-                    quad[1].y = quad[0].y;
-                    quad[3].x = quad[2].x;
-                }
-                let cx = quad.iter().map(|p| p.x).sum::<i32>() / 4;
-                let cy = quad.iter().map(|p| p.y).sum::<i32>() / 4;
-                quad.sort_by(|a, b| {
-                    let aa = f64::from(a.y - cy).atan2(f64::from(a.x - cx));
-                    let ab = f64::from(b.y - cy).atan2(f64::from(b.x - cx));
-                    aa.total_cmp(&ab)
-                });
-            }
+            let (sub, m, quad) = corners(&mut rng, k, 4, k % 3 != 0);
+            let quad = [quad[0], quad[1], quad[2], quad[3]];
             let tri = [quad[0], quad[1], quad[2]];
-            let (x0, x1) = (rnd(30), 30 + rnd(30).abs());
-            let rows = 1 + rnd(12).abs();
             let mut ring = Ring::new();
             let rgb = Rgb888::new(k as u8, 2, 3);
-            let mut y0 = -(m >> sub) - 1;
-            while y0 <= (m >> sub) + 1 {
-                let b = SpanBounds {
-                    x0,
-                    y0,
-                    x1,
-                    y1: y0 + rows,
-                };
-                let band = TriangleBand { sub, b };
+            for band in bands(&mut rng, m, sub) {
+                let (b, y0) = (band.b, band.b.y0);
                 let mut want = Rec(Vec::new(), b);
-                let (mut edges, mut active) = ([Edge::ZERO; 4], [0u16; 4]);
-                let rule = FillRule::NonZero;
-                let n = fill_polygon_in(
-                    &quad,
-                    None,
-                    sub,
-                    rule,
-                    &b,
-                    &mut edges,
-                    &mut active,
-                    (),
-                    &mut want,
-                );
-                let Ok(n) = n else { panic!("fill") };
+                let n = general_fill(&quad, &band, &mut want);
                 ring.begin(&words);
                 // A triangle kept before the quad (record 3), so that the
                 // two kinds share the ring.
@@ -347,19 +297,7 @@ mod tests {
                     match band.start_quad(quad) {
                         QuadStart::Outside => {
                             general += 1;
-                            let (mut edges, mut active) = ([Edge::ZERO; 4], [0u16; 4]);
-                            let n = fill_polygon_in(
-                                &quad,
-                                None,
-                                sub,
-                                rule,
-                                &b,
-                                &mut edges,
-                                &mut active,
-                                (),
-                                &mut got,
-                            );
-                            assert!(n.is_ok());
+                            general_fill(&quad, &band, &mut got);
                         }
                         QuadStart::Empty => assert_eq!(n, 0),
                         QuadStart::Rows(mut q, y) => {
@@ -373,7 +311,6 @@ mod tests {
                 if let Some(q) = state.filter(|q| band.continues_quad(q)) {
                     assert!(ring.push_quad(&mut words, &q, (7, band.end_row()), rgb));
                 }
-                y0 += rows;
             }
         }
         assert!(
