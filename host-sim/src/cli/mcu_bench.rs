@@ -58,7 +58,7 @@ mod firmware;
 mod memory;
 
 use firmware::{build_firmware, check_tools, parse_run, run_qemu, MEASURE_RAM_KIB};
-pub use firmware::{elf_sections, link_overflows, target_installed};
+pub use firmware::{elf_sections, link_overflows, qemu_installed, target_installed};
 
 /// Walk stack of the host's check (the firmware's is the tree's depth).
 const HOST_DEPTH: usize = 256;

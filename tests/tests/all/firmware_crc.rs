@@ -36,6 +36,7 @@ use host_sim::cli::frames::{
     accuracy_lines, accuracy_tree_file, accuracy_trees, expected_text, frame_lines,
     read_accuracy_trees, read_trees, scene_trees, ACCURACY_FILE, EXPECTED_FILE,
 };
+use host_sim::cli::mcu_bench::{qemu_installed, target_installed};
 
 const REGENERATE: &str =
     "regenerate with: cargo run --release -p host-sim --bin fpt -- frames --export firmware/trees";
@@ -105,25 +106,10 @@ fn committed_trees_are_fresh() {
 
 /// Why the firmware cannot run here for `target`, if it cannot.
 fn missing_tool(target: &str) -> Option<String> {
-    let qemu = Command::new("qemu-system-arm")
-        .arg("--version")
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .status();
-    if !qemu.is_ok_and(|s| s.success()) {
+    if !qemu_installed() {
         return Some("qemu-system-arm is not installed".into());
     }
-    let libdir = Command::new("rustc")
-        .args(["--print", "target-libdir", "--target", target])
-        .output();
-    let has_target = libdir.is_ok_and(|o| {
-        let dir = String::from_utf8_lossy(&o.stdout).trim().to_string();
-        o.status.success()
-            && std::fs::read_dir(&dir).is_ok_and(|mut d| {
-                d.any(|e| e.is_ok_and(|e| e.file_name().to_string_lossy().starts_with("libcore")))
-            })
-    });
-    if !has_target {
+    if !target_installed(target) {
         return Some(format!(
             "the {target} target is not installed (rustup target add {target})"
         ));

@@ -27,12 +27,7 @@ const RUN_TIMEOUT: Duration = Duration::from_secs(3600);
 /// Why the firmware cannot be built or run here, as an error naming the
 /// install command.
 pub(super) fn check_tools(cpu: Cpu) -> CliResult {
-    let qemu = Command::new("qemu-system-arm")
-        .arg("--version")
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .status();
-    if !qemu.is_ok_and(|s| s.success()) {
+    if !qemu_installed() {
         return Err(cli_err!(
             "qemu-system-arm is not installed (install it with: sudo apt-get install qemu-system-arm)"
         ));
@@ -44,6 +39,16 @@ pub(super) fn check_tools(cpu: Cpu) -> CliResult {
         ));
     }
     Ok(())
+}
+
+/// Whether `qemu-system-arm` runs.
+pub fn qemu_installed() -> bool {
+    let qemu = Command::new("qemu-system-arm")
+        .arg("--version")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status();
+    qemu.is_ok_and(|s| s.success())
 }
 
 /// Whether `target`'s core library is installed.
