@@ -127,15 +127,33 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
                 let Some(i) = list.polygon(&rec) else {
                     continue;
                 };
-                let mut n = 0;
-                for v in tree.polygon_vertex_indices(i) {
-                    match (scratch.screen_mut().get_mut(n), cache.get(v)) {
-                        (Some(dst), Slot::Point(p)) => *dst = p,
-                        _ => ok = false,
+                let vs = tree.polygon_vertex_indices(i);
+                if let Some(bytes) = vs.narrow() {
+                    // 2-byte indices (every tree below 65,536 vertices):
+                    // one loop over the bytes and the scratch together.
+                    let n = bytes.len() / 2;
+                    let Some(screen) = scratch.screen_mut().get_mut(..n) else {
+                        continue;
+                    };
+                    for (dst, b) in screen.iter_mut().zip(bytes.chunks_exact(2)) {
+                        let v = u32::from(b[0]) | u32::from(b[1]) << 8;
+                        match cache.get(v) {
+                            Slot::Point(p) => *dst = p,
+                            _ => ok = false,
+                        }
                     }
-                    n += 1;
+                    n
+                } else {
+                    let mut n = 0;
+                    for v in vs {
+                        match (scratch.screen_mut().get_mut(n), cache.get(v)) {
+                            (Some(dst), Slot::Point(p)) => *dst = p,
+                            _ => ok = false,
+                        }
+                        n += 1;
+                    }
+                    n
                 }
-                n
             }
             Kind::Indices => {
                 for (dst, &v) in scratch.screen_mut().iter_mut().zip(list.indices(&rec)) {
