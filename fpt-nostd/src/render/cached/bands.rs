@@ -48,28 +48,16 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
     // it are skipped unread). One loop over either, so that the fill is
     // inlined once.
     let indexed = list.band(y0);
-    let groups = (0..list.groups())
-        .filter_map(|g| list.group(g))
-        .filter(|_| indexed.is_none());
-    let scanned = groups
-        .filter(|&(first, end, _, _)| end > y0 && first < y1)
-        .flat_map(|(_, _, start, stop)| {
-            let mut at = start;
-            // Each record's rows tested from its first words only.
-            core::iter::from_fn(move || loop {
-                let (first, end, next) = list.rows_at(at).filter(|_| at < stop)?;
-                let here = at;
-                at = next;
-                if end > y0 && first < y1 {
-                    return Some(here);
-                }
-            })
-        });
-    let records = indexed
-        .unwrap_or(&[])
-        .iter()
-        .map(|&at| usize::from(at))
-        .chain(scanned);
+    let records = Records {
+        indexed: indexed.unwrap_or(&[]).iter(),
+        scan: indexed.is_none().then_some(Scan {
+            group: 0,
+            at: 0,
+            stop: 0,
+        }),
+        list,
+        rows: (y0, y1),
+    };
     // Triangles by polygon (most records) go straight to the triangle
     // fill with the band's bounds found once here: what `fill_ready`
     // does for each, without its per-record checks.
@@ -247,6 +235,69 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
         }
     }
     spans
+}
+
+/// The records a band replays, in push order: those the band index lists
+/// for it, else (no index) those of the groups that overlap it, tested by
+/// their first words. The index's are read in line, one slice step each;
+/// the scan, the rare case, out of line (a `chain` of the two tested
+/// which of them it was in every step).
+struct Records<'s, 'm> {
+    indexed: core::slice::Iter<'s, u16>,
+    scan: Option<Scan>,
+    list: &'s DisplayList<'m>,
+    rows: (i32, i32),
+}
+
+/// Where the scan of [`Records`] is: the next group, and the words
+/// `at..stop` of the group being read.
+struct Scan {
+    group: usize,
+    at: usize,
+    stop: usize,
+}
+
+impl Iterator for Records<'_, '_> {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        if let Some(&at) = self.indexed.next() {
+            return Some(usize::from(at));
+        }
+        self.scan_next()
+    }
+}
+
+impl Records<'_, '_> {
+    /// The next record of the scan (none with a band index).
+    #[inline(never)]
+    fn scan_next(&mut self) -> Option<usize> {
+        let s = self.scan.as_mut()?;
+        let (y0, y1) = self.rows;
+        loop {
+            while s.at < s.stop {
+                let Some((first, end, next)) = self.list.rows_at(s.at) else {
+                    break;
+                };
+                let here = s.at;
+                s.at = next;
+                if end > y0 && first < y1 {
+                    return Some(here);
+                }
+            }
+            if s.group >= self.list.groups() {
+                return None;
+            }
+            let g = s.group;
+            s.group += 1;
+            if let Some((first, end, start, stop)) = self.list.group(g) {
+                if end > y0 && first < y1 {
+                    (s.at, s.stop) = (start, stop);
+                }
+            }
+        }
+    }
 }
 
 /// Whether the replay carries the four-sided pieces of split triangles
