@@ -98,6 +98,18 @@ pub struct VertexIndices<'a> {
     pub(super) wide: bool,
 }
 
+impl<'a> VertexIndices<'a> {
+    /// The indices as stored when they are 2 bytes each (little-endian),
+    /// `None` when they are 4: for a caller that reads them in a loop of
+    /// its own (the band replay reads a polygon's indices in every band
+    /// it touches; the iterator's per-index width test and slice
+    /// splitting cost more than the reads).
+    #[inline]
+    pub(crate) fn narrow(&self) -> Option<&'a [u8]> {
+        (!self.wide).then_some(self.indices)
+    }
+}
+
 impl Iterator for VertexIndices<'_> {
     type Item = u32;
 

@@ -48,28 +48,16 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
     // it are skipped unread). One loop over either, so that the fill is
     // inlined once.
     let indexed = list.band(y0);
-    let groups = (0..list.groups())
-        .filter_map(|g| list.group(g))
-        .filter(|_| indexed.is_none());
-    let scanned = groups
-        .filter(|&(first, end, _, _)| end > y0 && first < y1)
-        .flat_map(|(_, _, start, stop)| {
-            let mut at = start;
-            // Each record's rows tested from its first words only.
-            core::iter::from_fn(move || loop {
-                let (first, end, next) = list.rows_at(at).filter(|_| at < stop)?;
-                let here = at;
-                at = next;
-                if end > y0 && first < y1 {
-                    return Some(here);
-                }
-            })
-        });
-    let records = indexed
-        .unwrap_or(&[])
-        .iter()
-        .map(|&at| usize::from(at))
-        .chain(scanned);
+    let records = Records {
+        indexed: indexed.unwrap_or(&[]).iter(),
+        scan: indexed.is_none().then_some(Scan {
+            group: 0,
+            at: 0,
+            stop: 0,
+        }),
+        list,
+        rows: (y0, y1),
+    };
     // Triangles by polygon (most records) go straight to the triangle
     // fill with the band's bounds found once here: what `fill_ready`
     // does for each, without its per-record checks.
@@ -127,15 +115,33 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
                 let Some(i) = list.polygon(&rec) else {
                     continue;
                 };
-                let mut n = 0;
-                for v in tree.polygon_vertex_indices(i) {
-                    match (scratch.screen_mut().get_mut(n), cache.get(v)) {
-                        (Some(dst), Slot::Point(p)) => *dst = p,
-                        _ => ok = false,
+                let vs = tree.polygon_vertex_indices(i);
+                if let Some(bytes) = vs.narrow() {
+                    // 2-byte indices (every tree below 65,536 vertices):
+                    // one loop over the bytes and the scratch together.
+                    let n = bytes.len() / 2;
+                    let Some(screen) = scratch.screen_mut().get_mut(..n) else {
+                        continue;
+                    };
+                    for (dst, b) in screen.iter_mut().zip(bytes.chunks_exact(2)) {
+                        let v = u32::from(b[0]) | u32::from(b[1]) << 8;
+                        match cache.get(v) {
+                            Slot::Point(p) => *dst = p,
+                            _ => ok = false,
+                        }
                     }
-                    n += 1;
+                    n
+                } else {
+                    let mut n = 0;
+                    for v in vs {
+                        match (scratch.screen_mut().get_mut(n), cache.get(v)) {
+                            (Some(dst), Slot::Point(p)) => *dst = p,
+                            _ => ok = false,
+                        }
+                        n += 1;
+                    }
+                    n
                 }
-                n
             }
             Kind::Indices => {
                 for (dst, &v) in scratch.screen_mut().iter_mut().zip(list.indices(&rec)) {
@@ -229,6 +235,69 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
         }
     }
     spans
+}
+
+/// The records a band replays, in push order: those the band index lists
+/// for it, else (no index) those of the groups that overlap it, tested by
+/// their first words. The index's are read in line, one slice step each;
+/// the scan, the rare case, out of line (a `chain` of the two tested
+/// which of them it was in every step).
+struct Records<'s, 'm> {
+    indexed: core::slice::Iter<'s, u16>,
+    scan: Option<Scan>,
+    list: &'s DisplayList<'m>,
+    rows: (i32, i32),
+}
+
+/// Where the scan of [`Records`] is: the next group, and the words
+/// `at..stop` of the group being read.
+struct Scan {
+    group: usize,
+    at: usize,
+    stop: usize,
+}
+
+impl Iterator for Records<'_, '_> {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        if let Some(&at) = self.indexed.next() {
+            return Some(usize::from(at));
+        }
+        self.scan_next()
+    }
+}
+
+impl Records<'_, '_> {
+    /// The next record of the scan (none with a band index).
+    #[inline(never)]
+    fn scan_next(&mut self) -> Option<usize> {
+        let s = self.scan.as_mut()?;
+        let (y0, y1) = self.rows;
+        loop {
+            while s.at < s.stop {
+                let Some((first, end, next)) = self.list.rows_at(s.at) else {
+                    break;
+                };
+                let here = s.at;
+                s.at = next;
+                if end > y0 && first < y1 {
+                    return Some(here);
+                }
+            }
+            if s.group >= self.list.groups() {
+                return None;
+            }
+            let g = s.group;
+            s.group += 1;
+            if let Some((first, end, start, stop)) = self.list.group(g) {
+                if end > y0 && first < y1 {
+                    (s.at, s.stop) = (start, stop);
+                }
+            }
+        }
+    }
 }
 
 /// Whether the replay carries the four-sided pieces of split triangles
