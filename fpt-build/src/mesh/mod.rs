@@ -44,6 +44,7 @@ use std::fmt;
 use std::path::Path;
 
 pub use obj::write_obj_mtl;
+pub use planar::triangulate;
 pub use prepare::{
     from_faces, from_faces_normals, from_faces_with, is_closed, is_closed_faces, FaceNormals,
 };

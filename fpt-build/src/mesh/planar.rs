@@ -141,7 +141,7 @@ fn cross2(a: DVec2, b: DVec2, c: DVec2) -> f64 {
 /// the remaining loop lies in its triangle. When no ear is found (the
 /// projection of a warped face may cross itself), the vertex turning most to
 /// the left is clipped anyway, so this always ends.
-fn triangulate(pts: &[DVec3], normal: DVec3) -> Vec<[usize; 3]> {
+pub fn triangulate(pts: &[DVec3], normal: DVec3) -> Vec<[usize; 3]> {
     let n = pts.len();
     if n < 3 {
         return Vec::new();

@@ -418,10 +418,40 @@ fn process_cpu_seconds() -> Option<f64> {
     Some((utime + stime) / 100.0)
 }
 
+/// Starts a new peak of this process's resident memory (Linux
+/// `/proc/self/clear_refs`, 5: resets `VmHWM`); false where that cannot
+/// be done, and then [`peak_rss_mib`] would be the peak of the whole run.
+fn reset_peak_rss() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
+/// The peak resident memory of this process since [`reset_peak_rss`]
+/// (`VmHWM`), in MiB: unlike the heap peak it counts the loaded meshes,
+/// the allocator's slack and the threads' stacks, what `/usr/bin/time`
+/// reports and the memory target is about.
+fn peak_rss_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let kib: f64 = status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))?
+        .trim()
+        .trim_end_matches("kB")
+        .trim()
+        .parse()
+        .ok()?;
+    Some(kib / 1024.0)
+}
+
 /// `fpt bench-build --scaling`: the static build against size, for the
-/// meshes given or for faceted tori.
+/// meshes given (and their subdivisions, `--subdivide K`) or for faceted
+/// tori.
 fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
     let mut inputs: Vec<(String, Vec<crate::geom::Polygon>, bool)> = Vec::new();
+    if a.subdivide.is_some() && a.meshes.is_empty() {
+        return Err(cli_err!(
+            "--subdivide needs mesh files (the tori are not subdivided)"
+        ));
+    }
     if a.meshes.is_empty() {
         let mut size = 760usize;
         while size <= a.max_polygons.max(760) {
@@ -438,18 +468,22 @@ fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
             let name = path
                 .file_name()
                 .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-            inputs.push((name, model.polygons, model.closed));
+            let k = a.subdivide.unwrap_or(0);
+            for (name, m) in super::subdivide::levels(&name, path, model, k)? {
+                inputs.push((name, m.polygons, m.closed));
+            }
         }
     }
     println!(
-        "| input | polygons | output | out/in | build s | CPU s | peak heap MiB | bytes/polygon |"
+        "| input | polygons | output | out/in | build s | CPU s | peak heap MiB | peak RSS MiB | bytes/polygon |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|");
     let (mut times, mut cpus, mut peaks) = (Vec::new(), Vec::new(), Vec::new());
     for (name, polygons, closed) in inputs {
         let n = polygons.len();
         crate::memory::reset_peak();
         let base = crate::memory::in_use();
+        let rss_reset = reset_peak_rss();
         let cpu0 = process_cpu_seconds();
         let t = build(
             polygons,
@@ -461,6 +495,7 @@ fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
         let cpu = cpu0.zip(process_cpu_seconds()).map(|(a, b)| b - a);
         let peak =
             crate::memory::peak().map(|p| p.saturating_sub(base) as f64 / f64::from(1 << 20));
+        let rss = peak_rss_mib().filter(|_| rss_reset);
         let bytes =
             crate::serialize::serialize(&t, &crate::serialize::SerializeOptions::default())?;
         let s = &t.stats;
@@ -473,11 +508,12 @@ fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
             peaks.push((n as f64, p));
         }
         println!(
-            "| {name} | {n} | {} | {:.2} | {secs:.2} | {} | {} | {:.1} |",
+            "| {name} | {n} | {} | {:.2} | {secs:.2} | {} | {} | {} | {:.1} |",
             s.output_polygons,
             s.output_polygons as f64 / n.max(1) as f64,
             cpu.map_or_else(|| "-".to_string(), |c| format!("{c:.2}")),
             peak.map_or_else(|| "-".to_string(), |p| format!("{p:.1}")),
+            rss.map_or_else(|| "-".to_string(), |r| format!("{r:.0}")),
             bytes.len() as f64 / s.output_polygons.max(1) as f64,
         );
     }
@@ -495,6 +531,9 @@ fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
 pub fn bench(a: &BenchBuildArgs) -> CliResult {
     if a.scaling {
         return bench_scaling(a);
+    }
+    if a.subdivide.is_some() {
+        return Err(cli_err!("--subdivide needs --scaling"));
     }
     let meshes = if a.meshes.is_empty() {
         let dir = shared_models_dir()

@@ -17,6 +17,7 @@ pub mod frames;
 mod inspect;
 pub mod mcu_bench;
 mod render;
+mod subdivide;
 pub mod turntable;
 pub mod view;
 
@@ -83,6 +84,9 @@ enum Command {
     /// Measure the working memory a tree's banded frames need and the walks
     /// that less memory costs (standard orbit, host).
     BenchMemory(bench_memory::BenchMemoryArgs),
+    /// Refine a mesh by Loop subdivision (four times the triangles a step)
+    /// and write it as OBJ: large curved meshes for build benchmarks.
+    Subdivide(subdivide::SubdivideArgs),
 }
 
 /// Arguments of `fpt build`.
@@ -198,6 +202,11 @@ pub struct BenchBuildArgs {
     /// With --scaling and no meshes: the largest torus, in polygons.
     #[arg(long = "max-polygons", default_value_t = 70_000)]
     pub max_polygons: usize,
+    /// With --scaling and meshes: measure each mesh also after 1 to K steps
+    /// of Loop subdivision (each four times the triangles; faces of more
+    /// than three vertices are cut into triangles first), as `NAME Loop k`.
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=8))]
+    pub subdivide: Option<u32>,
 }
 
 /// Arguments of `fpt bench-order`.
@@ -281,6 +290,7 @@ where
         Command::BenchAccuracy(a) => accuracy::run(&a),
         Command::McuBench(a) => mcu_bench::run(&a),
         Command::BenchMemory(a) => bench_memory::run(&a),
+        Command::Subdivide(a) => subdivide::run(&a),
     };
     match result {
         Ok(()) => 0,

@@ -12,6 +12,7 @@ mod cli_format;
 mod cli_frames;
 mod cli_inputs;
 mod cli_scale;
+mod cli_subdivide;
 mod cli_view;
 mod common;
 mod mcu_bench;
