@@ -700,8 +700,10 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// [`Renderer::prepare_verts`] for points already in
     /// `scratch.screen[..n]` (from [`Renderer::load_cached`]: every one
     /// inside the clip planes). Not for depth cueing, which needs clip `w`.
+    /// Without `BOX` the polygon's box is not kept for the fill, only its
+    /// rows are found (see [`Renderer::shade_ready`]).
     #[inline]
-    pub(crate) fn prepare_screen<X: Compiled, const N: usize>(
+    pub(crate) fn prepare_screen<X: Compiled, const N: usize, const BOX: bool>(
         &mut self,
         scratch: &Scratch<P, N>,
         n: usize,
@@ -711,7 +713,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         if n < 3 {
             return Err(Outcome::Invisible);
         }
-        self.shade_ready::<X>(&scratch.screen[..n.min(N)], face, 0.0, false, reach)
+        self.shade_ready::<X, BOX>(&scratch.screen[..n.min(N)], face, 0.0, false, reach)
     }
 
     /// Everything of the pipeline before the fill: clipping, projection
@@ -772,13 +774,18 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             }
         }
         let m = clipped.len();
-        self.shade_ready::<X>(&scratch.screen[..m], face, depth, was_clipped, reach)
+        self.shade_ready::<X, true>(&scratch.screen[..m], face, depth, was_clipped, reach)
     }
 
     /// The row range and the shaded colour of projected points `pts`;
     /// `Err(Drawn { spans: 0 })` when the polygon misses rows `reach`.
+    /// With `BOX` (or Gouraud shading compiled in) the polygon's box comes
+    /// along for the fill; without, only its rows are found, by a pass over
+    /// the points' `y` (the band walk: its display list keeps the rows, not
+    /// the box, and the replay's fill finds the box itself; the fill as
+    /// the walk goes, when the list is full, does too).
     #[inline(always)]
-    fn shade_ready<X: Compiled>(
+    fn shade_ready<X: Compiled, const BOX: bool>(
         &self,
         pts: &[ScreenPt],
         face: &Face,
@@ -795,8 +802,12 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         // outcome) skips shading and edge setup for one pass over its
         // vertices.
         // The fill's first pass, done once here for both.
-        let bbox = Bbox::seeded(pts);
-        let (top, bot) = (bbox.top, bbox.bot);
+        let (bbox, (top, bot)) = if BOX || X::SET.contains(Effects::SMOOTH) {
+            let bbox = Bbox::seeded(pts);
+            (Some(bbox), (bbox.top, bbox.bot))
+        } else {
+            (None, Bbox::rows(pts))
+        };
         // Projected points are within ±SCREEN_LIMIT: the 32-bit row bounds
         // apply (and a 64-bit variable shift is not cheap on a 32-bit core).
         let sub = self.viewport.sub_bits();
@@ -821,7 +832,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         }
         Ok(Ready {
             n: pts.len(),
-            bbox: Some(bbox),
+            bbox,
             first,
             end,
             rgb,

@@ -632,7 +632,7 @@ where
             y1: cut.get(),
             ..screen
         };
-        walk.run::<P, E, X, Pr, N, V>(
+        walk.run::<P, E, X, Pr, N, V, false>(
             &mut order,
             r,
             scratch,
