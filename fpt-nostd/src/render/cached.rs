@@ -320,7 +320,7 @@ impl Walk<'_, '_, '_> {
                     continue;
                 };
                 let (fx, pass) = if sliver {
-                    let sure = match self.screen_points(r, scratch, &p) {
+                    let sure = match self.screen_points::<P, E, V, BOX>(r, scratch, &p) {
                         Some(n) => {
                             let pts = scratch.screen().get(..n).unwrap_or(&[]);
                             if !turns_toward(pts, self.turn) {
@@ -450,22 +450,39 @@ impl Walk<'_, '_, '_> {
     /// (their number), without shading or clipping; `None` when `p` needs
     /// the per-polygon path (a vertex outside a clip plane, not finite or
     /// far off screen).
+    /// The band walk (`!BOX`) loads without the vertex indices, as in
+    /// [`Walk::prepare_from`].
     #[inline(always)]
-    fn screen_points<P: Precision, E: Compiled, const V: usize>(
+    fn screen_points<P: Precision, E: Compiled, const V: usize, const BOX: bool>(
         &mut self,
         r: &Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
         p: &PolygonAt<'_, '_>,
     ) -> Option<usize> {
         let dec = self.tree.vertex_decoder();
+        let (cache, indices) = (&mut *self.cache, p.vertex_indices());
         let loaded = match self.source {
-            Source::Scaled(s) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
-                let x = dec.get(v as usize);
-                <P::Path as VertexPath>::transform(r.matrix(), [x[0] * s, x[1] * s, x[2] * s])
-            }),
-            Source::Q16(frac) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
-                <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
-            }),
+            Source::Scaled(s) => {
+                let xform = |v: u32| {
+                    let x = dec.get(v as usize);
+                    <P::Path as VertexPath>::transform(r.matrix(), [x[0] * s, x[1] * s, x[2] * s])
+                };
+                if BOX {
+                    r.load_cached(scratch, cache, indices, xform)
+                } else {
+                    r.load_cached_bare(scratch, cache, indices, xform)
+                }
+            }
+            Source::Q16(frac) => {
+                let xform = |v: u32| {
+                    <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
+                };
+                if BOX {
+                    r.load_cached(scratch, cache, indices, xform)
+                } else {
+                    r.load_cached_bare(scratch, cache, indices, xform)
+                }
+            }
         };
         loaded.map(|(n, _)| n)
     }
@@ -517,9 +534,16 @@ impl Walk<'_, '_, '_> {
     ) -> (Result<Ready, Outcome>, bool) {
         if self.cache.indexed_len() > 0 {
             let xform = |v: u32| xf(r.matrix(), decode(v));
-            if let Some((n, by_index)) =
-                r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
-            {
+            // The band walk (`!BOX`) leaves the vertex indices out of
+            // `scratch.active` (its callback reads them from the tree in
+            // the rare case it records them).
+            let indices = p.vertex_indices();
+            let loaded = if BOX {
+                r.load_cached(scratch, self.cache, indices, xform)
+            } else {
+                r.load_cached_bare(scratch, self.cache, indices, xform)
+            };
+            if let Some((n, by_index)) = loaded {
                 return (
                     r.prepare_screen::<X, V, BOX>(scratch, n, face, reach),
                     by_index,
@@ -734,4 +758,6 @@ where
 }
 
 mod bands;
+#[cfg(test)]
+pub(crate) use bands::vertex_indices;
 pub(crate) use bands::{bands_into, draw_bands, BandStore};

@@ -308,6 +308,17 @@ const CARRY_QUADS: bool = CARRY;
 /// cuts by their own path and carries them (with [`CARRY`]).
 const CARRY_POLYS: bool = CARRY;
 
+/// Polygon `i`'s vertex indices into `active` (each below 2^16: a
+/// polygon recorded by them has every vertex cached). Out of line and
+/// cold: only a tree of more than 65,536 polygons takes it.
+#[cold]
+#[inline(never)]
+pub(crate) fn vertex_indices(tree: &Tree<'_>, i: u32, active: &mut [u16]) {
+    for (dst, v) in active.iter_mut().zip(tree.polygon_vertex_indices(i)) {
+        *dst = v as u16;
+    }
+}
+
 /// Band `y0` (of `rows` rows in a `size` frame) as a framebuffer over
 /// `buf`, cleared to `background`.
 fn open_band<'b, F: PixelFormat>(
@@ -656,7 +667,12 @@ where
                 loop {
                     let pts = match poly {
                         Some(i) if i <= u32::from(u16::MAX) => Points::Polygon(i as u16),
-                        Some(_) => Points::Indices(s.active().get(..ready.n).unwrap_or(&[])),
+                        Some(i) => {
+                            // The band walk loads without the indices
+                            // (`Renderer::load_cached_in`): from the tree.
+                            vertex_indices(tree, i, s.active_mut());
+                            Points::Indices(s.active().get(..ready.n).unwrap_or(&[]))
+                        }
                         None => Points::Inline(s.screen().get(..ready.n).unwrap_or(&[])),
                     };
                     if list.push(&e, pts) {
