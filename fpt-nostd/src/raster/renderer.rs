@@ -809,6 +809,7 @@ pub(crate) struct Ready {
 }
 
 mod load;
+pub(crate) use load::vertex_indices;
 
 #[cfg(test)]
 mod tests {

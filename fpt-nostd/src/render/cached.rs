@@ -758,6 +758,4 @@ where
 }
 
 mod bands;
-#[cfg(test)]
-pub(crate) use bands::vertex_indices;
 pub(crate) use bands::{bands_into, draw_bands, BandStore};

@@ -423,7 +423,7 @@ fn key_light_comes_from_the_viewer_up_and_left() {
 
 /// The band walk loads a polygon's points without its vertex indices
 /// (`Renderer::load_cached_bare`) and, for a polygon whose own index does
-/// not fit 16 bits, reads them from the tree (`cached::vertex_indices`):
+/// not fit 16 bits, reads them from the tree (`renderer::vertex_indices`):
 /// the indices `Renderer::load_cached` leaves in `scratch.active`, and the
 /// same points.
 #[test]
@@ -462,7 +462,7 @@ fn indices_from_the_tree_are_those_the_load_leaves() {
         assert_eq!(bare, Some((n, true)));
         assert_eq!(&r.scratch.screen()[..n], &pts[..]);
         assert!(r.scratch.active().iter().all(|&a| a == u16::MAX));
-        super::cached::vertex_indices(&t, i, r.scratch.active_mut());
+        crate::raster::renderer::vertex_indices(&t, i, r.scratch.active_mut());
         assert_eq!(&r.scratch.active()[..n], &want[..], "polygon {i}");
         assert!(n >= 3);
     }

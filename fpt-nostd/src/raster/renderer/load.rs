@@ -11,6 +11,20 @@ use super::super::transform::VertexPath;
 use super::super::vcache::{Slot, VertexCache};
 use super::{Renderer, Scalar, Scratch};
 use crate::effects::Compiled;
+use crate::reader::Tree;
+
+/// Polygon `i`'s vertex indices into `active`, as [`Renderer::load_cached`]
+/// leaves them (each below 2^16: a polygon recorded by them has every
+/// vertex cached), for the band walk, which loads without them
+/// ([`Renderer::load_cached_bare`]). Out of line and cold: only a polygon
+/// whose own index does not fit 16 bits takes it.
+#[cold]
+#[inline(never)]
+pub(crate) fn vertex_indices(tree: &Tree<'_>, i: u32, active: &mut [u16]) {
+    for (dst, v) in active.iter_mut().zip(tree.polygon_vertex_indices(i)) {
+        *dst = v as u16;
+    }
+}
 
 impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Loads a polygon's screen points through `cache` into

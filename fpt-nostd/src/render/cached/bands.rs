@@ -16,7 +16,7 @@ use crate::effects::{for_frame, Compiled, Effects, ForPipeline};
 use crate::order::{memo_words, Order, MEMO};
 use crate::raster::carry::{Ring, Start, CARRY, NEED_KEPT, WORDS as CARRY_WORDS};
 use crate::raster::list::{DisplayList, Entry, Kind, Points};
-use crate::raster::renderer::Ready;
+use crate::raster::renderer::{vertex_indices, Ready};
 use crate::raster::transform::ScreenPt;
 use crate::raster::vcache::{Slot, VertexCache};
 use crate::raster::{
@@ -307,17 +307,6 @@ const CARRY_QUADS: bool = CARRY;
 /// Whether the replay sets up the polygons of five or more corners a band
 /// cuts by their own path and carries them (with [`CARRY`]).
 const CARRY_POLYS: bool = CARRY;
-
-/// Polygon `i`'s vertex indices into `active` (each below 2^16: a
-/// polygon recorded by them has every vertex cached). Out of line and
-/// cold: only a tree of more than 65,536 polygons takes it.
-#[cold]
-#[inline(never)]
-pub(crate) fn vertex_indices(tree: &Tree<'_>, i: u32, active: &mut [u16]) {
-    for (dst, v) in active.iter_mut().zip(tree.polygon_vertex_indices(i)) {
-        *dst = v as u16;
-    }
-}
 
 /// Band `y0` (of `rows` rows in a `size` frame) as a framebuffer over
 /// `buf`, cleared to `background`.
@@ -656,26 +645,39 @@ where
                     spans += fill::<P, E, X, _, Pr, V>(r, s, ready, face, band, probe);
                     return Step::Next;
                 }
-                let e = Entry {
-                    first: ready.first.clamp(0, h),
-                    end: ready.end.clamp(0, h),
-                    rgb: ready.rgb,
-                    id: face.id,
-                    hidden: face.hidden_edges,
-                    clipped: ready.clipped,
-                };
+                let (first, end) = (ready.first.clamp(0, h), ready.end.clamp(0, h));
                 loop {
-                    let pts = match poly {
-                        Some(i) if i <= u32::from(u16::MAX) => Points::Polygon(i as u16),
-                        Some(i) => {
-                            // The band walk loads without the indices
-                            // (`Renderer::load_cached_in`): from the tree.
-                            vertex_indices(tree, i, s.active_mut());
-                            Points::Indices(s.active().get(..ready.n).unwrap_or(&[]))
+                    // The common record straight from the parts, the
+                    // entry made only for the others.
+                    let short = match poly {
+                        Some(i) if i <= u32::from(u16::MAX) && !ready.clipped => {
+                            list.push_polygon((first, end), ready.rgb, i as u16)
                         }
-                        None => Points::Inline(s.screen().get(..ready.n).unwrap_or(&[])),
+                        _ => None,
                     };
-                    if list.push(&e, pts) {
+                    let pushed = short.unwrap_or_else(|| {
+                        let e = Entry {
+                            first,
+                            end,
+                            rgb: ready.rgb,
+                            id: face.id,
+                            hidden: face.hidden_edges,
+                            clipped: ready.clipped,
+                        };
+                        let pts = match poly {
+                            Some(i) if i <= u32::from(u16::MAX) => Points::Polygon(i as u16),
+                            Some(i) => {
+                                // The band walk loads without the indices
+                                // (`Renderer::load_cached_bare`): from the
+                                // tree.
+                                vertex_indices(tree, i, s.active_mut());
+                                Points::Indices(s.active().get(..ready.n).unwrap_or(&[]))
+                            }
+                            None => Points::Inline(s.screen().get(..ready.n).unwrap_or(&[])),
+                        };
+                        list.push(&e, pts)
+                    });
+                    if pushed {
                         return Step::Next;
                     }
                     let left = (cut.get() - y + rows - 1) / rows;
@@ -691,7 +693,7 @@ where
                     // 10.89 M, 15/16 11.06 M; README "Small RAM").
                     cut.set(y + rows * (left * 5 / 6).clamp(1, left - 1));
                     list.retain_rows_below(cut.get());
-                    if e.first >= cut.get() {
+                    if first >= cut.get() {
                         return Step::Next;
                     }
                 }
