@@ -258,7 +258,12 @@ impl<'m> DisplayList<'m> {
         }
         let b0 = ((f - t.y) >> t.shift) as usize;
         let b1 = ((e - 1 - t.y) >> t.shift) as usize;
-        if let Some(c) = t.counts.get_mut(b0..=b1) {
+        if b0 == b1 {
+            // A record of one band (most of them): no loop.
+            if let Some(c) = t.counts.get_mut(b0) {
+                *c = c.wrapping_add(1);
+            }
+        } else if let Some(c) = t.counts.get_mut(b0..=b1) {
             for c in c {
                 *c = c.wrapping_add(1);
             }
