@@ -258,7 +258,12 @@ impl<'m> DisplayList<'m> {
         }
         let b0 = ((f - t.y) >> t.shift) as usize;
         let b1 = ((e - 1 - t.y) >> t.shift) as usize;
-        if let Some(c) = t.counts.get_mut(b0..=b1) {
+        if b0 == b1 {
+            // A record of one band (most of them): no loop.
+            if let Some(c) = t.counts.get_mut(b0) {
+                *c = c.wrapping_add(1);
+            }
+        } else if let Some(c) = t.counts.get_mut(b0..=b1) {
             for c in c {
                 *c = c.wrapping_add(1);
             }
@@ -429,16 +434,33 @@ impl<'m> DisplayList<'m> {
                 && e.end <= 1 << 14
                 && (0..i32::from(LONG_ROWS)).contains(&rows)
             {
-                return self.push_short(e, rows as u16, i);
+                return self.push_short((e.first, e.end), e.rgb, rows as u16, i);
             }
         }
         self.push_general(e, pts)
     }
 
+    /// [`DisplayList::push`] of polygon `i`, not clipped, of rows
+    /// `first..end` and colour `rgb`, when it takes the common record
+    /// (`Some`: whether it was written); `None`, nothing written, when it
+    /// does not (optional words, or rows out of its range): then
+    /// [`DisplayList::push`] stores it. The band walk makes the polygon's
+    /// [`Entry`] only then: made for every polygon, in memory for the
+    /// general push, it cost the walk more than the record.
+    #[inline(always)]
+    pub fn push_polygon(&mut self, (first, end): (i32, i32), rgb: Rgb888, i: u16) -> Option<bool> {
+        let rows = end.wrapping_sub(first);
+        let short = self.extra == 0
+            && (0..1 << 14).contains(&first)
+            && end <= 1 << 14
+            && (0..i32::from(LONG_ROWS)).contains(&rows);
+        short.then(|| self.push_short((first, end), rgb, rows as u16, i))
+    }
+
     /// [`DisplayList::push`] of a record by polygon `i` spanning `rows`
     /// (below 255) rows, without optional words (checked by the caller).
     #[inline(always)]
-    fn push_short(&mut self, e: &Entry, rows: u16, i: u16) -> bool {
+    fn push_short(&mut self, (first, end): (i32, i32), rgb: Rgb888, rows: u16, i: u16) -> bool {
         let at = self.len;
         let table = self.table_after_push();
         if at + 4 + table > self.buf.len() {
@@ -448,14 +470,14 @@ impl<'m> DisplayList<'m> {
             return false;
         };
         out.copy_from_slice(&[
-            e.first as u16 | BY_POLYGON << 14,
-            u16::from(e.rgb.r()) | u16::from(e.rgb.g()) << 8,
-            u16::from(e.rgb.b()) | rows << 8,
+            first as u16 | BY_POLYGON << 14,
+            u16::from(rgb.r()) | u16::from(rgb.g()) << 8,
+            u16::from(rgb.b()) | rows << 8,
             i,
         ]);
         self.index = None;
         self.len = at + 4;
-        self.add(at, e.first, e.end);
+        self.add(at, first, end);
         true
     }
 

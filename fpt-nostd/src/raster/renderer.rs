@@ -42,11 +42,9 @@ use super::edge::{Dda32, Edge};
 use super::gouraud::{fill_smooth, Smooth, SmoothSink};
 use super::outline::draw_outline;
 use super::precision::Precision;
-use super::proof::VertexBound;
 use super::scan::{fill_polygon_in, Bbox, FillRule, Paint, SpanBounds, SpanSink};
 use super::shade::{shade, shade_color, DepthCue, Light, ShadeMode};
 use super::transform::{ScreenPt, VertexPath, Viewport};
-use super::vcache::{Slot, VertexCache};
 use crate::effects::{AllEffects, Compiled, Effects};
 use crate::fixed::Fx14;
 
@@ -106,6 +104,12 @@ impl<P: Precision, const N: usize> Scratch<P, N> {
     #[inline]
     pub(crate) fn active(&self) -> &[u16] {
         &self.active
+    }
+
+    /// The same, to fill in (the band walk, which loads without them).
+    #[inline]
+    pub(crate) fn active_mut(&mut self) -> &mut [u16] {
+        &mut self.active
     }
 }
 
@@ -583,125 +587,13 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         self.prepare::<X, N>(scratch, loaded, face, reach)
     }
 
-    /// Loads a polygon's screen points through `cache` into
-    /// `scratch.screen[..n]` and its vertex indices into
-    /// `scratch.active[..n]`; a vertex not cached yet is transformed with
-    /// `xform` (given its index) and projected, once a frame; a vertex
-    /// beyond an indexed cache's capacity is transformed and projected here
-    /// without being kept. Returns `n` and whether every vertex is cached
-    /// for the rest of the frame (so that the indices stand for the points).
-    /// A tagged cache has no indexed slots, so here every vertex is beyond
-    /// it: the walk loads through [`Renderer::load_tagged`] instead (and
-    /// never by index: a later polygon may take a tagged entry over).
-    /// `None` when the polygon
-    /// must take the per-polygon path instead: a vertex is [`Slot::Slow`]
-    /// (outside a clip plane, not finite or far off screen), or the polygon
-    /// has more than `N` vertices. Every path gives the same points (see
-    /// [`super::vcache`]).
-    #[inline]
-    pub(crate) fn load_cached<const N: usize>(
-        &self,
-        scratch: &mut Scratch<P, N>,
-        cache: &mut VertexCache<'_>,
-        indices: impl Iterator<Item = u32>,
-        xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
-    ) -> Option<(usize, bool)> {
-        let project = |v: u32| {
-            xform(v)
-                .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
-                .and_then(|c| P::Path::project_inside(&c, &self.viewport))
-        };
-        let cap = cache.indexed_len();
-        let mut n = 0;
-        let mut all = true;
-        for v in indices {
-            let p = if v as usize >= cap {
-                all = false;
-                project(v)?
-            } else {
-                match cache.get_indexed(v) {
-                    Slot::Point(p) => p,
-                    Slot::Slow => return None,
-                    Slot::Unset => cache.insert_indexed(v, project(v))?,
-                }
-            };
-            *scratch.screen.get_mut(n)? = p;
-            // Cached vertices have indices below the cache's capacity, at
-            // most 2^16 (`render::cached`); the others are not read back.
-            *scratch.active.get_mut(n)? = v as u16;
-            n += 1;
-        }
-        Some((n, all))
-    }
-
-    /// [`Renderer::load_cached`] through a tagged cache: every vertex goes
-    /// through it, and none is reported cached for the rest of the frame
-    /// (a later polygon may take its entry over), so `scratch.active` is
-    /// not written. Out of line: the walk-and-fill function that inlines
-    /// `load_cached` keeps the indexed loop's code (and register
-    /// allocation) nearly as it was, plus one test a polygon (README, "What
-    /// a frame is made of", session 13: the placements measured).
-    #[inline(never)]
-    pub(crate) fn load_tagged<const N: usize>(
-        &self,
-        scratch: &mut Scratch<P, N>,
-        cache: &mut VertexCache<'_>,
-        indices: impl Iterator<Item = u32>,
-        xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
-    ) -> Option<usize> {
-        let project = |v: u32| {
-            xform(v)
-                .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
-                .and_then(|c| P::Path::project_inside(&c, &self.viewport))
-        };
-        let mut n = 0;
-        for v in indices {
-            let p = match cache.get_tagged(v) {
-                Slot::Point(p) => p,
-                Slot::Slow => return None,
-                Slot::Unset => cache.insert_tagged(v, project(v))?,
-            };
-            *scratch.screen.get_mut(n)? = p;
-            n += 1;
-        }
-        Some(n)
-    }
-
-    /// Whether this frame's camera lets every model point within `bound`
-    /// skip the per-vertex checks (`VertexPath::prove`, once a frame):
-    /// then [`Renderer::prefill`] may stand for the walk's transforms.
-    pub(crate) fn prove(&self, bound: &VertexBound) -> bool {
-        P::Path::prove(&self.matrix, self.near, bound)
-    }
-
-    /// Fills `cache` with the screen point of every vertex it holds (the
-    /// first `count` at most, `model` giving each by index), transformed
-    /// and projected without the per-vertex checks
-    /// (`VertexPath::project_proven`), for a frame where
-    /// [`Renderer::prove`] holds for every vertex `model` gives. The same
-    /// points [`Renderer::load_cached`] finds, found before the walk and
-    /// outside it: the walk then finds every cached vertex there, and its
-    /// own code (and register allocation) is that of any other frame.
-    #[inline(never)]
-    pub(crate) fn prefill(
-        &self,
-        cache: &mut VertexCache<'_>,
-        count: usize,
-        model: impl Fn(u32) -> [f32; 3],
-    ) {
-        let (m, near, vp) = (&self.matrix, self.near, &self.viewport);
-        let n = cache.capacity().min(count).min(u32::MAX as usize) as u32;
-        // Only for an indexed cache (`render::cached::prefill`).
-        for v in 0..n {
-            let _ = cache.insert_indexed(v, P::Path::project_proven(m, near, model(v), vp));
-        }
-    }
-
     /// [`Renderer::prepare_verts`] for points already in
     /// `scratch.screen[..n]` (from [`Renderer::load_cached`]: every one
     /// inside the clip planes). Not for depth cueing, which needs clip `w`.
+    /// Without `BOX` the polygon's box is not kept for the fill, only its
+    /// rows are found (see [`Renderer::shade_ready`]).
     #[inline]
-    pub(crate) fn prepare_screen<X: Compiled, const N: usize>(
+    pub(crate) fn prepare_screen<X: Compiled, const N: usize, const BOX: bool>(
         &mut self,
         scratch: &Scratch<P, N>,
         n: usize,
@@ -711,7 +603,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         if n < 3 {
             return Err(Outcome::Invisible);
         }
-        self.shade_ready::<X>(&scratch.screen[..n.min(N)], face, 0.0, false, reach)
+        self.shade_ready::<X, BOX>(&scratch.screen[..n.min(N)], face, 0.0, false, reach)
     }
 
     /// Everything of the pipeline before the fill: clipping, projection
@@ -772,13 +664,18 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             }
         }
         let m = clipped.len();
-        self.shade_ready::<X>(&scratch.screen[..m], face, depth, was_clipped, reach)
+        self.shade_ready::<X, true>(&scratch.screen[..m], face, depth, was_clipped, reach)
     }
 
     /// The row range and the shaded colour of projected points `pts`;
     /// `Err(Drawn { spans: 0 })` when the polygon misses rows `reach`.
+    /// With `BOX` (or Gouraud shading compiled in) the polygon's box comes
+    /// along for the fill; without, only its rows are found, by a pass over
+    /// the points' `y` (the band walk: its display list keeps the rows, not
+    /// the box, and the replay's fill finds the box itself; the fill as
+    /// the walk goes, when the list is full, does too).
     #[inline(always)]
-    fn shade_ready<X: Compiled>(
+    fn shade_ready<X: Compiled, const BOX: bool>(
         &self,
         pts: &[ScreenPt],
         face: &Face,
@@ -795,8 +692,12 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         // outcome) skips shading and edge setup for one pass over its
         // vertices.
         // The fill's first pass, done once here for both.
-        let bbox = Bbox::seeded(pts);
-        let (top, bot) = (bbox.top, bbox.bot);
+        let (bbox, (top, bot)) = if BOX || X::SET.contains(Effects::SMOOTH) {
+            let bbox = Bbox::seeded(pts);
+            (Some(bbox), (bbox.top, bbox.bot))
+        } else {
+            (None, Bbox::rows(pts))
+        };
         // Projected points are within ±SCREEN_LIMIT: the 32-bit row bounds
         // apply (and a 64-bit variable shift is not cheap on a 32-bit core).
         let sub = self.viewport.sub_bits();
@@ -821,7 +722,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         }
         Ok(Ready {
             n: pts.len(),
-            bbox: Some(bbox),
+            bbox,
             first,
             end,
             rgb,
@@ -906,6 +807,9 @@ pub(crate) struct Ready {
     /// Mean eye depth (with depth cueing; else 0).
     pub(crate) depth: f32,
 }
+
+mod load;
+pub(crate) use load::vertex_indices;
 
 #[cfg(test)]
 mod tests {

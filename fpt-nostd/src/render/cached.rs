@@ -266,7 +266,15 @@ impl Walk<'_, '_, '_> {
     /// else). `count`: add each polygon's outcome to the counters.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn run<P: Precision, E: Compiled, X: Compiled, Pr: Probe, const N: usize, const V: usize>(
+    fn run<
+        P: Precision,
+        E: Compiled,
+        X: Compiled,
+        Pr: Probe,
+        const N: usize,
+        const V: usize,
+        const BOX: bool,
+    >(
         &mut self,
         order: &mut Order<'_, N>,
         r: &mut Renderer<P, E>,
@@ -312,7 +320,7 @@ impl Walk<'_, '_, '_> {
                     continue;
                 };
                 let (fx, pass) = if sliver {
-                    let sure = match self.screen_points(r, scratch, &p) {
+                    let sure = match self.screen_points::<P, E, V, BOX>(r, scratch, &p) {
                         Some(n) => {
                             let pts = scratch.screen().get(..n).unwrap_or(&[]);
                             if !turns_toward(pts, self.turn) {
@@ -345,7 +353,7 @@ impl Walk<'_, '_, '_> {
                     face.hidden_edges = u64::MAX;
                 }
                 let polygon = (&p, &face, pass);
-                self.draw::<P, E, X, Pr, V>(r, scratch, polygon, probe, count, &reach, &mut f);
+                self.draw::<P, E, X, Pr, V, BOX>(r, scratch, polygon, probe, count, &reach, &mut f);
                 probe.enter(Phase::Post);
             }
         }
@@ -364,7 +372,7 @@ impl Walk<'_, '_, '_> {
     /// while `f` asks for it), counting it once (slivers apart).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn draw<P: Precision, E: Compiled, X: Compiled, Pr: Probe, const V: usize>(
+    fn draw<P: Precision, E: Compiled, X: Compiled, Pr: Probe, const V: usize, const BOX: bool>(
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
@@ -385,7 +393,7 @@ impl Walk<'_, '_, '_> {
         let clipped = r.stats_mut().clipped;
         loop {
             probe.enter(Phase::Xform);
-            let (ready, by_index) = self.prepare::<P, E, X, V>(r, scratch, p, face, &reach());
+            let (ready, by_index) = self.prepare::<P, E, X, V, BOX>(r, scratch, p, face, &reach());
             if let Pass::Unsure(t) = pass {
                 let sliver = ready.as_ref().is_ok_and(|ready| {
                     turns_toward(scratch.screen().get(..ready.n).unwrap_or(&[]), t)
@@ -442,22 +450,39 @@ impl Walk<'_, '_, '_> {
     /// (their number), without shading or clipping; `None` when `p` needs
     /// the per-polygon path (a vertex outside a clip plane, not finite or
     /// far off screen).
+    /// The band walk (`!BOX`) loads without the vertex indices, as in
+    /// [`Walk::prepare_from`].
     #[inline(always)]
-    fn screen_points<P: Precision, E: Compiled, const V: usize>(
+    fn screen_points<P: Precision, E: Compiled, const V: usize, const BOX: bool>(
         &mut self,
         r: &Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
         p: &PolygonAt<'_, '_>,
     ) -> Option<usize> {
         let dec = self.tree.vertex_decoder();
+        let (cache, indices) = (&mut *self.cache, p.vertex_indices());
         let loaded = match self.source {
-            Source::Scaled(s) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
-                let x = dec.get(v as usize);
-                <P::Path as VertexPath>::transform(r.matrix(), [x[0] * s, x[1] * s, x[2] * s])
-            }),
-            Source::Q16(frac) => r.load_cached(scratch, self.cache, p.vertex_indices(), |v| {
-                <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
-            }),
+            Source::Scaled(s) => {
+                let xform = |v: u32| {
+                    let x = dec.get(v as usize);
+                    <P::Path as VertexPath>::transform(r.matrix(), [x[0] * s, x[1] * s, x[2] * s])
+                };
+                if BOX {
+                    r.load_cached(scratch, cache, indices, xform)
+                } else {
+                    r.load_cached_bare(scratch, cache, indices, xform)
+                }
+            }
+            Source::Q16(frac) => {
+                let xform = |v: u32| {
+                    <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
+                };
+                if BOX {
+                    r.load_cached(scratch, cache, indices, xform)
+                } else {
+                    r.load_cached_bare(scratch, cache, indices, xform)
+                }
+            }
         };
         loaded.map(|(n, _)| n)
     }
@@ -466,7 +491,7 @@ impl Walk<'_, '_, '_> {
     /// planes (`true`: every vertex is cached, and its indices are in
     /// `scratch.active`), else per polygon.
     #[inline(always)]
-    fn prepare<P: Precision, E: Compiled, X: Compiled, const V: usize>(
+    fn prepare<P: Precision, E: Compiled, X: Compiled, const V: usize, const BOX: bool>(
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
@@ -482,12 +507,12 @@ impl Walk<'_, '_, '_> {
                     [x[0] * s, x[1] * s, x[2] * s]
                 };
                 let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
-                self.prepare_from::<P, E, X, _, V>(r, scratch, p, (decode, xf), face, reach)
+                self.prepare_from::<P, E, X, _, V, BOX>(r, scratch, p, (decode, xf), face, reach)
             }
             Source::Q16(frac) => {
                 let decode = move |v: u32| dec.raw_q16(v as usize);
                 let xf = move |m: &_, x| <P::Path as VertexPath>::transform_q(m, x, frac);
-                self.prepare_from::<P, E, X, _, V>(r, scratch, p, (decode, xf), face, reach)
+                self.prepare_from::<P, E, X, _, V, BOX>(r, scratch, p, (decode, xf), face, reach)
             }
         }
     }
@@ -495,7 +520,7 @@ impl Walk<'_, '_, '_> {
     /// [`Walk::prepare`] for vertices that `decode` reads by index and `xf`
     /// transforms with the frame's matrix.
     #[inline(always)]
-    fn prepare_from<P: Precision, E: Compiled, X: Compiled, T, const V: usize>(
+    fn prepare_from<P: Precision, E: Compiled, X: Compiled, T, const V: usize, const BOX: bool>(
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
@@ -509,15 +534,28 @@ impl Walk<'_, '_, '_> {
     ) -> (Result<Ready, Outcome>, bool) {
         if self.cache.indexed_len() > 0 {
             let xform = |v: u32| xf(r.matrix(), decode(v));
-            if let Some((n, by_index)) =
-                r.load_cached(scratch, self.cache, p.vertex_indices(), xform)
-            {
-                return (r.prepare_screen::<X, V>(scratch, n, face, reach), by_index);
+            // The band walk (`!BOX`) leaves the vertex indices out of
+            // `scratch.active` (its callback reads them from the tree in
+            // the rare case it records them).
+            let indices = p.vertex_indices();
+            let loaded = if BOX {
+                r.load_cached(scratch, self.cache, indices, xform)
+            } else {
+                r.load_cached_bare(scratch, self.cache, indices, xform)
+            };
+            if let Some((n, by_index)) = loaded {
+                return (
+                    r.prepare_screen::<X, V, BOX>(scratch, n, face, reach),
+                    by_index,
+                );
             }
         } else if self.cache.is_tagged() {
             let xform = |v: u32| xf(r.matrix(), decode(v));
             if let Some(n) = r.load_tagged(scratch, self.cache, p.vertex_indices(), xform) {
-                return (r.prepare_screen::<X, V>(scratch, n, face, reach), false);
+                return (
+                    r.prepare_screen::<X, V, BOX>(scratch, n, face, reach),
+                    false,
+                );
             }
         }
         let verts = p.vertex_indices().map(decode);
@@ -700,7 +738,7 @@ where
         cache: &mut cache,
         turn,
     };
-    walk.run::<P, E, X, Pr, N, V>(
+    walk.run::<P, E, X, Pr, N, V, true>(
         &mut order,
         r,
         scratch,

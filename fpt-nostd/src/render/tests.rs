@@ -420,3 +420,50 @@ fn key_light_comes_from_the_viewer_up_and_left() {
     let degenerate = Camera::from_matrix(Mat4([[0.0; 4]; 4]), 1.0);
     assert_eq!(Frame::new(&t, &degenerate).key_light(), [0.0, 0.0, 1.0]);
 }
+
+/// The band walk loads a polygon's points without its vertex indices
+/// (`Renderer::load_cached_bare`) and, for a polygon whose own index does
+/// not fit 16 bits, reads them from the tree (`renderer::vertex_indices`):
+/// the indices `Renderer::load_cached` leaves in `scratch.active`, and the
+/// same points.
+#[test]
+fn indices_from_the_tree_are_those_the_load_leaves() {
+    let bytes = floors([0.0; 3]);
+    let t = tree(&bytes);
+    let Some(mut r) = TreeRenderer::<DefaultPrecision, 16>::new(8, 8) else {
+        panic!("renderer")
+    };
+    let mut words = vec![0u32; t.vertex_count() as usize];
+    let mut cache = crate::raster::vcache::VertexCache::new(&mut words);
+    cache.clear();
+    for v in 0..t.vertex_count() {
+        let p = crate::raster::ScreenPt {
+            x: 3 * v as i32 - 7,
+            y: 11 - 2 * v as i32,
+        };
+        cache.set(v, Some(p));
+    }
+    for i in 0..t.polygon_count() {
+        let vs = t.polygon_vertex_indices(i);
+        let loaded = r
+            .renderer
+            .load_cached(&mut r.scratch, &mut cache, vs.clone(), |_| None);
+        let Some((n, true)) = loaded else {
+            panic!("{loaded:?}")
+        };
+        let (want, pts) = (
+            r.scratch.active()[..n].to_vec(),
+            r.scratch.screen()[..n].to_vec(),
+        );
+        r.scratch.active_mut().fill(u16::MAX);
+        let bare = r
+            .renderer
+            .load_cached_bare(&mut r.scratch, &mut cache, vs, |_| None);
+        assert_eq!(bare, Some((n, true)));
+        assert_eq!(&r.scratch.screen()[..n], &pts[..]);
+        assert!(r.scratch.active().iter().all(|&a| a == u16::MAX));
+        crate::raster::renderer::vertex_indices(&t, i, r.scratch.active_mut());
+        assert_eq!(&r.scratch.active()[..n], &want[..], "polygon {i}");
+        assert!(n >= 3);
+    }
+}

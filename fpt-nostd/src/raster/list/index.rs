@@ -294,7 +294,15 @@ fn place(
         };
         if end > y && first < cut && end > first {
             let (b0, b1) = (band_of(first.max(y) - y), band_of(end.min(cut) - 1 - y));
-            if let Some(cs) = cursors.get_mut(b0..=b1) {
+            if b0 == b1 {
+                // A record of one band (most of them): no loop.
+                if let Some(c) = cursors.get_mut(b0) {
+                    if let Some(e) = entries.get_mut(usize::from(*c)) {
+                        *e = r as u16;
+                    }
+                    *c += 1;
+                }
+            } else if let Some(cs) = cursors.get_mut(b0..=b1) {
                 for c in cs {
                     if let Some(e) = entries.get_mut(usize::from(*c)) {
                         *e = r as u16;

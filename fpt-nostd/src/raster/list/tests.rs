@@ -385,3 +385,56 @@ fn a_sealed_group_table_equals_the_one_written_as_pushed() {
         assert_eq!(lazy.peak(), eager.peak());
     }
 }
+
+/// `DisplayList::push_polygon` (the band walk's common record from its
+/// parts) takes exactly the polygons `push` stores as the common 4-word
+/// record, and writes the same words, tally and groups; the others it
+/// leaves, unwritten, to `push`.
+#[test]
+fn push_polygon_is_the_common_push() {
+    let cases = [
+        (0, 1),
+        (3, 9),
+        (7, 7),
+        (0, 254),
+        (0, 255),
+        (2, 300),
+        (-1, 4),
+        (16383, 16384),
+        (16384, 16390),
+        (5, 3),
+    ];
+    for (ids, outlines) in [(false, false), (true, false), (false, true)] {
+        for size in [40usize, 64, 512] {
+            let (mut a, mut b) = (std::vec![0u16; size], std::vec![0u16; size]);
+            let mut la = DisplayList::new(&mut a, ids, outlines);
+            let mut lb = DisplayList::new(&mut b, ids, outlines);
+            la.tally_bands(0, 16, 240);
+            lb.tally_bands(0, 16, 240);
+            for (k, &(first, end)) in cases.iter().cycle().take(40).enumerate() {
+                let e = entry(first, end);
+                let i = k as u16 * 7;
+                let before = lb.len();
+                let pushed = lb.push(&e, Points::Polygon(i));
+                match la.push_polygon((first, end), e.rgb, i) {
+                    Some(p) => {
+                        assert_eq!(p, pushed, "{first}..{end}");
+                        assert!(!p || lb.len() == before + 4);
+                    }
+                    None => {
+                        assert!(!pushed || lb.len() != before + 4 || ids || outlines);
+                        assert_eq!(la.push(&e, Points::Polygon(i)), pushed);
+                    }
+                }
+                assert_eq!(la.len(), lb.len());
+                assert_eq!(la.peak(), lb.peak());
+            }
+            la.seal();
+            lb.seal();
+            assert_eq!(la.groups(), lb.groups());
+            assert_eq!(la.index_bands(0, 16, 240), lb.index_bands(0, 16, 240));
+            assert_eq!(la.band(32), lb.band(32));
+            assert_eq!(a, b);
+        }
+    }
+}

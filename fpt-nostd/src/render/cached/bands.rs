@@ -16,7 +16,7 @@ use crate::effects::{for_frame, Compiled, Effects, ForPipeline};
 use crate::order::{memo_words, Order, MEMO};
 use crate::raster::carry::{Ring, Start, CARRY, NEED_KEPT, WORDS as CARRY_WORDS};
 use crate::raster::list::{DisplayList, Entry, Kind, Points};
-use crate::raster::renderer::Ready;
+use crate::raster::renderer::{vertex_indices, Ready};
 use crate::raster::transform::ScreenPt;
 use crate::raster::vcache::{Slot, VertexCache};
 use crate::raster::{
@@ -632,7 +632,7 @@ where
             y1: cut.get(),
             ..screen
         };
-        walk.run::<P, E, X, Pr, N, V>(
+        walk.run::<P, E, X, Pr, N, V, false>(
             &mut order,
             r,
             scratch,
@@ -645,21 +645,39 @@ where
                     spans += fill::<P, E, X, _, Pr, V>(r, s, ready, face, band, probe);
                     return Step::Next;
                 }
-                let e = Entry {
-                    first: ready.first.clamp(0, h),
-                    end: ready.end.clamp(0, h),
-                    rgb: ready.rgb,
-                    id: face.id,
-                    hidden: face.hidden_edges,
-                    clipped: ready.clipped,
-                };
+                let (first, end) = (ready.first.clamp(0, h), ready.end.clamp(0, h));
                 loop {
-                    let pts = match poly {
-                        Some(i) if i <= u32::from(u16::MAX) => Points::Polygon(i as u16),
-                        Some(_) => Points::Indices(s.active().get(..ready.n).unwrap_or(&[])),
-                        None => Points::Inline(s.screen().get(..ready.n).unwrap_or(&[])),
+                    // The common record straight from the parts, the
+                    // entry made only for the others.
+                    let short = match poly {
+                        Some(i) if i <= u32::from(u16::MAX) && !ready.clipped => {
+                            list.push_polygon((first, end), ready.rgb, i as u16)
+                        }
+                        _ => None,
                     };
-                    if list.push(&e, pts) {
+                    let pushed = short.unwrap_or_else(|| {
+                        let e = Entry {
+                            first,
+                            end,
+                            rgb: ready.rgb,
+                            id: face.id,
+                            hidden: face.hidden_edges,
+                            clipped: ready.clipped,
+                        };
+                        let pts = match poly {
+                            Some(i) if i <= u32::from(u16::MAX) => Points::Polygon(i as u16),
+                            Some(i) => {
+                                // The band walk loads without the indices
+                                // (`Renderer::load_cached_bare`): from the
+                                // tree.
+                                vertex_indices(tree, i, s.active_mut());
+                                Points::Indices(s.active().get(..ready.n).unwrap_or(&[]))
+                            }
+                            None => Points::Inline(s.screen().get(..ready.n).unwrap_or(&[])),
+                        };
+                        list.push(&e, pts)
+                    });
+                    if pushed {
                         return Step::Next;
                     }
                     let left = (cut.get() - y + rows - 1) / rows;
@@ -675,7 +693,7 @@ where
                     // 10.89 M, 15/16 11.06 M; README "Small RAM").
                     cut.set(y + rows * (left * 5 / 6).clamp(1, left - 1));
                     list.retain_rows_below(cut.get());
-                    if e.first >= cut.get() {
+                    if first >= cut.get() {
                         return Step::Next;
                     }
                 }
