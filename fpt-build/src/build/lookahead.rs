@@ -67,9 +67,9 @@ pub const ALT_WEIGHT: u32 = 4;
 pub const SMALL_MODEL: usize = 4096;
 
 /// Models of up to this many input polygons (and more than
-/// [`SMALL_MODEL`]) look ahead in groups as large, with fewer candidates
-/// ([`MEDIUM`]): fandisk (5,750 triangles) goes from 1,690 splittings to
-/// 1,483, its build from about 1.2 to 5 CPU seconds.
+/// [`SMALL_MODEL`]) look ahead in larger groups, with fewer candidates
+/// ([`MEDIUM`]): fandisk (5,750 triangles) goes from 1,690 splittings
+/// without a lookahead to 1,409, its build from about 1.2 to 5 CPU seconds.
 pub const MEDIUM_MODEL: usize = 8192;
 
 /// The lookahead of models of up to [`SMALL_MODEL`] polygons: twelve
@@ -83,11 +83,24 @@ pub const SMALL: Look = Look {
     alternatives: 2,
 };
 
-/// The lookahead of models of up to [`MEDIUM_MODEL`] polygons.
+/// The lookahead of models of up to [`MEDIUM_MODEL`] polygons: groups of
+/// up to 1,024 members, four greedy candidates and two alternatives.
+///
+/// In such a model a third of the splittings were made in groups of more
+/// than 512 members (fandisk: 473 of 1,483), which the small models'
+/// limit leaves greedy. `fpt build` on fandisk, splittings and CPU
+/// seconds against 1,483 in 4.0 s with groups of 512 and no alternatives:
+/// groups of 1,024 1,435 in 4.4 s, with two alternatives **1,409 in 4.8
+/// s**, with four 1,407 in 5.5 s, with six candidates 1,405 in 6.1 s,
+/// with twelve 1,391 in 9.2 s; groups of 2,048 1,423–1,427 in 5.9–6.3 s,
+/// of 8,192 (every group) 1,448 with two candidates in 5.2 s, 1,406 with
+/// twelve in about 25 s (wall). The small models keep groups of 512:
+/// 1,024 there gives 1,855 splittings on the six small curved and CAD
+/// models against 1,829 (suzanne 545 → 563, violin_case 646 → 654).
 pub const MEDIUM: Look = Look {
-    group: 512,
+    group: 1024,
     candidates: 4,
-    alternatives: 0,
+    alternatives: 2,
 };
 
 /// The lookahead of larger models: only groups of up to 64 members.
