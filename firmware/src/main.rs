@@ -17,7 +17,7 @@
 //! by `static_ram=BYTES` (`.data` + `.bss` + `.uninit`), `probe
 //! mark_cost_min=N mark_cost_max=N` (see [`probe`]), `stack_peak_startup=
 //! BYTES stack_peak_frames=BYTES` and last `stack_peak=BYTES`, the larger
-//! of the two (see [`stack`]). `README.md` has the measured figures.
+//! of the two (see [`stack`]). `docs/cortex-m4.md` has the measured figures.
 //! With feature `full`, the frames are followed by one line per effect,
 //! `effect name=NAME on=N off=N bare=N` (see [`effects`]).
 //! `crc` is [`fpt_frames::PixelCrc`] (CRC-32 of the RGB565 pixels as

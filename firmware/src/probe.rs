@@ -17,7 +17,7 @@
 //! charged to the phase a mark enters (the clock is read first, the
 //! bookkeeping after). The corrected parts then add up to `instr`; the
 //! per-mark cost is reported so that its stability can be checked. The
-//! split is an estimate (see `README.md` for a cross-check).
+//! split is an estimate (see `docs/cortex-m4.md` for a cross-check).
 
 use core::cell::Cell;
 

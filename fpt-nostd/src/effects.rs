@@ -39,10 +39,10 @@
 //! picks: [`compiled_for`]). The price is code size: each switched effect
 //! a pipeline compiles in doubles its copies of the walk-and-fill (a
 //! pipeline of every effect holds eight per sink type and draw entry;
-//! README, "Scene effects").
+//! docs/effects.md).
 //!
 //! The firmware measures all three (on, off, compiled out) per effect; the
-//! README has the figures.
+//! docs/effects.md has the figures.
 
 use core::fmt;
 use core::marker::PhantomData;
@@ -255,7 +255,7 @@ pub const DEFAULT_SWITCHED: Effects = if cfg!(target_os = "none") {
 /// ([`Compiled::SWITCHED`]): every effect whose off path is a test in the
 /// walk's per-polygon code, where a pipeline that merely turns it off was
 /// measured to cost up to 2.8 % more than the pipeline built without it
-/// (session 11, `bench_city`; README, "Scene effects"). Culling and
+/// (session 11, `bench_city`; docs/effects.md). Culling and
 /// lighting are switched one by one; depth cueing, outlines and smooth
 /// shading together ([`EXTRAS`]). Two-sided lighting and clipping are
 /// not (an untaken test each, within 0.4 % measured), nor dithering (a

@@ -70,8 +70,8 @@
 //! ```
 //!
 //! With less `memory` the picture is the same and the frame takes more
-//! walks ([`render::memory_words`] bounds what a tree can need; the README's
-//! "Small RAM" section measures what less costs). The project's firmware
+//! walks ([`render::memory_words`] bounds what a tree can need; `docs/small-ram.md`
+//! measures what less costs). The project's firmware
 //! (`firmware/src/bin/bench.rs`) is this loop on QEMU's Cortex-M4F and
 //! Cortex-M0, and `fpt mcu-bench TREE` runs it for any tree and reports
 //! instructions a frame, RAM and whether every frame matches the host.

@@ -210,7 +210,7 @@ pub(crate) const MAX_KEPT: usize = 192;
 /// socket's 16-row bands (M4F) made the default memory 4,843 words, 32,824 B of RAM (56 B over 32 KiB), for the same
 /// instructions as 4,567 words (2,119,824.5 against 2,119,821.5), which is
 /// what 64 counts. 64 was [`MAX_KEPT`] before session 14, so the need is
-/// the one the README's tables were measured with.
+/// the one docs/small-ram.md's tables were measured with.
 pub(crate) const NEED_KEPT: usize = 64;
 
 /// Entries a ring over `words` holds.

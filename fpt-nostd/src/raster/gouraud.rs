@@ -74,7 +74,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// (`ready`, its points in `scratch`) as `face`: its widest triangle's
     /// corners lit by their stored normals (see the module docs). `None`
     /// for a clipped polygon, which is drawn flat. Out of line, to keep the
-    /// walk's loop small (see the README on what the flat path still pays).
+    /// walk's loop small (see docs/effects.md on what the flat path still pays).
     #[inline(never)]
     pub(crate) fn smooth_plane<X: Compiled, const N: usize>(
         &self,

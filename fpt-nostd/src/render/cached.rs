@@ -41,7 +41,7 @@
 //!   not fit, `cut` moves up by a sixth of the bands still covered (in
 //!   whole bands), records starting at or below it are dropped, and the
 //!   walk goes on. The bands above `cut` are then replayed and the next
-//!   walk starts at `cut` (measured costs: README, "Working memory").
+//!   walk starts at `cut` (measured costs: docs/small-ram.md).
 //! * When even one band's polygons do not fit, that band is drawn as the
 //!   walk goes: the records so far are replayed into it, and the rest of
 //!   the walk fills it directly (one walk per band, today's cost without

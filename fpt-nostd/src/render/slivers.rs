@@ -54,7 +54,7 @@
 //! only from behind is transformed here, the others are then found in the
 //! cache by the walk) and one cross product per fan triangle: about half
 //! the polygons and vertices of a frame more, +18 % of a socket.off frame
-//! on a Cortex-M4F (`fpt mcu-bench`, README "No pinholes"). That is why
+//! on a Cortex-M4F (`fpt mcu-bench`, docs/pipeline.md). That is why
 //! it is off by default: a cheap exact pre-test (per run, from its plane)
 //! would need per-polygon size bounds the format does not store, since a
 //! thin face can turn over at any angle.

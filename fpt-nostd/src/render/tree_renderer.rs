@@ -118,7 +118,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     /// at most one transform of each vertex a frame, shared by all the
     /// bands, when `memory` holds [`memory_words`](super::memory_words) words; less memory
     /// gives the same picture with more walks (see the module docs of
-    /// `render::cached` in the source, summarised in the README). The
+    /// `render::cached` in the source, summarised in docs/small-ram.md). The
     /// counters count each polygon once.
     pub fn render_banded_in<const N: usize, F: PixelFormat>(
         &mut self,

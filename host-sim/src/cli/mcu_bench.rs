@@ -93,7 +93,7 @@ pub struct McuBenchArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub clock: Option<f64>,
     /// Words of working memory (vertex cache, display list, facing memo;
-    /// see the README, "Small RAM") [default: what a frame of the tree
+    /// see docs/small-ram.md) [default: what a frame of the tree
     /// needs; on m0, when 16 KiB cannot hold that, what a probe run
     /// measured they leave beside the statics, the stack peak and a
     /// 256 B margin].

@@ -232,7 +232,7 @@ impl<'m> DisplayList<'m> {
     /// (the leading run stays put). A frame short of memory calls this at
     /// every overflow of a walk; on a Cortex-M0 a copy per record (a
     /// `memmove` call each) and a second pass for the groups made it cost
-    /// about as much as the walk it saves (measured, README "Small RAM").
+    /// about as much as the walk it saves (measured, docs/small-ram.md).
     pub fn retain_rows_below(&mut self, cut: i32) {
         self.peak = self.peak();
         self.index = None;

@@ -127,7 +127,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// (a later polygon may take its entry over), so `scratch.active` is
     /// not written. Out of line: the walk-and-fill function that inlines
     /// `load_cached` keeps the indexed loop's code (and register
-    /// allocation) nearly as it was, plus one test a polygon (README, "What
+    /// allocation) nearly as it was, plus one test a polygon (docs/cortex-m4.md, "What
     /// a frame is made of", session 13: the placements measured).
     #[inline(never)]
     pub(crate) fn load_tagged<const N: usize>(

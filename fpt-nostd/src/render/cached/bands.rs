@@ -580,7 +580,7 @@ where
     // The cache takes at most three quarters of the memory (the list the
     // rest): a vertex missing from the cache is transformed again by each
     // of its polygons in every walk, which costs more than the walk a
-    // smaller list adds (measured on a Cortex-M0, README "Small RAM").
+    // smaller list adds (measured on a Cortex-M0, docs/small-ram.md).
     let most = memory.len() - memory.len() / 4;
     // Indexed only: the display list records polygons by vertex index
     // for the replay, which a tagged cache may have evicted by then.
@@ -690,7 +690,7 @@ where
                     // overflows, each a pass over the list (measured on a
                     // Cortex-M0, socket, 8-row bands in 1,635 words, median
                     // frame: 3/4 11.79 M, 5/6 10.64 M, 7/8 10.77 M, 9/10
-                    // 10.89 M, 15/16 11.06 M; README "Small RAM").
+                    // 10.89 M, 15/16 11.06 M; docs/small-ram.md).
                     cut.set(y + rows * (left * 5 / 6).clamp(1, left - 1));
                     list.retain_rows_below(cut.get());
                     if first >= cut.get() {

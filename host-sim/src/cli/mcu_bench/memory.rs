@@ -32,7 +32,7 @@ use super::{band_words, Bench, Cpu};
 /// which the orbit never needs, is a 176 B frame below the band loop
 /// (`clip_polygon`, `llvm-objdump -d` of the `bench` ELF), shallower than
 /// the replay. 256 B covers it with room to spare (a quarter of the
-/// stack growth one inlining can bring, README "Small RAM").
+/// stack growth one inlining can bring, docs/small-ram.md).
 pub(super) const MARGIN: u64 = 256;
 
 /// The first guess (see the module docs): the frames' need (`used`), on the
