@@ -18,7 +18,7 @@ use crate::raster::carry::{Ring, Start, CARRY, NEED_KEPT, WORDS as CARRY_WORDS};
 use crate::raster::list::{DisplayList, Entry, Kind, Points};
 use crate::raster::renderer::{vertex_indices, Ready};
 use crate::raster::transform::ScreenPt;
-use crate::raster::vcache::{Slot, VertexCache};
+use crate::raster::vcache::{unpack, Slot, VertexCache};
 use crate::raster::{
     Band, Framebuffer, Outcome, Paint, PixelFormat, Precision, RenderStats, Renderer, Scratch,
     SpanBounds, SpanSink,
@@ -70,6 +70,7 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
     }
     let keep = keep && carry.is_some();
     let mut want = if CARRY { ring.peek(words) } else { None };
+    let slots = cache.indexed_slots();
     for here in records {
         if let Some(band) = &carry {
             // The incoming triangles are among this band's records, in the
@@ -123,11 +124,17 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
                     let Some(screen) = scratch.screen_mut().get_mut(..n) else {
                         continue;
                     };
+                    // A record by polygon is made only when the walk found
+                    // every vertex cached as a point, in the band loop's
+                    // indexed cache, which keeps it for the frame: its
+                    // words are read as points without the layout and
+                    // sentinel tests (a vertex beyond the slots, which
+                    // cannot be, drops the record).
                     for (dst, b) in screen.iter_mut().zip(bytes.chunks_exact(2)) {
-                        let v = u32::from(b[0]) | u32::from(b[1]) << 8;
-                        match cache.get(v) {
-                            Slot::Point(p) => *dst = p,
-                            _ => ok = false,
+                        let v = usize::from(b[0]) | usize::from(b[1]) << 8;
+                        match slots.get(v) {
+                            Some(&w) => *dst = unpack(w),
+                            None => ok = false,
                         }
                     }
                     n
