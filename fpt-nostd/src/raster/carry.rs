@@ -411,11 +411,15 @@ impl Ring {
         let arc = [pt(0), pt(w[10]), pt(w[11]), pt(w[12]), pt(0)];
         let row = |p: ScreenPt| Dda32::rows(p, p, band.sub).1;
         let last = arc.get(count).copied().unwrap_or_default();
+        // The lowest of `arc[1..=count]` (`count` is 1 to 3), unrolled:
+        // a `take(..).skip(..)` loop made an out-of-line `Take::nth`
+        // call for every resumed quad.
         let mut bottom = arc[1];
-        for &p in arc.iter().take(count + 1).skip(2) {
-            if p.y > bottom.y {
-                bottom = p;
-            }
+        if count >= 2 && arc[2].y > bottom.y {
+            bottom = arc[2];
+        }
+        if count >= 3 && arc[3].y > bottom.y {
+            bottom = arc[3];
         }
         let quad = Quad {
             l: dda(0),

@@ -162,6 +162,20 @@ impl<'m> VertexCache<'m> {
         }
     }
 
+    /// The indexed layout's slots (`slots[v]` is vertex `v`'s word, a
+    /// point [`unpack`]s from it once [`VertexCache::get`] gave
+    /// [`Slot::Point`]); empty for a tagged cache. For a reader that knows
+    /// every vertex it reads was cached as a point (the band replay's
+    /// records by polygon): no layout test nor sentinel test a vertex.
+    #[inline]
+    pub(crate) fn indexed_slots(&self) -> &[u32] {
+        if self.tagged {
+            &[]
+        } else {
+            self.slots
+        }
+    }
+
     /// Words of the storage it uses.
     pub fn words(&self) -> usize {
         self.slots.len()

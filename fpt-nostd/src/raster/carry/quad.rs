@@ -200,8 +200,10 @@ impl TriangleBand {
     }
 
     /// Sets up and fills the four-sided polygon `pts` (record `here`, id
-    /// `id`, cut by this band's end) and keeps it for the next band; `None`, nothing
-    /// emitted, when it is the general fill's ([`TriangleBand::start_quad`]).
+    /// `id`) and, when this band's end cuts it, keeps it for the next band
+    /// (the caller passes a polygon that goes on only when there is a next
+    /// band of the same list); `None`, nothing emitted, when it is the
+    /// general fill's ([`TriangleBand::start_quad`]).
     #[inline(never)]
     pub(crate) fn quad<K: SpanSink>(
         &self,
