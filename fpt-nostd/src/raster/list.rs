@@ -426,15 +426,9 @@ impl<'m> DisplayList<'m> {
         // The common record first, written straight (a frame records every
         // polygon it draws): by polygon, not clipped, fewer than 255 rows,
         // no optional words. The same 4 words as the general path below.
-        if let Points::Polygon(i) = pts {
-            let rows = e.end.wrapping_sub(e.first);
-            if self.extra == 0
-                && !e.clipped
-                && (0..1 << 14).contains(&e.first)
-                && e.end <= 1 << 14
-                && (0..i32::from(LONG_ROWS)).contains(&rows)
-            {
-                return self.push_short((e.first, e.end), e.rgb, rows as u16, i);
+        if let (Points::Polygon(i), false) = (pts, e.clipped) {
+            if let Some(pushed) = self.push_polygon((e.first, e.end), e.rgb, i) {
+                return pushed;
             }
         }
         self.push_general(e, pts)
@@ -444,7 +438,8 @@ impl<'m> DisplayList<'m> {
     /// `first..end` and colour `rgb`, when it takes the common record
     /// (`Some`: whether it was written); `None`, nothing written, when it
     /// does not (optional words, or rows out of its range): then
-    /// [`DisplayList::push`] stores it. The band walk makes the polygon's
+    /// [`DisplayList::push`] stores it. The one test of which polygons
+    /// take the common record (`push` asks it too). The band walk makes the polygon's
     /// [`Entry`] only then: made for every polygon, in memory for the
     /// general push, it cost the walk more than the record.
     #[inline(always)]
