@@ -53,6 +53,10 @@ pub fn levels(
     model: Model,
     levels: u32,
 ) -> Result<Vec<(String, Model)>, CliError> {
+    if levels == 0 {
+        // `--scaling` without `--subdivide`: nothing to triangulate.
+        return Ok(vec![(name.to_string(), model)]);
+    }
     let mut tri = TriMesh::from_polygons(&model.polygons);
     check_size(path, tri.triangles.len(), levels)?;
     let mut out = vec![(name.to_string(), model)];
