@@ -279,7 +279,12 @@ impl Cursor {
             Some(r) => (Some(r), 0),
             None => (s1.take_walk(runs, face), 1),
         };
+        // With no run left after the one found (a closed volume's class is
+        // mostly one bunch of one or two runs), the cursor is marked used
+        // up: the walk's next call goes straight on to the next class
+        // instead of testing both segments again.
         let (next, end, cur) = match found {
+            Some((next, end)) if s0.is_empty() && s1.is_empty() => (next, end, 2),
             Some((next, end)) => (next, end, cur),
             None => (0, 0, 2),
         };
