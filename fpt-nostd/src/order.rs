@@ -593,9 +593,7 @@ impl<'a, const N: usize> Order<'a, N> {
                     }
                     // The back group is farther when the eye is in front.
                     let plane = self.switch_base.wrapping_add(f.switch);
-                    let back_is_far = self
-                        .face
-                        .backward_at(plane, &self.w.switch_record(f.switch));
+                    let back_is_far = self.face.backward_at(plane, self.w.switch_record(f.switch));
                     f.phase = ON | if back_is_far { FAR_IS_BACK } else { 0 };
                     self.put(top, f);
                     self.push(child(f.switch, back_is_far));
