@@ -494,6 +494,26 @@ impl Packed {
     }
 }
 
+impl Packed {
+    /// `d` packed (where [`packs`] holds and its edge is within ±[`SMALL`]).
+    #[inline(always)]
+    pub(crate) fn of(d: &Dda32) -> Packed {
+        Packed {
+            w: d.c.wrapping_shl(PACK_K).wrapping_add(d.g),
+            step: d.qs.wrapping_shl(PACK_K).wrapping_sub(d.rs),
+            fix: (1 << PACK_K) + d.d,
+        }
+    }
+
+    /// Writes the crossing and excess back into `d`, the [`Dda32`] this
+    /// was packed from (its increments are this one's).
+    #[inline(always)]
+    pub(crate) fn store(self, d: &mut Dda32) {
+        d.c = self.w >> PACK_K;
+        d.g = self.w & ((1 << PACK_K) - 1);
+    }
+}
+
 impl Stepper for Packed {
     #[inline(always)]
     fn crossing(&self) -> i32 {
