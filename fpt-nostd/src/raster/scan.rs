@@ -16,7 +16,7 @@
 //!   renderer pays per band only for the polygons that reach it.
 
 use super::chain::{fill_monotone, fill_triangle};
-use super::edge::{build_edges_with, Dda32, Edge, Stepper, SMALL};
+use super::edge::{build_edges_with, packs, Dda32, Edge, Stepper, SMALL};
 use super::transform::ScreenPt;
 use embedded_graphics::pixelcolor::Rgb888;
 
@@ -278,6 +278,7 @@ impl Bbox {
 /// [`fill_polygon`] with `pts`' box if already computed (`Bbox::of(pts)`;
 /// else computed here when needed: a triangle does not need it).
 #[allow(clippy::too_many_arguments)]
+#[inline(never)]
 pub(crate) fn fill_polygon_in<K: SpanSink>(
     pts: &[ScreenPt],
     bbox: Option<&Bbox>,
@@ -319,8 +320,10 @@ pub(crate) fn fill_polygon_in<K: SpanSink>(
     // The bounding box decides the 32-bit edge setup (see Edge::new_small),
     // and the arithmetic of the two rejects below: with every coordinate
     // within ±SMALL (and `sub ≤ 8`) they fit in 32 bits, which a 32-bit
-    // core shifts in one instruction instead of a 64-bit sequence.
-    let small = lo > -SMALL && hi < SMALL && top > -SMALL && bot < SMALL && sub <= 8;
+    // core shifts in one instruction instead of a 64-bit sequence. The
+    // chains step their edges as `Packed`, exact where `packs(sub)` holds:
+    // only there (3 or 4 sub-pixel bits, the default) is a polygon `small`.
+    let small = lo > -SMALL && hi < SMALL && top > -SMALL && bot < SMALL && packs(sub);
     // col(x) = floor((x − ½ pixel) in pixels) (an arithmetic shift is a
     // floor division by 2^(sub+1)); every crossing lies in
     // [col(lo), col(hi) + 1].
@@ -413,6 +416,9 @@ pub(super) enum Pair {
     Ab,
     /// Paints `[b, a)`, likewise.
     Ba,
+    /// [`Pair::Span`] for crossings the caller knows are within `b`'s
+    /// columns: not clamped to them.
+    Within,
 }
 
 /// Rows `[y, stop)` between the two steppers `a` and `b`, stepping both to
@@ -441,14 +447,16 @@ pub(super) fn pair_rows<S: Stepper, K: SpanSink>(
             }
             0
         }
-        Pair::Ab => span_run(a, c, true, b, y, stop, color, sink),
-        Pair::Ba => span_run(c, a, true, b, y, stop, color, sink),
-        Pair::Span => span_run(a, c, false, b, y, stop, color, sink),
+        Pair::Ab => span_run(a, c, true, true, b, y, stop, color, sink),
+        Pair::Ba => span_run(c, a, true, true, b, y, stop, color, sink),
+        Pair::Span => span_run(a, c, false, true, b, y, stop, color, sink),
+        Pair::Within => span_run(a, c, false, false, b, y, stop, color, sink),
     }
 }
 
 /// [`pair_rows`] painting `[l, r)` with `l`'s crossing on the left
-/// (`ordered`) or the smaller crossing on the left, through
+/// (`ordered`) or the smaller crossing on the left, clamped to `b`'s
+/// columns (`clamp`) or known to be within them, through
 /// [`SpanSink::span_rows`].
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
@@ -456,6 +464,7 @@ fn span_run<S: Stepper, K: SpanSink>(
     l: &mut S,
     r: &mut S,
     ordered: bool,
+    clamp: bool,
     b: &SpanBounds,
     y: i32,
     stop: i32,
@@ -472,7 +481,11 @@ fn span_run<S: Stepper, K: SpanSink>(
         } else {
             (xr, xl)
         };
-        (x0.max(lo), x1.min(hi))
+        if clamp {
+            (x0.max(lo), x1.min(hi))
+        } else {
+            (x0, x1)
+        }
     });
     sink.span_rows(y, spans, color)
 }

@@ -16,7 +16,7 @@
 use embedded_graphics::pixelcolor::Rgb888;
 
 use super::super::chain::{is_y_monotone, TriangleBand};
-use super::super::edge::{Dda32, SMALL};
+use super::super::edge::{packs, Dda32, Packed, SMALL};
 use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
 use super::super::transform::ScreenPt;
 use super::Ring;
@@ -169,7 +169,18 @@ impl TriangleBand {
                 break;
             }
             let run = ly1.min(ry1).min(stop);
-            spans += pair_rows(&mut l, &mut r, Pair::Span, &self.b, y, run, color, sink);
+            // The rows with the steppers packed where that is exact (as
+            // the chains of `fill_polygon_in` step them), the state kept
+            // between bands as `Dda32`s.
+            spans += if packs(self.sub) {
+                let (mut pl, mut pr) = (Packed::of(&l), Packed::of(&r));
+                let n = pair_rows(&mut pl, &mut pr, Pair::Span, &self.b, y, run, color, sink);
+                pl.store(&mut l);
+                pr.store(&mut r);
+                n
+            } else {
+                pair_rows(&mut l, &mut r, Pair::Span, &self.b, y, run, color, sink)
+            };
             y = run;
         }
         (q.l, q.ly1, q.r, q.ry1, q.lo, q.hi) = (l, ly1, r, ry1, lo, hi);
