@@ -1,0 +1,137 @@
+//! The sections the walk reads for every view ([`WalkData`]): runs,
+//! bunch offsets, connecting nodes and switch records, each sliced by
+//! `Tree::from_bytes` to exactly its validated length, so that every read
+//! here is in range for an index the validation allowed (an index past the
+//! end reads zeros instead of panicking; see the module docs of
+//! `crate::reader` for the no-panic contract).
+
+use super::Plane;
+use crate::format::{
+    le_u32, node as nd, rec, run as rn, NODE_LEN, RUN_LEN, SWITCH_LEN, SWITCH_REF_LEN,
+};
+
+/// One connecting node record.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NodeRec {
+    pub first_bunch: u32,
+    pub level_count: u32,
+    pub switch: u32,
+}
+
+/// The sections the walk reads for every view, each sliced to exactly its
+/// validated length (see the module docs): small enough to copy into every
+/// walk and class.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct WalkData<'a> {
+    /// `run_count` records of [`RUN_LEN`] bytes.
+    pub(crate) runs: &'a [u8],
+    /// `bunch_count + 1` offsets.
+    pub(super) bunches: &'a [u8],
+    /// `node_count` records of [`NODE_LEN`] bytes.
+    pub(super) nodes: &'a [u8],
+    /// `switch_count` records of [`SWITCH_LEN`] bytes, or of
+    /// [`SWITCH_REF_LEN`] with shared planes ([`FLAG_NARROW`]).
+    pub(super) switches: &'a [u8],
+    /// Whether the switch records index plane records ([`FLAG_NARROW`]):
+    /// `runs` then holds `run_count + extra_planes` records, the runs and
+    /// then the extra planes (the walk reads a run only by an index below
+    /// `run_count`, so the extra ones are only ever read as planes).
+    pub(super) shared: bool,
+}
+
+impl<'a> WalkData<'a> {
+    /// Connecting node `i < node_count`.
+    #[inline(always)]
+    pub(crate) fn node(&self, i: u32) -> NodeRec {
+        let r = rec::<NODE_LEN>(self.nodes, i as usize);
+        NodeRec {
+            first_bunch: le_u32(&r, nd::FIRST_BUNCH),
+            level_count: le_u32(&r, nd::LEVEL_COUNT),
+            switch: le_u32(&r, nd::SWITCH),
+        }
+    }
+
+    /// The runs `start..end` of bunch `b < bunch_count`.
+    #[inline(always)]
+    pub(crate) fn bunch(&self, b: u32) -> (u32, u32) {
+        // Offsets b and b + 1: one 8-byte read at 4 · b.
+        let start = (b as usize).wrapping_mul(4);
+        let r: [u8; 8] = start
+            .checked_add(8)
+            .and_then(|end| self.bunches.get(start..end))
+            .and_then(|s| s.try_into().ok())
+            .unwrap_or([0; 8]);
+        (le_u32(&r, 0), le_u32(&r, 4))
+    }
+
+    /// Offset `b ≤ bunch_count` of the bunch section.
+    #[inline]
+    pub(crate) fn bunch_offset(&self, b: u32) -> u32 {
+        le_u32(&rec::<4>(self.bunches, b as usize), 0)
+    }
+
+    /// One past the last polygon of run `r < run_count`.
+    #[inline(always)]
+    pub(crate) fn run_end(&self, r: u32) -> u32 {
+        le_u32(&rec::<RUN_LEN>(self.runs, r as usize), rn::END)
+    }
+
+    /// The first polygon of run `r ≤ run_count` (the polygon count for
+    /// `r = run_count`).
+    #[inline(always)]
+    pub(crate) fn run_start(&self, r: u32) -> u32 {
+        match r.checked_sub(1) {
+            Some(prev) => self.run_end(prev),
+            None => 0,
+        }
+    }
+
+    /// The plane of run `r < run_count`.
+    #[inline]
+    pub(crate) fn run_plane(&self, r: u32) -> Plane {
+        Plane::from_record(&rec::<RUN_LEN>(self.runs, r as usize))
+    }
+
+    /// The record of switch `k < switch_count`: its plane's normal and
+    /// offset (with shared planes, the first 16 bytes of the plane record
+    /// it names; one bounds check either way), borrowed from the tree: a
+    /// copy kept its zero fallback in registers (session 20: the firmware
+    /// full frames 0.5–2.6 k cheaper).
+    #[inline(always)]
+    pub(crate) fn switch_record(&self, k: u32) -> &'a [u8; SWITCH_LEN] {
+        let (section, at) = if self.shared {
+            let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
+            (self.runs, (i as usize).wrapping_mul(RUN_LEN))
+        } else {
+            (self.switches, (k as usize).wrapping_mul(SWITCH_LEN))
+        };
+        section
+            .get(at..)
+            .and_then(|r| r.first_chunk::<SWITCH_LEN>())
+            .unwrap_or(&[0; SWITCH_LEN])
+    }
+
+    /// The plane index of switch `k` with shared planes (`None` without
+    /// them or past the end).
+    #[inline]
+    pub(crate) fn switch_plane_index(&self, k: u32) -> Option<u32> {
+        let at = (k as usize).checked_mul(SWITCH_REF_LEN)?;
+        let r = self.switches.get(at..at.checked_add(SWITCH_REF_LEN)?)?;
+        self.shared
+            .then(|| u32::from_le_bytes(r.try_into().unwrap_or([0; 4])))
+    }
+
+    /// Plane record `i` of the shared planes (`run_count + extra_planes`
+    /// of them): its plane and end field.
+    #[inline]
+    pub(crate) fn plane_record(&self, i: u32) -> (Plane, u32) {
+        let r = rec::<RUN_LEN>(self.runs, i as usize);
+        (Plane::from_record(&r), le_u32(&r, rn::END))
+    }
+
+    /// The plane of switch `k < switch_count`.
+    #[inline]
+    pub(crate) fn switch_plane(&self, k: u32) -> Plane {
+        Plane::from_record(self.switch_record(k))
+    }
+}
