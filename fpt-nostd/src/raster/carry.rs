@@ -232,6 +232,9 @@ pub(crate) struct Ring {
     incoming: usize,
     /// The most entries held at once since [`Ring::clear`]'s caller made it.
     most: usize,
+    /// Entries the band's words hold ([`capacity`]), found once a band by
+    /// [`Ring::begin`] rather than in every push, skip and room test.
+    cap: usize,
 }
 
 impl Ring {
@@ -242,6 +245,7 @@ impl Ring {
             len: 0,
             incoming: 0,
             most: 0,
+            cap: 0,
         }
     }
 
@@ -261,6 +265,7 @@ impl Ring {
     /// what it kept becomes this band's incoming.
     pub(crate) fn begin(&mut self, words: &[u32]) {
         let cap = capacity(words);
+        self.cap = cap;
         if cap == 0 {
             self.clear();
             return;
@@ -283,13 +288,13 @@ impl Ring {
     /// Whether [`Ring::push`] has room for one more entry.
     #[inline(always)]
     pub(crate) fn has_room(&self, words: &[u32]) -> bool {
-        self.len < capacity(words)
+        self.len < self.cap
     }
 
     /// Drops the next incoming entry.
     #[inline(always)]
-    pub(crate) fn skip(&mut self, words: &[u32]) {
-        let cap = capacity(words);
+    pub(crate) fn skip(&mut self, _words: &[u32]) {
+        let cap = self.cap;
         if self.incoming == 0 || cap == 0 {
             return;
         }
@@ -341,7 +346,7 @@ impl Ring {
         (offset, row): (usize, i32),
         rgb: Rgb888,
     ) -> bool {
-        let cap = capacity(words);
+        let cap = self.cap;
         if self.len >= cap || offset > usize::from(u16::MAX) {
             return false;
         }
@@ -447,7 +452,7 @@ impl Ring {
         (offset, row): (usize, i32),
         rgb: Rgb888,
     ) -> bool {
-        let cap = capacity(words);
+        let cap = self.cap;
         if self.len >= cap || offset > usize::from(u16::MAX) {
             return false;
         }
