@@ -232,6 +232,9 @@ pub(crate) struct Ring {
     incoming: usize,
     /// The most entries held at once since [`Ring::clear`]'s caller made it.
     most: usize,
+    /// Entries the band's words hold ([`capacity`]), found once a band by
+    /// [`Ring::begin`] rather than in every push, skip and room test.
+    cap: usize,
 }
 
 impl Ring {
@@ -242,6 +245,7 @@ impl Ring {
             len: 0,
             incoming: 0,
             most: 0,
+            cap: 0,
         }
     }
 
@@ -261,6 +265,7 @@ impl Ring {
     /// what it kept becomes this band's incoming.
     pub(crate) fn begin(&mut self, words: &[u32]) {
         let cap = capacity(words);
+        self.cap = cap;
         if cap == 0 {
             self.clear();
             return;
@@ -282,14 +287,14 @@ impl Ring {
 
     /// Whether [`Ring::push`] has room for one more entry.
     #[inline(always)]
-    pub(crate) fn has_room(&self, words: &[u32]) -> bool {
-        self.len < capacity(words)
+    pub(crate) fn has_room(&self) -> bool {
+        self.len < self.cap
     }
 
     /// Drops the next incoming entry.
     #[inline(always)]
-    pub(crate) fn skip(&mut self, words: &[u32]) {
-        let cap = capacity(words);
+    pub(crate) fn skip(&mut self) {
+        let cap = self.cap;
         if self.incoming == 0 || cap == 0 {
             return;
         }
@@ -325,7 +330,7 @@ impl Ring {
             upper: c & 1 << 24 != 0,
             ab: c & 1 << 25 != 0,
         };
-        self.skip(words);
+        self.skip();
         Some((tri, Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)))
     }
 
@@ -341,7 +346,7 @@ impl Ring {
         (offset, row): (usize, i32),
         rgb: Rgb888,
     ) -> bool {
-        let cap = capacity(words);
+        let cap = self.cap;
         if self.len >= cap || offset > usize::from(u16::MAX) {
             return false;
         }
@@ -431,7 +436,7 @@ impl Ring {
             hi: count,
             end: row(bottom),
         };
-        self.skip(words);
+        self.skip();
         Some((quad, Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)))
     }
 
@@ -447,7 +452,7 @@ impl Ring {
         (offset, row): (usize, i32),
         rgb: Rgb888,
     ) -> bool {
-        let cap = capacity(words);
+        let cap = self.cap;
         if self.len >= cap || offset > usize::from(u16::MAX) {
             return false;
         }
@@ -670,17 +675,17 @@ mod tests {
         // (9, 4) was not met: dropped at the next band's start.
         ring.begin(&words);
         assert_eq!(ring.peek(&words), Some((12, 8)));
-        ring.skip(&words);
+        ring.skip();
         assert_eq!(ring.peek(&words), None);
         // Never more than `MAX_KEPT`, however many words.
         let mut many = std::vec![0u32; (MAX_KEPT + 5) * WORDS];
         let mut big = Ring::new();
         big.begin(&many);
         for k in 0..MAX_KEPT {
-            assert!(big.has_room(&many));
+            assert!(big.has_room());
             assert!(big.push(&mut many, &t, (k, 4), rgb));
         }
-        assert!(!big.has_room(&many));
+        assert!(!big.has_room());
         assert!(!big.push(&mut many, &t, (MAX_KEPT, 4), rgb));
         assert_eq!(big.most(), MAX_KEPT);
         // No words: nothing kept, nothing read.

@@ -16,7 +16,7 @@
 use embedded_graphics::pixelcolor::Rgb888;
 
 use super::super::chain::{is_y_monotone, TriangleBand};
-use super::super::edge::{packs, Dda32, Packed, SMALL};
+use super::super::edge::{packs, Dda32, Packed, Stepper, SMALL};
 use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
 use super::super::transform::ScreenPt;
 use super::Ring;
@@ -143,16 +143,40 @@ impl TriangleBand {
     }
 
     /// Fills `q`'s rows from `y` (its current row) to the band's end or
-    /// the polygon's, leaving it stepped to that row; returns the spans.
-    /// As for a triangle, it goes on in the next band when `q.end` is past
-    /// this band's end ([`TriangleBand::continues_quad`]).
+    /// the polygon's; returns the spans. As for a triangle, it goes on in
+    /// the next band when `q.end` is past this band's end
+    /// ([`TriangleBand::continues_quad`]), and only then is it left stepped
+    /// to that row (else only `q.end` is meaningful).
     #[inline(always)]
     pub(crate) fn run_chains<K: SpanSink, const N: usize>(
         &self,
         q: &mut Chains<N>,
-        mut y: i32,
+        y: i32,
         color: K::Color,
         sink: &mut K,
+    ) -> usize {
+        // The rows with the steppers packed where that is exact (as the
+        // chains of `fill_polygon_in` step them), the state kept between
+        // bands as `Dda32`s.
+        if packs(self.sub) {
+            self.chain_rows(q, y, (color, sink), Packed::of, Packed::store)
+        } else {
+            self.chain_rows(q, y, (color, sink), |d| *d, |s, d| *d = s)
+        }
+    }
+
+    /// [`TriangleBand::run_chains`] with steppers `S`, made from a chain's
+    /// `Dda32` by `of` when it starts an edge (the `Dda32` left as it
+    /// started) and written back by `store` only for a polygon that goes
+    /// on: packed once an edge rather than once a run of rows.
+    #[inline(always)]
+    fn chain_rows<K: SpanSink, S: Stepper, const N: usize>(
+        &self,
+        q: &mut Chains<N>,
+        mut y: i32,
+        (color, sink): (K::Color, &mut K),
+        of: impl Fn(&Dda32) -> S,
+        store: impl Fn(S, &mut Dda32),
     ) -> usize {
         let stop = q.end.min(self.b.y1);
         let mut spans = 0;
@@ -160,30 +184,35 @@ impl TriangleBand {
         // vertices left in memory.
         let (mut l, mut ly1, mut r, mut ry1) = (q.l, q.ly1, q.r, q.ry1);
         let (mut lo, mut hi) = (q.lo, q.hi);
+        let (mut sl, mut sr) = (of(&l), of(&r));
         while y < stop {
-            let ok = (ly1 > y || seek(&q.arc, (&mut lo, true), (&mut l, &mut ly1), self.sub, y))
-                && (ry1 > y || seek(&q.arc, (&mut hi, false), (&mut r, &mut ry1), self.sub, y));
+            let ok = (ly1 > y || {
+                let found = seek(&q.arc, (&mut lo, true), (&mut l, &mut ly1), self.sub, y);
+                sl = of(&l);
+                found
+            }) && (ry1 > y || {
+                let found = seek(&q.arc, (&mut hi, false), (&mut r, &mut ry1), self.sub, y);
+                sr = of(&r);
+                found
+            });
             if !ok {
                 // Where the chain fill gives up: nothing more, here or after.
                 q.end = y;
                 break;
             }
             let run = ly1.min(ry1).min(stop);
-            // The rows with the steppers packed where that is exact (as
-            // the chains of `fill_polygon_in` step them), the state kept
-            // between bands as `Dda32`s.
-            spans += if packs(self.sub) {
-                let (mut pl, mut pr) = (Packed::of(&l), Packed::of(&r));
-                let n = pair_rows(&mut pl, &mut pr, Pair::Span, &self.b, y, run, color, sink);
-                pl.store(&mut l);
-                pr.store(&mut r);
-                n
-            } else {
-                pair_rows(&mut l, &mut r, Pair::Span, &self.b, y, run, color, sink)
-            };
+            spans += pair_rows(&mut sl, &mut sr, Pair::Span, &self.b, y, run, color, sink);
             y = run;
         }
-        (q.l, q.ly1, q.r, q.ry1, q.lo, q.hi) = (l, ly1, r, ry1, lo, hi);
+        // Stepped to the band's end only for a polygon that goes on (the
+        // one state a caller keeps, [`TriangleBand::continues_quad`]): most
+        // end in the band, and the fourteen stores were 30 k of a
+        // bench_city band frame.
+        if self.continues_quad_at(q.end) {
+            store(sl, &mut l);
+            store(sr, &mut r);
+            (q.l, q.ly1, q.r, q.ry1, q.lo, q.hi) = (l, ly1, r, ry1, lo, hi);
+        }
         spans
     }
 
@@ -240,7 +269,14 @@ impl TriangleBand {
     /// Whether `q`, run through this band, has rows after it.
     #[inline(always)]
     pub(crate) fn continues_quad(&self, q: &Quad) -> bool {
-        q.end > self.b.y1
+        self.continues_quad_at(q.end)
+    }
+
+    /// Whether a polygon whose rows end before row `end` has rows after
+    /// this band.
+    #[inline(always)]
+    fn continues_quad_at(&self, end: i32) -> bool {
+        end > self.b.y1
     }
 }
 

@@ -80,7 +80,7 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
                 if at >= here && row == band.first_row() {
                     break;
                 }
-                ring.skip(words);
+                ring.skip();
                 want = ring.peek(words);
             }
             if want.is_some_and(|(at, _)| at == here) {
@@ -173,7 +173,7 @@ fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const V: usize>(
                     rgb: e.rgb,
                     id: e.id,
                 });
-                if !(keep && e.end > y1 && ring.has_room(words)) {
+                if !(keep && e.end > y1 && ring.has_room()) {
                     // Nothing can be kept (the last band of the walk, a
                     // triangle whose rows end in this band, a full ring, or
                     // a core without the carry): the plain
