@@ -470,7 +470,11 @@ impl Walk<'_, '_, '_> {
                 if BOX {
                     r.load_cached(scratch, cache, indices, xform)
                 } else {
-                    r.load_cached_bare(scratch, cache, indices, xform)
+                    let point = |v: u32| {
+                        let x = dec.get(v as usize);
+                        r.model_point([x[0] * s, x[1] * s, x[2] * s])
+                    };
+                    r.load_cached_bare(scratch, cache, indices, point)
                 }
             }
             Source::Q16(frac) => {
@@ -480,7 +484,8 @@ impl Walk<'_, '_, '_> {
                 if BOX {
                     r.load_cached(scratch, cache, indices, xform)
                 } else {
-                    r.load_cached_bare(scratch, cache, indices, xform)
+                    let point = |v: u32| r.raw_point(dec.raw_q16(v as usize), frac);
+                    r.load_cached_bare(scratch, cache, indices, point)
                 }
             }
         };
@@ -547,7 +552,8 @@ impl Walk<'_, '_, '_> {
             let loaded = if BOX {
                 r.load_cached(scratch, self.cache, indices, xform)
             } else {
-                r.load_cached_bare(scratch, self.cache, indices, xform)
+                let point = |v: u32| pt(r, decode(v));
+                r.load_cached_bare(scratch, self.cache, indices, point)
             };
             if let Some((n, by_index)) = loaded {
                 return (

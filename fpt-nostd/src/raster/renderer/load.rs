@@ -89,19 +89,18 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// generic `load_cached` with or without the indices it gained 3 k,
     /// and the full frame, which keeps its own copy above for that
     /// reason, then cost 10 k more).
+    ///
+    /// `project` takes a vertex by index to the screen (transform, clip
+    /// test and projection in one, [`Renderer::model_point`]: the
+    /// finiteness and clip tests shared, as a tagged cache's misses do).
     #[inline(always)]
     pub(crate) fn load_cached_bare<const N: usize>(
         &self,
         scratch: &mut Scratch<P, N>,
         cache: &mut VertexCache<'_>,
         indices: impl Iterator<Item = u32>,
-        xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
+        project: impl Fn(u32) -> Option<ScreenPt>,
     ) -> Option<(usize, bool)> {
-        let project = |v: u32| {
-            xform(v)
-                .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
-                .and_then(|c| P::Path::project_inside(&c, &self.viewport))
-        };
         let cap = cache.indexed_len();
         let mut n = 0;
         let mut all = true;
