@@ -435,10 +435,12 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
     #[inline(always)]
     fn project_model(m: &Mat4, near: f32, v: [f32; 3], vp: &Viewport) -> Option<ScreenPt> {
         let c = clip_f32(m, v);
-        if !(c.w >= near) {
+        // Both false for NaN.
+        let (in_front, moderate) = (c.w >= near, c.w <= FLOAT_CLIP_LIMIT / GUARD as f32);
+        if !in_front {
             return None;
         }
-        if !(c.w <= FLOAT_CLIP_LIMIT / GUARD as f32) {
+        if !moderate {
             // Transformed again there (the same arithmetic, the same
             // values): `c` need not be kept for it on the common path.
             return project_model_huge::<M>(m, near, v, vp);
