@@ -262,7 +262,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             near: P::Path::near(&matrix, camera.near_w),
             viewport,
             light: Light::default(),
-            memo: IntensityMemo::empty(),
+            memo: IntensityMemo::EMPTY,
             mode: ShadeMode::default(),
             rule: FillRule::default(),
             stats: RenderStats::default(),
@@ -292,7 +292,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             near: P::Path::NEAR_MIN,
             viewport,
             light: Light::DEFAULT,
-            memo: IntensityMemo::empty(),
+            memo: IntensityMemo::EMPTY,
             mode: ShadeMode::Lambert,
             rule: FillRule::NonZero,
             stats: RenderStats::ZERO,
@@ -392,7 +392,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Sets the light.
     pub fn set_light(&mut self, light: Light) {
         self.light = light;
-        self.memo = IntensityMemo::empty();
+        self.memo = IntensityMemo::EMPTY;
     }
 
     /// Sets the colour plane the next [`Renderer::fill_ready`] paints with

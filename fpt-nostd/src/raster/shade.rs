@@ -346,7 +346,7 @@ const NO_INTENSITY: u32 = u32::MAX;
 /// normal was lit before takes the intensity back (a hash and four
 /// comparisons) instead of rounding, testing and lighting it again (about
 /// 70 instructions a face on a Cortex-M4F). Direct mapped (entry by a
-/// hash of the bits); [`IntensityMemo::empty`] when the light changes.
+/// hash of the bits); [`IntensityMemo::EMPTY`] when the light changes.
 /// The same intensities as [`Light::intensity`]: a pure function of the
 /// normal's bits and the light, which a renderer's memo never outlives.
 #[derive(Clone, Debug)]
@@ -357,15 +357,17 @@ pub(crate) struct IntensityMemo {
 }
 
 impl IntensityMemo {
-    /// No normal remembered.
-    pub(crate) const fn empty() -> IntensityMemo {
-        IntensityMemo {
-            entries: [const { Cell::new([0, 0, 0, NO_INTENSITY]) }; MEMO],
-        }
-    }
+    /// No normal remembered. A constant, each use a fresh memo (what the
+    /// lint warns of is what is meant); as a `const fn` the renderers the
+    /// firmware builds on its stack took a copy more (its effect runs'
+    /// stack then reached the statics).
+    #[allow(clippy::declare_interior_mutable_const)]
+    pub(crate) const EMPTY: IntensityMemo = IntensityMemo {
+        entries: [const { Cell::new([0, 0, 0, NO_INTENSITY]) }; MEMO],
+    };
 
     /// [`shade`], with the intensity of `normal` under `light` taken from
-    /// or kept in the memo (which must be [`IntensityMemo::empty`] or hold
+    /// or kept in the memo (which must be [`IntensityMemo::EMPTY`] or hold
     /// only intensities under `light`). Out of line, as `shade` was: the
     /// walk-and-fill function calls it once a face.
     #[inline(never)]
