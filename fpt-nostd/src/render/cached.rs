@@ -470,11 +470,12 @@ impl Walk<'_, '_, '_> {
                 if BOX {
                     r.load_cached(scratch, cache, indices, xform)
                 } else {
-                    let point = |v: u32| {
+                    let decode = |v: u32| {
                         let x = dec.get(v as usize);
-                        r.model_point([x[0] * s, x[1] * s, x[2] * s])
+                        [x[0] * s, x[1] * s, x[2] * s]
                     };
-                    r.load_cached_bare(scratch, cache, indices, point)
+                    let point = |r: &Renderer<P, E>, x| r.model_point(x);
+                    r.load_cached_bare(scratch, cache, indices, (decode, point))
                 }
             }
             Source::Q16(frac) => {
@@ -484,8 +485,9 @@ impl Walk<'_, '_, '_> {
                 if BOX {
                     r.load_cached(scratch, cache, indices, xform)
                 } else {
-                    let point = |v: u32| r.raw_point(dec.raw_q16(v as usize), frac);
-                    r.load_cached_bare(scratch, cache, indices, point)
+                    let decode = |v: u32| dec.raw_q16(v as usize);
+                    let point = |r: &Renderer<P, E>, x| r.raw_point(x, frac);
+                    r.load_cached_bare(scratch, cache, indices, (decode, point))
                 }
             }
         };
@@ -552,8 +554,7 @@ impl Walk<'_, '_, '_> {
             let loaded = if BOX {
                 r.load_cached(scratch, self.cache, indices, xform)
             } else {
-                let point = |v: u32| pt(r, decode(v));
-                r.load_cached_bare(scratch, self.cache, indices, point)
+                r.load_cached_bare(scratch, self.cache, indices, (&decode, &pt))
             };
             if let Some((n, by_index)) = loaded {
                 return (

@@ -94,13 +94,14 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// test and projection in one, [`Renderer::model_point`]: the
     /// finiteness and clip tests shared, as a tagged cache's misses do).
     #[inline(always)]
-    pub(crate) fn load_cached_bare<const N: usize>(
+    pub(crate) fn load_cached_bare<T, const N: usize>(
         &self,
         scratch: &mut Scratch<P, N>,
         cache: &mut VertexCache<'_>,
         indices: impl Iterator<Item = u32>,
-        project: impl Fn(u32) -> Option<ScreenPt>,
+        (decode, point): (impl Fn(u32) -> T, impl Fn(&Self, T) -> Option<ScreenPt>),
     ) -> Option<(usize, bool)> {
+        let project = |v: u32| point(self, decode(v));
         let cap = cache.indexed_len();
         let mut n = 0;
         let mut all = true;
