@@ -40,7 +40,7 @@ static EXPECTED: &str = include_str!("../../trees/frames.txt");
 static mut FRAME: [u16; FRAME_WORDS] = [0; FRAME_WORDS];
 /// The `full` firmware's working memory (`src/main.rs`, `MEMORY_WORDS`):
 /// the vertex cache its frame lines are measured with.
-static MEMORY: ConstStaticCell<[u32; 900]> = ConstStaticCell::new([0; 900]);
+static MEMORY: ConstStaticCell<[u32; 868]> = ConstStaticCell::new([0; 868]);
 
 /// Halts with a failure exit and prints nothing: what a product's
 /// `panic-halt`-style handler costs. Not the shared `fail.rs` handler on

@@ -53,7 +53,7 @@ static EXPECTED: &str = include_str!("../../trees/frames.txt");
 const MEMORY_WORDS: usize = 10 * 1024;
 /// The frame set's working memory (`src/main.rs`, `MEMORY_WORDS`).
 #[cfg(feature = "full")]
-const MEMORY_WORDS: usize = 900;
+const MEMORY_WORDS: usize = 868;
 
 static BUF: ConstStaticCell<[u16; WORDS]> = ConstStaticCell::new([0; WORDS]);
 static MEMORY: ConstStaticCell<[u32; MEMORY_WORDS]> = ConstStaticCell::new([0; MEMORY_WORDS]);

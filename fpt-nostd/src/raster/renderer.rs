@@ -43,7 +43,7 @@ use super::gouraud::{fill_smooth, Smooth, SmoothSink};
 use super::outline::draw_outline;
 use super::precision::Precision;
 use super::scan::{fill_polygon_in, Bbox, FillRule, Paint, SpanBounds, SpanSink};
-use super::shade::{shade, shade_color, DepthCue, Light, ShadeMode};
+use super::shade::{shade_color, DepthCue, IntensityMemo, Light, ShadeMode};
 use super::transform::{ScreenPt, VertexPath, Viewport};
 use crate::effects::{AllEffects, Compiled, Effects};
 use crate::fixed::Fx14;
@@ -234,6 +234,8 @@ pub struct Renderer<P: Precision, E: Compiled = AllEffects> {
     near: Scalar<P>,
     viewport: Viewport,
     light: Light,
+    /// Intensities of normals lit under `light` (emptied with it).
+    memo: IntensityMemo,
     mode: ShadeMode,
     rule: FillRule,
     stats: RenderStats,
@@ -260,6 +262,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             near: P::Path::near(&matrix, camera.near_w),
             viewport,
             light: Light::default(),
+            memo: IntensityMemo::EMPTY,
             mode: ShadeMode::default(),
             rule: FillRule::default(),
             stats: RenderStats::default(),
@@ -289,6 +292,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             near: P::Path::NEAR_MIN,
             viewport,
             light: Light::DEFAULT,
+            memo: IntensityMemo::EMPTY,
             mode: ShadeMode::Lambert,
             rule: FillRule::NonZero,
             stats: RenderStats::ZERO,
@@ -388,6 +392,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// Sets the light.
     pub fn set_light(&mut self, light: Light) {
         self.light = light;
+        self.memo = IntensityMemo::EMPTY;
     }
 
     /// Sets the colour plane the next [`Renderer::fill_ready`] paints with
@@ -713,7 +718,8 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             return Err(Outcome::Drawn { spans: 0 });
         }
         let mut rgb = if fx.contains(Effects::LIGHTING) {
-            shade(self.mode, &self.light, face.normal, face.color)
+            self.memo
+                .shade(self.mode, &self.light, face.normal, face.color)
         } else {
             shade_color(self.mode, face.color, Fx14::ONE)
         };

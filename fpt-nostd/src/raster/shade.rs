@@ -18,6 +18,8 @@
 //! (face colour × intensity: the paper's Figure 16), [`ShadeMode::Grey`]
 //! (a grey level × intensity, face colours ignored: Figure 15).
 
+use core::cell::Cell;
+
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use crate::fixed::{isqrt_u64, Fx14};
@@ -328,6 +330,80 @@ pub fn shade(mode: ShadeMode, light: &Light, normal: [f32; 3], color: [u8; 3]) -
         _ => light.intensity(normal),
     };
     shade_color(mode, color, i)
+}
+
+/// Entries of an [`IntensityMemo`]: eight on cores with an FPU (a
+/// scene's faces have few distinct normals: a city's walls and roofs face
+/// five ways), none without (its 128 bytes would come out of the
+/// Cortex-M0's 16 KiB).
+const MEMO: usize = if HAS_FPU { 8 } else { 0 };
+
+/// An empty memo entry's intensity: no intensity is above `2^14`.
+const NO_INTENSITY: u32 = u32::MAX;
+
+/// The light intensities of the last normals shaded, by their bits: a
+/// renderer's memo for [`IntensityMemo::shade`], so that a face whose
+/// normal was lit before takes the intensity back (a hash and four
+/// comparisons) instead of rounding, testing and lighting it again (about
+/// 70 instructions a face on a Cortex-M4F). Direct mapped (entry by a
+/// hash of the bits); [`IntensityMemo::EMPTY`] when the light changes.
+/// The same intensities as [`Light::intensity`]: a pure function of the
+/// normal's bits and the light, which a renderer's memo never outlives.
+#[derive(Clone, Debug)]
+pub(crate) struct IntensityMemo {
+    /// The normal's three bit patterns, then its intensity (raw `Fx14`;
+    /// [`NO_INTENSITY`] when empty).
+    entries: [Cell<[u32; 4]>; MEMO],
+}
+
+impl IntensityMemo {
+    /// No normal remembered. A constant, each use a fresh memo (what the
+    /// lint warns of is what is meant); as a `const fn` the renderers the
+    /// firmware builds on its stack took a copy more (its effect runs'
+    /// stack then reached the statics).
+    #[allow(clippy::declare_interior_mutable_const)]
+    pub(crate) const EMPTY: IntensityMemo = IntensityMemo {
+        entries: [const { Cell::new([0, 0, 0, NO_INTENSITY]) }; MEMO],
+    };
+
+    /// [`shade`], with the intensity of `normal` under `light` taken from
+    /// or kept in the memo (which must be [`IntensityMemo::EMPTY`] or hold
+    /// only intensities under `light`). Out of line, as `shade` was: the
+    /// walk-and-fill function calls it once a face.
+    #[inline(never)]
+    pub(crate) fn shade(
+        &self,
+        mode: ShadeMode,
+        light: &Light,
+        normal: [f32; 3],
+        color: [u8; 3],
+    ) -> Rgb888 {
+        let i = match mode {
+            ShadeMode::Flat => Fx14::ONE,
+            _ => self.intensity(light, normal),
+        };
+        shade_color(mode, color, i)
+    }
+
+    /// [`Light::intensity`] through the memo.
+    #[inline(always)]
+    fn intensity(&self, light: &Light, normal: [f32; 3]) -> Fx14 {
+        let b = normal.map(f32::to_bits);
+        // A multiplicative hash of the three patterns; its top bits pick
+        // the entry (the axis normals ±1, 0 land in distinct entries).
+        let h = (b[0] ^ b[1].rotate_left(11) ^ b[2].rotate_left(22)).wrapping_mul(0x9E37_79B1);
+        let Some(e) = self.entries.get((h >> 29) as usize % MEMO.max(1)) else {
+            return light.intensity(normal);
+        };
+        let [k0, k1, k2, i] = e.get();
+        // Word by word (an array comparison is a `memcmp` call).
+        if k0 == b[0] && k1 == b[1] && k2 == b[2] && i != NO_INTENSITY {
+            return Fx14::from_raw(i as i32);
+        }
+        let i = light.intensity(normal);
+        e.set([b[0], b[1], b[2], i.raw() as u32]);
+        i
+    }
 }
 
 /// Depth cueing (the `depth-cue` effect): a face fades toward the fog

@@ -32,7 +32,10 @@
 //!   take the per-polygon path ([`Slot::Slow`]): it lies outside a clip
 //!   plane (its polygons need clipping, which needs clip coordinates), its
 //!   transform was not finite, or its screen point does not fit 16 bits
-//!   (far into the guard band of a large viewport).
+//!   (far into the guard band of a large viewport). A tagged entry holds
+//!   only points: such a vertex is not recorded there (its polygons take
+//!   the per-polygon path each time), so that a hit is one comparison of
+//!   the tag and no test of the word.
 //! * Projection is a pure function of the clip vertex, and the clip vertex
 //!   a pure function of the vertex and the frame's matrix, so a point read
 //!   from the cache is bit-identical to the one the per-polygon path
@@ -62,8 +65,10 @@
 //! cache.set(3, Some(ScreenPt { x: 1, y: 2 }));
 //! assert_eq!(cache.get(3), Slot::Point(ScreenPt { x: 1, y: 2 }));
 //! assert_eq!(cache.get(1), Slot::Unset);
-//! cache.set(1, None);
-//! assert_eq!((cache.get(1), cache.get(3)), (Slot::Slow, Slot::Unset));
+//! cache.set(1, Some(ScreenPt { x: 5, y: 6 }));
+//! assert_eq!((cache.get(1), cache.get(3)), (Slot::Point(ScreenPt { x: 5, y: 6 }), Slot::Unset));
+//! cache.set(3, None); // not cacheable: not recorded, nothing evicted
+//! assert_eq!((cache.get(1), cache.get(3)), (Slot::Point(ScreenPt { x: 5, y: 6 }), Slot::Unset));
 //! ```
 
 use super::transform::ScreenPt;
@@ -194,7 +199,9 @@ impl<'m> VertexCache<'m> {
 
     /// The slot of vertex `v`: indexed, [`Slot::Slow`] beyond the
     /// capacity; tagged, [`Slot::Unset`] when its entry holds another
-    /// vertex.
+    /// vertex (never [`Slot::Slow`] but with no entry at all). `v` is
+    /// below `u32::MAX` (no tree has a vertex of that index: they are
+    /// numbered from 0 and counted in a `u32`), the tag of an empty entry.
     #[inline]
     pub fn get(&self, v: u32) -> Slot {
         if self.is_tagged() {
@@ -213,13 +220,39 @@ impl<'m> VertexCache<'m> {
 
     /// [`VertexCache::get`] of the tagged layout.
     #[inline]
-    pub(crate) fn get_tagged(&self, v: u32) -> Slot {
+    fn get_tagged(&self, v: u32) -> Slot {
         let i = 2 * (v & self.mask) as usize;
-        slot_of(match self.slots.get(i..i + 2) {
-            Some(&[tag, w]) if tag == v => Some(w),
-            Some(_) => Some(UNSET),
-            None => None,
-        })
+        match self.slots.get(i..i + 2) {
+            Some(&[tag, w]) if tag == v => Slot::Point(unpack(w)),
+            Some(_) => Slot::Unset,
+            None => Slot::Slow,
+        }
+    }
+
+    /// The packed point of vertex `v` from a tagged cache: the entry's
+    /// word when it holds `v`, else `word(v)` (the point [`pack_tagged`]),
+    /// recorded, evicting the entry's vertex. `None` (not recorded, the
+    /// entry left as it was) when `word` gives none (no point, or one that
+    /// does not fit 16 bits) or the cache has no entry: the vertex takes
+    /// the per-polygon path. A tagged entry never holds [`Slot::Slow`], so
+    /// a hit is one comparison of the tag.
+    #[inline(always)]
+    pub(crate) fn tagged_word(
+        &mut self,
+        v: u32,
+        word: impl FnOnce(u32) -> Option<u32>,
+    ) -> Option<u32> {
+        let i = 2 * (v & self.mask) as usize;
+        let [tag, slot] = self.slots.get_mut(i..i + 2)? else {
+            return None;
+        };
+        if *tag == v {
+            return Some(*slot);
+        }
+        let w = word(v)?;
+        *tag = v;
+        *slot = w;
+        Some(w)
     }
 
     /// Records vertex `v`'s screen point (`None`: not cacheable). A point
@@ -248,15 +281,19 @@ impl<'m> VertexCache<'m> {
     }
 
     /// [`VertexCache::insert`] of the tagged layout: `v` takes its entry
-    /// over from whatever vertex held it.
+    /// over from whatever vertex held it when `p` is a point that fits 16
+    /// bits; otherwise nothing is recorded (as [`VertexCache::tagged_word`]
+    /// does).
     #[inline]
-    pub(crate) fn insert_tagged(&mut self, v: u32, p: Option<ScreenPt>) -> Option<ScreenPt> {
+    fn insert_tagged(&mut self, v: u32, p: Option<ScreenPt>) -> Option<ScreenPt> {
         let i = 2 * (v & self.mask) as usize;
         let [tag, slot] = self.slots.get_mut(i..i + 2)? else {
             return None;
         };
+        let w = pack_tagged(p?)?;
         *tag = v;
-        store(slot, p)
+        *slot = w;
+        p
     }
 }
 
@@ -295,7 +332,16 @@ pub(crate) fn pack(p: ScreenPt) -> Option<u32> {
     ok.then_some((p.x as u16 as u32) | ((p.y as u16 as u32) << 16))
 }
 
-/// The inverse of [`pack`].
+/// [`pack`] for a tagged entry, which holds no sentinel (a hit is its
+/// tag): any `i16` pair, `−2^15` included; a sign extension and a
+/// comparison a coordinate.
+#[inline]
+pub(crate) fn pack_tagged(p: ScreenPt) -> Option<u32> {
+    let fits = |c: i32| i32::from(c as i16) == c;
+    (fits(p.x) && fits(p.y)).then_some((p.x as u16 as u32) | ((p.y as u16 as u32) << 16))
+}
+
+/// The inverse of [`pack`] and [`pack_tagged`].
 #[inline]
 pub(crate) fn unpack(w: u32) -> ScreenPt {
     ScreenPt {
@@ -382,12 +428,27 @@ mod tests {
             (c.get(1), c.get(5)),
             (Slot::Unset, Slot::Point(ScreenPt { x: 50, y: -50 }))
         );
-        // A vertex that must take the per-polygon path is remembered as
-        // such (and evicts too), as is a point beyond 16 bits.
+        // A vertex that must take the per-polygon path is not recorded
+        // (nor evicts), nor is a point beyond 16 bits.
         assert_eq!(c.insert(9, None), None);
-        assert_eq!((c.get(9), c.get(5)), (Slot::Slow, Slot::Unset));
-        assert_eq!(c.insert(5, p(1 << 16)), None);
-        assert_eq!(c.get(5), Slot::Slow);
+        assert_eq!(
+            (c.get(9), c.get(5)),
+            (Slot::Unset, Slot::Point(ScreenPt { x: 50, y: -50 }))
+        );
+        assert_eq!(c.insert(1, p(1 << 16)), None);
+        assert_eq!(c.get(1), Slot::Unset);
+        assert_eq!(c.get(5), Slot::Point(ScreenPt { x: 50, y: -50 }));
+        // A hit does not compute the point again.
+        let w = pack(ScreenPt { x: 50, y: -50 });
+        assert_eq!(c.tagged_word(5, |_| unreachable!()), w);
+        // A tagged entry holds no sentinel: −2^15 is a coordinate there.
+        let low = ScreenPt {
+            x: -32768,
+            y: 32767,
+        };
+        assert_eq!(c.insert(13, Some(low)), Some(low));
+        assert_eq!(c.get(13), Slot::Point(low));
+        assert_eq!(pack_tagged(ScreenPt { x: 0, y: -32769 }), None);
         assert_eq!(c.get(2), Slot::Point(ScreenPt { x: 20, y: -20 }));
         // The tag is the whole index: a vertex 2^32 apart cannot exist, but
         // one a multiple of the entries apart never reads another's point.

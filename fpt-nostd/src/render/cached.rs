@@ -59,7 +59,7 @@ use crate::order::{memo_words, Class, Order, OrderError};
 use crate::raster::clip::ClipVert;
 use crate::raster::int_path::q16_camera;
 use crate::raster::renderer::Ready;
-use crate::raster::transform::VertexPath;
+use crate::raster::transform::{ScreenPt, VertexPath};
 use crate::raster::vcache::VertexCache;
 use crate::raster::{
     Face, Outcome, Precision, RenderStats, Renderer, Scratch, SpanBounds, SpanSink,
@@ -470,7 +470,12 @@ impl Walk<'_, '_, '_> {
                 if BOX {
                     r.load_cached(scratch, cache, indices, xform)
                 } else {
-                    r.load_cached_bare(scratch, cache, indices, xform)
+                    let decode = |v: u32| {
+                        let x = dec.get(v as usize);
+                        [x[0] * s, x[1] * s, x[2] * s]
+                    };
+                    let point = |r: &Renderer<P, E>, x| r.model_point(x);
+                    r.load_cached_bare(scratch, cache, indices, (decode, point))
                 }
             }
             Source::Q16(frac) => {
@@ -480,7 +485,9 @@ impl Walk<'_, '_, '_> {
                 if BOX {
                     r.load_cached(scratch, cache, indices, xform)
                 } else {
-                    r.load_cached_bare(scratch, cache, indices, xform)
+                    let decode = |v: u32| dec.raw_q16(v as usize);
+                    let point = |r: &Renderer<P, E>, x| r.raw_point(x, frac);
+                    r.load_cached_bare(scratch, cache, indices, (decode, point))
                 }
             }
         };
@@ -507,27 +514,33 @@ impl Walk<'_, '_, '_> {
                     [x[0] * s, x[1] * s, x[2] * s]
                 };
                 let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
-                self.prepare_from::<P, E, X, _, V, BOX>(r, scratch, p, (decode, xf), face, reach)
+                let pt = |r: &Renderer<P, E>, x| r.model_point(x);
+                let how = (decode, xf, pt);
+                self.prepare_from::<P, E, X, _, V, BOX>(r, scratch, p, how, face, reach)
             }
             Source::Q16(frac) => {
                 let decode = move |v: u32| dec.raw_q16(v as usize);
                 let xf = move |m: &_, x| <P::Path as VertexPath>::transform_q(m, x, frac);
-                self.prepare_from::<P, E, X, _, V, BOX>(r, scratch, p, (decode, xf), face, reach)
+                let pt = move |r: &Renderer<P, E>, x| r.raw_point(x, frac);
+                let how = (decode, xf, pt);
+                self.prepare_from::<P, E, X, _, V, BOX>(r, scratch, p, how, face, reach)
             }
         }
     }
 
-    /// [`Walk::prepare`] for vertices that `decode` reads by index and `xf`
-    /// transforms with the frame's matrix.
+    /// [`Walk::prepare`] for vertices that `decode` reads by index, `xf`
+    /// transforms with the frame's matrix and `pt` takes to the screen
+    /// (a tagged cache's misses: [`Renderer::model_point`]).
     #[inline(always)]
     fn prepare_from<P: Precision, E: Compiled, X: Compiled, T, const V: usize, const BOX: bool>(
         &mut self,
         r: &mut Renderer<P, E>,
         scratch: &mut Scratch<P, V>,
         p: &PolygonAt<'_, '_>,
-        (decode, xf): (
+        (decode, xf, pt): (
             impl Fn(u32) -> T,
             impl Fn(&<P::Path as VertexPath>::Matrix, T) -> Option<ClipVert<PathScalar<P>>>,
+            impl Fn(&Renderer<P, E>, T) -> Option<ScreenPt>,
         ),
         face: &Face,
         reach: &SpanBounds,
@@ -541,7 +554,7 @@ impl Walk<'_, '_, '_> {
             let loaded = if BOX {
                 r.load_cached(scratch, self.cache, indices, xform)
             } else {
-                r.load_cached_bare(scratch, self.cache, indices, xform)
+                r.load_cached_bare(scratch, self.cache, indices, (&decode, &pt))
             };
             if let Some((n, by_index)) = loaded {
                 return (
@@ -550,8 +563,8 @@ impl Walk<'_, '_, '_> {
                 );
             }
         } else if self.cache.is_tagged() {
-            let xform = |v: u32| xf(r.matrix(), decode(v));
-            if let Some(n) = r.load_tagged(scratch, self.cache, p.vertex_indices(), xform) {
+            let how = (&decode, &pt);
+            if let Some(n) = r.load_tagged(scratch, self.cache, p.vertex_indices(), how) {
                 return (
                     r.prepare_screen::<X, V, BOX>(scratch, n, face, reach),
                     false,

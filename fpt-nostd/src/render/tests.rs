@@ -456,9 +456,12 @@ fn indices_from_the_tree_are_those_the_load_leaves() {
             r.scratch.screen()[..n].to_vec(),
         );
         r.scratch.active_mut().fill(u16::MAX);
-        let bare = r
-            .renderer
-            .load_cached_bare(&mut r.scratch, &mut cache, vs, |_| None);
+        let bare = r.renderer.load_cached_bare(
+            &mut r.scratch,
+            &mut cache,
+            vs,
+            (|v: u32| v, |_: &_, _| None),
+        );
         assert_eq!(bare, Some((n, true)));
         assert_eq!(&r.scratch.screen()[..n], &pts[..]);
         assert!(r.scratch.active().iter().all(|&a| a == u16::MAX));

@@ -7,11 +7,11 @@
 use super::super::clip::{ClipNum, ClipVert};
 use super::super::precision::Precision;
 use super::super::proof::VertexBound;
-use super::super::transform::VertexPath;
-use super::super::vcache::{Slot, VertexCache};
+use super::super::transform::{ScreenPt, VertexPath};
+use super::super::vcache::{pack_tagged, unpack, Slot, VertexCache};
 use super::{Renderer, Scalar, Scratch};
 use crate::effects::Compiled;
-use crate::reader::Tree;
+use crate::reader::{Tree, VertexIndices};
 
 /// Polygon `i`'s vertex indices into `active`, as [`Renderer::load_cached`]
 /// leaves them (each below 2^16: a polygon recorded by them has every
@@ -89,19 +89,22 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// generic `load_cached` with or without the indices it gained 3 k,
     /// and the full frame, which keeps its own copy above for that
     /// reason, then cost 10 k more).
+    ///
+    /// A miss takes the vertex `decode` reads by index to the screen
+    /// with `point` (transform, clip test and projection in one,
+    /// [`Renderer::model_point`]: the finiteness and clip tests shared, as
+    /// a tagged cache's misses do), handed this renderer rather than a
+    /// closure's reference to it, as in [`Renderer::load_tagged`]
+    /// (measured: bench_city bands 9 k cheaper a view).
     #[inline(always)]
-    pub(crate) fn load_cached_bare<const N: usize>(
+    pub(crate) fn load_cached_bare<T, const N: usize>(
         &self,
         scratch: &mut Scratch<P, N>,
         cache: &mut VertexCache<'_>,
         indices: impl Iterator<Item = u32>,
-        xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
+        (decode, point): (impl Fn(u32) -> T, impl Fn(&Self, T) -> Option<ScreenPt>),
     ) -> Option<(usize, bool)> {
-        let project = |v: u32| {
-            xform(v)
-                .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
-                .and_then(|c| P::Path::project_inside(&c, &self.viewport))
-        };
+        let project = |v: u32| point(self, decode(v));
         let cap = cache.indexed_len();
         let mut n = 0;
         let mut all = true;
@@ -125,34 +128,79 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     /// [`Renderer::load_cached`] through a tagged cache: every vertex goes
     /// through it, and none is reported cached for the rest of the frame
     /// (a later polygon may take its entry over), so `scratch.active` is
-    /// not written. Out of line: the walk-and-fill function that inlines
-    /// `load_cached` keeps the indexed loop's code (and register
-    /// allocation) nearly as it was, plus one test a polygon (docs/cortex-m4.md, "What
-    /// a frame is made of", session 13: the placements measured).
+    /// not written. `point` gives a vertex's screen point from what
+    /// `decode` reads of it by index (transform, clip test and projection:
+    /// [`Renderer::model_point`]), `None` when it must take the per-polygon
+    /// path; it is handed this renderer, not a closure's copy of a
+    /// reference to it, so that the compiler sees that the cache's stores
+    /// leave the frame's constants alone (the viewport's scales were
+    /// computed again at every miss). Out of line: the
+    /// walk-and-fill function that inlines `load_cached` keeps the indexed
+    /// loop's code (and register allocation) nearly as it was, plus one
+    /// test a polygon (docs/cortex-m4.md, "What a frame is made of",
+    /// session 13: the placements measured).
     #[inline(never)]
-    pub(crate) fn load_tagged<const N: usize>(
+    pub(crate) fn load_tagged<T, const N: usize>(
         &self,
         scratch: &mut Scratch<P, N>,
         cache: &mut VertexCache<'_>,
-        indices: impl Iterator<Item = u32>,
-        xform: impl Fn(u32) -> Option<ClipVert<Scalar<P>>>,
+        indices: VertexIndices<'_>,
+        (decode, point): (impl Fn(u32) -> T, impl Fn(&Self, T) -> Option<ScreenPt>),
     ) -> Option<usize> {
-        let project = |v: u32| {
-            xform(v)
-                .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
-                .and_then(|c| P::Path::project_inside(&c, &self.viewport))
+        let how = (&decode, &point);
+        let mut get = |v: u32| {
+            cache
+                .tagged_word(v, |v| self.tagged_miss(v, how))
+                .map(unpack)
         };
+        // Two-byte indices (every tree below 2^16 vertices): their count
+        // known first, one loop over them and the points without a width
+        // test or a count a vertex.
+        if let Some(bytes) = indices.narrow() {
+            let n = bytes.len() / 2;
+            let dst = scratch.screen.get_mut(..n)?;
+            for (d, b) in dst.iter_mut().zip(bytes.chunks_exact(2)) {
+                *d = get(u32::from(u16::from_le_bytes([b[0], b[1]])))?;
+            }
+            return Some(n);
+        }
         let mut n = 0;
         for v in indices {
-            let p = match cache.get_tagged(v) {
-                Slot::Point(p) => p,
-                Slot::Slow => return None,
-                Slot::Unset => cache.insert_tagged(v, project(v))?,
-            };
-            *scratch.screen.get_mut(n)? = p;
+            *scratch.screen.get_mut(n)? = get(v)?;
             n += 1;
         }
         Some(n)
+    }
+
+    /// A tagged cache's miss: vertex `v`'s point packed into its word
+    /// (`vcache::pack_tagged`), `None` when it takes the per-polygon path. Out of
+    /// line: the lookup loop keeps its few values in registers, and the
+    /// miss its own (measured: the miss in line kept the matrix in
+    /// registers but spilled the loop's values, 3 k instructions dearer
+    /// on `bench_city` view 0).
+    #[inline(never)]
+    fn tagged_miss<T>(
+        &self,
+        v: u32,
+        (decode, point): (&impl Fn(u32) -> T, &impl Fn(&Self, T) -> Option<ScreenPt>),
+    ) -> Option<u32> {
+        point(self, decode(v)).and_then(pack_tagged)
+    }
+
+    /// The screen point of model point `x` as a cache miss computes it
+    /// (`VertexPath::project_model`).
+    #[inline(always)]
+    pub(crate) fn model_point(&self, x: [f32; 3]) -> Option<ScreenPt> {
+        P::Path::project_model(&self.matrix, self.near, x, &self.viewport)
+    }
+
+    /// [`Renderer::model_point`] of a q16 tree's raw vertex (`frac`
+    /// fraction bits): the transform, the clip test and the projection.
+    #[inline(always)]
+    pub(crate) fn raw_point(&self, x: [i32; 3], frac: u32) -> Option<ScreenPt> {
+        P::Path::transform_q(&self.matrix, x, frac)
+            .filter(|c| <Scalar<P> as ClipNum>::inside(c, self.near))
+            .and_then(|c| P::Path::project_inside(&c, &self.viewport))
     }
 
     /// Whether this frame's camera lets every model point within `bound`
