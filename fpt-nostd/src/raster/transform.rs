@@ -232,7 +232,9 @@ pub trait VertexPath {
     /// [`VertexPath::transform`], the clip test ([`ClipNum::inside`]) and
     /// [`VertexPath::project_clipped`] give (`None` when one fails), for a
     /// frame where [`VertexPath::prove`] holds and `v` within its bound,
-    /// where a path may leave the checks out. The default is that chain.
+    /// where a path may leave the checks out. The default is that chain,
+    /// as [`VertexPath::project_model`] gives it (the same result: a vertex
+    /// the clip test passes projects the same by either projection).
     #[inline]
     fn project_proven(
         m: &Self::Matrix,
@@ -240,9 +242,7 @@ pub trait VertexPath {
         v: [f32; 3],
         vp: &Viewport,
     ) -> Option<ScreenPt> {
-        Self::transform(m, v)
-            .filter(|c| <Self::Scalar as ClipNum>::inside(c, near))
-            .and_then(|c| Self::project_clipped(&c, vp))
+        Self::project_model(m, near, v, vp)
     }
 }
 
