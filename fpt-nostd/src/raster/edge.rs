@@ -485,16 +485,9 @@ impl Packed {
     /// where [`packs`] holds.
     #[inline(always)]
     pub(crate) fn start(t: ScreenPt, b: ScreenPt, sub: u32, y: i32) -> Packed {
-        let d = Dda32::start(t, b, sub, y);
-        Packed {
-            w: d.c.wrapping_shl(PACK_K).wrapping_add(d.g),
-            step: d.qs.wrapping_shl(PACK_K).wrapping_sub(d.rs),
-            fix: (1 << PACK_K) + d.d,
-        }
+        Packed::of(&Dda32::start(t, b, sub, y))
     }
-}
 
-impl Packed {
     /// `d` packed (where [`packs`] holds and its edge is within ±[`SMALL`]).
     #[inline(always)]
     pub(crate) fn of(d: &Dda32) -> Packed {

@@ -6,7 +6,7 @@
 #[cfg(doc)]
 use super::Tree;
 use super::{Geometry, Plane, RawVertex, VertexFormat, VertexIndices, Vertices};
-use crate::format::RUN_LEN;
+use crate::format::{plane_at, RUN_LEN};
 /// One polygon of a [`Tree`].
 #[derive(Clone, Copy, Debug)]
 pub struct PolygonRef<'a> {
@@ -217,11 +217,7 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         } else {
             self.g.polygon_run(self.id)
         };
-        // The plane's 16 bytes only, borrowed (not the whole record,
-        // copied).
-        let at = (r as usize).wrapping_mul(RUN_LEN);
-        let rec = self.g.runs.get(at..).and_then(|s| s.first_chunk::<16>());
-        Plane::from_record(rec.unwrap_or(&[0; 16]))
+        Plane::from_record(plane_at(self.g.runs, (r as usize).wrapping_mul(RUN_LEN)))
     }
 
     /// [`PolygonRef::vertex_indices`].

@@ -7,7 +7,7 @@
 
 use super::Plane;
 use crate::format::{
-    le_u32, node as nd, rec, run as rn, NODE_LEN, RUN_LEN, SWITCH_LEN, SWITCH_REF_LEN,
+    le_u32, node as nd, plane_at, rec, run as rn, NODE_LEN, RUN_LEN, SWITCH_LEN, SWITCH_REF_LEN,
 };
 
 /// One connecting node record.
@@ -105,10 +105,7 @@ impl<'a> WalkData<'a> {
         } else {
             (self.switches, (k as usize).wrapping_mul(SWITCH_LEN))
         };
-        section
-            .get(at..)
-            .and_then(|r| r.first_chunk::<SWITCH_LEN>())
-            .unwrap_or(&[0; SWITCH_LEN])
+        plane_at(section, at)
     }
 
     /// The plane index of switch `k` with shared planes (`None` without

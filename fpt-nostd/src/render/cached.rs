@@ -463,29 +463,25 @@ impl Walk<'_, '_, '_> {
         let (cache, indices) = (&mut *self.cache, p.vertex_indices());
         let loaded = match self.source {
             Source::Scaled(s) => {
-                let xform = |v: u32| {
+                let decode = |v: u32| {
                     let x = dec.get(v as usize);
-                    <P::Path as VertexPath>::transform(r.matrix(), [x[0] * s, x[1] * s, x[2] * s])
+                    [x[0] * s, x[1] * s, x[2] * s]
                 };
                 if BOX {
+                    let xform = |v: u32| <P::Path as VertexPath>::transform(r.matrix(), decode(v));
                     r.load_cached(scratch, cache, indices, xform)
                 } else {
-                    let decode = |v: u32| {
-                        let x = dec.get(v as usize);
-                        [x[0] * s, x[1] * s, x[2] * s]
-                    };
                     let point = |r: &Renderer<P, E>, x| r.model_point(x);
                     r.load_cached_bare(scratch, cache, indices, (decode, point))
                 }
             }
             Source::Q16(frac) => {
-                let xform = |v: u32| {
-                    <P::Path as VertexPath>::transform_q(r.matrix(), dec.raw_q16(v as usize), frac)
-                };
+                let decode = |v: u32| dec.raw_q16(v as usize);
                 if BOX {
+                    let xform =
+                        |v: u32| <P::Path as VertexPath>::transform_q(r.matrix(), decode(v), frac);
                     r.load_cached(scratch, cache, indices, xform)
                 } else {
-                    let decode = |v: u32| dec.raw_q16(v as usize);
                     let point = |r: &Renderer<P, E>, x| r.raw_point(x, frac);
                     r.load_cached_bare(scratch, cache, indices, (decode, point))
                 }
