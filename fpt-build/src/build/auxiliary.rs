@@ -36,6 +36,7 @@
 //! group's bounding-volume hierarchy; every candidate direction counts its
 //! classifications as one-way relations.
 
+use super::pivot;
 use super::table::{Rel, Table};
 use super::Ctx;
 use crate::geom::Plane;
@@ -247,18 +248,33 @@ pub fn cutting_aux(
     if alive.len() < 3 || n == 0 {
         return Vec::new();
     }
-    let mut candidates: Vec<((u32, u32), Plane)> = directions(t, &alive, ctx)
+    let candidates: Vec<((u32, u32), Plane)> = directions(t, &alive, ctx)
         .into_iter()
         .filter_map(|u| {
             best_cutting(u, t, &alive, ctx, &score).map(|(s, c)| (s, Plane { normal: u, d: -c }))
         })
         .collect();
     ctx.relations += (candidates.len() * alive.len()) as u64;
+    verified(t, ctx, &alive, candidates, &score, false, n)
+}
+
+/// The best `n` of `candidates` (sorted best first) by their exact counts
+/// and `score`, of the first [`VERIFIED`]: with members on both sides, and
+/// cutting nothing if `uncut`, else something.
+fn verified(
+    t: &Table,
+    ctx: &mut Ctx,
+    alive: &[usize],
+    mut candidates: Vec<((u32, u32), Plane)>,
+    score: &impl Fn(u32, u32, u32) -> (u32, u32),
+    uncut: bool,
+    n: usize,
+) -> Vec<AuxPlane> {
     candidates.sort_by(|a, b| a.0.cmp(&b.0).then_with(|| plane_cmp(&a.1, &b.1)));
     let mut out: Vec<((u32, u32), Plane)> = Vec::new();
     for (_, plane) in candidates.into_iter().take(VERIFIED) {
         let [f, b, cut] = t.plane_counts(&plane, ctx);
-        if cut == 0 || f == 0 || b == 0 {
+        if (cut == 0) != uncut || f == 0 || b == 0 {
             continue;
         }
         out.push((score(f, b, cut), plane));
@@ -268,10 +284,29 @@ pub fn cutting_aux(
     out.into_iter()
         .map(|(score, plane)| {
             let mut rels = vec![Rel::Unknown; t.len()];
-            for &q in &alive {
+            for &q in alive {
                 rels[q] = ctx.classify(t.ids[q], &plane);
             }
             AuxPlane { plane, rels, score }
         })
         .collect()
+}
+
+/// Up to `n` planes through edges of the group (`pivot.rs`), cutting
+/// nothing if `uncut`, the best by `score(f, b, c)` first: candidates for
+/// the lookahead.
+pub fn pivot_aux(
+    t: &Table,
+    ctx: &mut Ctx,
+    score: impl Fn(u32, u32, u32) -> (u32, u32),
+    uncut: bool,
+    n: usize,
+) -> Vec<AuxPlane> {
+    let alive: Vec<usize> = (0..t.len()).filter(|&q| t.is_alive(q)).collect();
+    if alive.len() < 3 || n == 0 {
+        return Vec::new();
+    }
+    let candidates = pivot::candidates(t, &alive, ctx, uncut, &score);
+    ctx.relations += (candidates.len() * alive.len()) as u64;
+    verified(t, ctx, &alive, candidates, &score, uncut, n)
 }

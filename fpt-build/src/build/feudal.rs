@@ -6,8 +6,9 @@
 //! a random order and acts on each as soon as it shows an absolute priority
 //! polygon or a separating plane, then finishes what is left statically.
 
-use super::auxiliary::{best_aux, cutting_aux, AuxPlane};
+use super::auxiliary::{best_aux, cutting_aux, pivot_aux, AuxPlane};
 use super::lookahead;
+use super::pivot;
 use super::table::{Rel, Table, Watch};
 use super::{Ctx, Work};
 use crate::geom::Plane;
@@ -104,6 +105,18 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
                     .into_iter()
                     .map(Divide::Aux),
             );
+        }
+        if look && table.alive_count() <= pivot::GROUP {
+            // Planes through an edge of the group, one family cutting
+            // nothing and one cutting few (`pivot.rs`): judged only by
+            // their trials (the greedy rule below takes them for worse).
+            for uncut in [true, false] {
+                options.extend(
+                    pivot_aux(&table, ctx, split_score, uncut, lookahead::PIVOTS)
+                        .into_iter()
+                        .map(Divide::Aux),
+                );
+            }
         }
         let pick = if look && options.len() > 1 {
             lookahead::cheapest(&table, &options, mode, ctx)

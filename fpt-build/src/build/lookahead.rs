@@ -12,7 +12,8 @@
 //! best few member planes ([`Look::candidates`] by the greedy score and
 //! [`Look::alternatives`] by one that weighs cuts less, [`ALT_WEIGHT`]),
 //! of the best auxiliary plane that cuts
-//! nothing and of the best [`CUTTING`] that cut some, with
+//! nothing, of the best [`CUTTING`] that cut some and of the best
+//! [`PIVOTS`] through an edge of the group of each kind, with
 //! the greedy rule below it, counts the output polygons each one adds, and
 //! keeps the cheapest (the greedy choice on a tie). The trial subtrees are
 //! thrown away: the polygons they split are truncated off the working set
@@ -23,8 +24,8 @@
 //! chosen. The cost is bounded: a trial builds at most [`Look::group`]
 //! members greedily (stopping as soon as it adds more than the best so
 //! far, or at once when an earlier one added nothing), each node of the
-//! tree runs at most `candidates + alternatives + CUTTING + 1` trials, and
-//! larger models look ahead less ([`look_for`]).
+//! tree runs at most `candidates + alternatives + CUTTING + 2 × PIVOTS + 1`
+//! trials, and larger models look ahead less ([`look_for`]).
 //!
 //! On two threads, two trials run at once when a thread is free
 //! ([`cheapest`]), and a trial's subgroups may be built on two threads
@@ -53,6 +54,22 @@ pub struct Look {
 
 /// Auxiliary planes that cut members tried (`auxiliary::cutting_aux`).
 pub const CUTTING: usize = 2;
+
+/// Planes through an edge of the group (`pivot.rs`) tried, of each of
+/// the two kinds (cutting nothing, cutting few), in groups of up to
+/// `pivot::GROUP` members.
+///
+/// Such a plane is not a polygon's, and a group that no member plane
+/// separates often has one that cuts nothing through a chain of its
+/// edges. As the greedy choice (the best of them with the axis and
+/// normal sweeps in `auxiliary::best_aux`, in every group of up to 64)
+/// they made the tree worse (`fpt build`, the nine shared models without
+/// rocker-arm: 3,238 → 3,430 splittings), as lookahead options they
+/// make it better, judged by the pieces their subtrees add: one of each
+/// kind in groups of up to 64, 2,803; up to 512, 2,554; **two of each**,
+/// 2,516; one cutting nothing only, 2,941 (up to 64) and 2,811 (up to
+/// 512); one cutting few only, 2,975 (up to 64).
+pub const PIVOTS: usize = 2;
 
 /// The weight of a cut against imbalance in the alternatives' score (the
 /// greedy one is `feudal::SPLIT_WEIGHT`, 8). Neither weight is best on

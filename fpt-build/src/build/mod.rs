@@ -12,6 +12,7 @@ mod bsp;
 mod bvh;
 mod feudal;
 mod lookahead;
+mod pivot;
 mod rng;
 mod table;
 
