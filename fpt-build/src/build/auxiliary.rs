@@ -306,7 +306,7 @@ pub fn pivot_aux(
     if alive.len() < 3 || n == 0 {
         return Vec::new();
     }
-    let candidates = pivot::candidates(t, &alive, ctx, uncut, &score);
-    ctx.relations += (candidates.len() * alive.len()) as u64;
+    let (candidates, edges) = pivot::candidates(t, &alive, ctx, uncut, &score);
+    ctx.relations += (edges * alive.len()) as u64;
     verified(t, ctx, &alive, candidates, &score, uncut, n)
 }

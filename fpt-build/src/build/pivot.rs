@@ -234,17 +234,21 @@ fn sides(arcs: &[Arc], theta: f64, always: u32) -> [u32; 3] {
 /// For each distinct edge of the members `alive`, the best plane through
 /// it by `score(f, b, c)` (by the arcs) with members on both sides: only
 /// planes that cut nothing with `uncut`, else the [`GAPS`] angles that
-/// cut fewest are scored.
+/// cut fewest are scored. Also returns the number of edges (each edge
+/// placed every member: the relations counted, the same at any scale
+/// whatever rounding does to the arcs).
 pub fn candidates(
     t: &Table,
     alive: &[usize],
     ctx: &Ctx,
     uncut: bool,
     score: &impl Fn(u32, u32, u32) -> (u32, u32),
-) -> Vec<((u32, u32), Plane)> {
+) -> (Vec<((u32, u32), Plane)>, usize) {
     let mut arcs = Vec::with_capacity(alive.len());
     let mut out = Vec::new();
-    for (a, b) in edges(t, alive, ctx) {
+    let edges = edges(t, alive, ctx);
+    let n = edges.len();
+    for (a, b) in edges {
         let Some(p) = pencil(a, b, t, alive, ctx, uncut, &mut arcs) else {
             continue;
         };
@@ -270,7 +274,7 @@ pub fn candidates(
             out.push((s, p.plane(theta)));
         }
     }
-    out
+    (out, n)
 }
 
 #[cfg(test)]
