@@ -44,6 +44,9 @@ pub const GROUP: usize = 512;
 /// pass over the members).
 const GAPS: usize = 8;
 
+/// A candidate plane with its score.
+pub type Scored = ((u32, u32), Plane);
+
 /// The arc of a member seen along the line: its start angle in `[0, π)`,
 /// its length (0 when the member's plane contains the line) and the angle
 /// of its middle (for its side).
@@ -243,7 +246,7 @@ pub fn candidates(
     ctx: &Ctx,
     uncut: bool,
     score: &impl Fn(u32, u32, u32) -> (u32, u32),
-) -> (Vec<((u32, u32), Plane)>, usize) {
+) -> (Vec<Scored>, usize) {
     let mut arcs = Vec::with_capacity(alive.len());
     let mut out = Vec::new();
     let edges = edges(t, alive, ctx);
