@@ -443,7 +443,8 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
         if !moderate {
             // Transformed again there (the same arithmetic, the same
             // values): `c` need not be kept for it on the common path.
-            return project_model_huge::<M>(m, near, v, vp);
+            let [x, y, z] = v;
+            return project_model_huge::<M>(m, near, x, y, z, vp);
         }
         let g = GUARD as f32 * c.w;
         if !(c.x.abs() <= g && c.y.abs() <= g) {
@@ -475,18 +476,22 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
     }
 }
 
-/// [`VertexPath::project_model`] of [`FloatPath`] for a model point whose
-/// clip `w` is above `LIMIT / GUARD`: the chain as written (transform with
-/// its finiteness test, clip test, projection).
+/// [`VertexPath::project_model`] of [`FloatPath`] for a model point
+/// (`x`, `y`, `z`) whose clip `w` is above `LIMIT / GUARD`: the chain as
+/// written (transform with its finiteness test, clip test, projection).
+/// The point comes as three scalars, in registers: as an array, its
+/// caller stored it to memory for every vertex, the common path's too.
 #[cold]
 #[inline(never)]
 fn project_model_huge<M: MathFns>(
     m: &Mat4,
     near: f32,
-    v: [f32; 3],
+    x: f32,
+    y: f32,
+    z: f32,
     vp: &Viewport,
 ) -> Option<ScreenPt> {
-    FloatPath::<M>::transform(m, v)
+    FloatPath::<M>::transform(m, [x, y, z])
         .filter(|c| <f32 as ClipNum>::inside(c, near))
         .and_then(|c| FloatPath::<M>::project_inside(&c, vp))
 }
