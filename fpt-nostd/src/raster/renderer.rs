@@ -619,9 +619,8 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
             return Err(Outcome::Drawn { spans: 0 });
         }
         let mut rgb = if fx.contains(Effects::LIGHTING) {
-            let [nx, ny, nz] = face.normal;
             self.memo
-                .shade(self.mode, &self.light, nx, ny, nz, face.color)
+                .shade(self.mode, &self.light, face.normal, face.color)
         } else {
             shade_color(self.mode, face.color, Fx14::ONE)
         };

@@ -369,20 +369,15 @@ impl IntensityMemo {
     /// [`shade`], with the intensity of `normal` under `light` taken from
     /// or kept in the memo (which must be [`IntensityMemo::EMPTY`] or hold
     /// only intensities under `light`). Out of line, as `shade` was: the
-    /// walk-and-fill function calls it once a face. The normal comes as
-    /// three scalars, in registers (as an array it was stored to memory
-    /// and read back for every face).
+    /// walk-and-fill function calls it once a face.
     #[inline(never)]
     pub(crate) fn shade(
         &self,
         mode: ShadeMode,
         light: &Light,
-        nx: f32,
-        ny: f32,
-        nz: f32,
+        normal: [f32; 3],
         color: [u8; 3],
     ) -> Rgb888 {
-        let normal = [nx, ny, nz];
         let i = match mode {
             ShadeMode::Flat => Fx14::ONE,
             _ => self.intensity(light, normal),
