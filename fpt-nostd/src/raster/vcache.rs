@@ -338,7 +338,14 @@ pub(crate) fn pack(p: ScreenPt) -> Option<u32> {
 #[inline]
 pub(crate) fn pack_tagged(p: ScreenPt) -> Option<u32> {
     let fits = |c: i32| i32::from(c as i16) == c;
-    (fits(p.x) && fits(p.y)).then_some((p.x as u16 as u32) | ((p.y as u16 as u32) << 16))
+    (fits(p.x) && fits(p.y)).then_some(pack_fitting(p))
+}
+
+/// [`pack_tagged`] of a point already known to fit `i16` on both axes
+/// (`VertexPath::points_fit_i16`): the same word, without the test.
+#[inline]
+pub(crate) fn pack_fitting(p: ScreenPt) -> u32 {
+    (p.x as u16 as u32) | ((p.y as u16 as u32) << 16)
 }
 
 /// The inverse of [`pack`] and [`pack_tagged`].
