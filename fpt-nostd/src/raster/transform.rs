@@ -65,6 +65,8 @@ pub struct Viewport {
     /// here, not at every vertex (they were ten instructions of a vertex
     /// cache's miss). Bits, so that the type keeps `Eq`.
     half_bits: [u32; 2],
+    /// [`Viewport::float_points_fit_i16`], decided once here.
+    float_fits_i16: bool,
 }
 
 /// The shifts with which the integer path maps `u/w` (a fixed-point ratio
@@ -108,6 +110,11 @@ impl Viewport {
                 (0.5 * (width << sub) as f32).to_bits(),
                 (0.5 * (height << sub) as f32).to_bits(),
             ],
+            // Float NDC is within ±4.5 (the clamp, or a miss's clip test),
+            // so a coordinate lies in `[−3.5·half, 5.5·half + 0.5]`, `half =
+            // (side << sub) / 2`: `i16` when `11·(side << sub) + 2 ≤ 4·32767`.
+            float_fits_i16: 11 * ((if width > height { width } else { height }) << sub) + 2
+                <= 4 * 32767,
         })
     }
 
@@ -115,6 +122,15 @@ impl Viewport {
     #[inline]
     pub(crate) fn shifts(&self) -> [AxisShifts; 2] {
         self.shifts
+    }
+
+    /// Whether every screen point [`FloatPath`] gives for this viewport
+    /// (projected, clipped or not) has both coordinates within `i16`: a
+    /// tagged vertex cache then packs a miss's point without its test
+    /// (`vcache::pack_tagged`), proven once per viewport, not per vertex.
+    #[inline]
+    pub(crate) fn float_points_fit_i16(&self) -> bool {
+        self.float_fits_i16
     }
 
     /// Width in pixels.
@@ -201,6 +217,14 @@ pub trait VertexPath {
     #[inline]
     fn project_inside(v: &ClipVert<Self::Scalar>, vp: &Viewport) -> Option<ScreenPt> {
         Self::project_clipped(v, vp)
+    }
+    /// Whether every screen point this path gives for viewport `vp` is
+    /// proven to fit `i16` on both axes (so that a tagged cache's miss
+    /// packs it without a test). The default proves nothing.
+    #[inline]
+    fn points_fit_i16(vp: &Viewport) -> bool {
+        let _ = vp;
+        false
     }
     /// The screen point of model point `v` as a vertex cache's miss needs
     /// it: [`VertexPath::transform`], the clip test ([`ClipNum::inside`])
@@ -443,7 +467,8 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
         if !moderate {
             // Transformed again there (the same arithmetic, the same
             // values): `c` need not be kept for it on the common path.
-            return project_model_huge::<M>(m, near, v, vp);
+            let [x, y, z] = v;
+            return project_model_huge::<M>(m, near, x, y, z, vp);
         }
         let g = GUARD as f32 * c.w;
         if !(c.x.abs() <= g && c.y.abs() <= g) {
@@ -454,6 +479,11 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
 
     fn prove(m: &Mat4, near: f32, bound: &VertexBound) -> bool {
         prove_float(m, near, bound)
+    }
+
+    #[inline(always)]
+    fn points_fit_i16(vp: &Viewport) -> bool {
+        vp.float_points_fit_i16()
     }
 
     /// The transform and projection without a check: in a proven frame
@@ -475,18 +505,22 @@ impl<M: MathFns> VertexPath for FloatPath<M> {
     }
 }
 
-/// [`VertexPath::project_model`] of [`FloatPath`] for a model point whose
-/// clip `w` is above `LIMIT / GUARD`: the chain as written (transform with
-/// its finiteness test, clip test, projection).
+/// [`VertexPath::project_model`] of [`FloatPath`] for a model point
+/// (`x`, `y`, `z`) whose clip `w` is above `LIMIT / GUARD`: the chain as
+/// written (transform with its finiteness test, clip test, projection).
+/// The point comes as three scalars, in registers: as an array, its
+/// caller stored it to memory for every vertex, the common path's too.
 #[cold]
 #[inline(never)]
 fn project_model_huge<M: MathFns>(
     m: &Mat4,
     near: f32,
-    v: [f32; 3],
+    x: f32,
+    y: f32,
+    z: f32,
     vp: &Viewport,
 ) -> Option<ScreenPt> {
-    FloatPath::<M>::transform(m, v)
+    FloatPath::<M>::transform(m, [x, y, z])
         .filter(|c| <f32 as ClipNum>::inside(c, near))
         .and_then(|c| FloatPath::<M>::project_inside(&c, vp))
 }

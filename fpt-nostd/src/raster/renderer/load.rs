@@ -8,7 +8,7 @@ use super::super::clip::{ClipNum, ClipVert};
 use super::super::precision::Precision;
 use super::super::proof::VertexBound;
 use super::super::transform::{ScreenPt, VertexPath};
-use super::super::vcache::{pack_tagged, unpack, Slot, VertexCache};
+use super::super::vcache::{pack_fitting, pack_tagged, unpack, Slot, VertexCache};
 use super::{Renderer, Scalar, Scratch};
 use crate::effects::Compiled;
 use crate::reader::{Tree, VertexIndices};
@@ -184,7 +184,14 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         v: u32,
         (decode, point): (&impl Fn(u32) -> T, &impl Fn(&Self, T) -> Option<ScreenPt>),
     ) -> Option<u32> {
-        point(self, decode(v)).and_then(pack_tagged)
+        let p = point(self, decode(v))?;
+        // Proven once per viewport where the path allows (the float path
+        // at the firmware's sizes): then the word without the test.
+        if P::Path::points_fit_i16(&self.viewport) {
+            Some(pack_fitting(p))
+        } else {
+            pack_tagged(p)
+        }
     }
 
     /// The screen point of model point `x` as a cache miss computes it
