@@ -34,7 +34,7 @@
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use super::chain::{sort_by_y, TriangleBand};
-use super::edge::{all_small, Dda32};
+use super::edge::{all_small, Dda32, Kept};
 use super::scan::{pair_rows, Pair, SpanSink};
 use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
@@ -396,45 +396,51 @@ impl Ring {
     }
 
     /// Takes the next incoming entry, a four-sided polygon's, for `band`:
-    /// the state and its colour.
+    /// the state and its colour. `S`: the steppers the entry was kept with
+    /// (the band's, as for [`Ring::push_quad`]).
     #[inline(always)]
-    pub(crate) fn pop_quad(
+    pub(crate) fn pop_quad<S: Kept>(
         &mut self,
         words: &[u32],
         band: &TriangleBand,
-    ) -> Option<(Quad, Rgb888)> {
+    ) -> Option<(Quad<S>, Rgb888)> {
         let at = self.head * WORDS;
         let w: &[u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
         let lo = |x: u32| i32::from(x as u16 as i16);
         let hi = |x: u32| (x as i32) >> 16;
         let pt = |x: u32| ScreenPt { x: lo(x), y: hi(x) };
-        let dda = |k: usize| Dda32::from_words([w[k], w[k + 1], w[k + 2], w[k + 3], w[k + 4]]);
+        let k = 2 * S::WORDS;
         let c = w[14];
         // The vertices ahead at `arc[1..=count]`; each chain's edge ends
         // on its vertex's row, and the polygon on the lowest's.
         let count = (c >> 24 & 3) as usize;
-        let arc = [pt(0), pt(w[10]), pt(w[11]), pt(w[12]), pt(0)];
-        let row = |p: ScreenPt| Dda32::rows(p, p, band.sub).1;
-        let last = arc.get(count).copied().unwrap_or_default();
-        // The lowest of `arc[1..=count]` (`count` is 1 to 3), unrolled:
-        // a `take(..).skip(..)` loop made an out-of-line `Take::nth`
-        // call for every resumed quad.
-        let mut bottom = arc[1];
-        if count >= 2 && arc[2].y > bottom.y {
-            bottom = arc[2];
-        }
-        if count >= 3 && arc[3].y > bottom.y {
-            bottom = arc[3];
-        }
+        let arc = [pt(0), pt(w[k]), pt(w[k + 1]), pt(w[k + 2]), pt(0)];
+        let (ly1, ry1, end) = if rows_kept::<S>() {
+            (lo(w[k + 3]), hi(w[k + 3]), lo(w[k + 4]))
+        } else {
+            let row = |p: ScreenPt| Dda32::rows(p, p, band.sub).1;
+            let last = arc.get(count).copied().unwrap_or_default();
+            // The lowest of `arc[1..=count]` (`count` is 1 to 3),
+            // unrolled: a `take(..).skip(..)` loop made an out-of-line
+            // `Take::nth` call for every resumed quad.
+            let mut bottom = arc[1];
+            if count >= 2 && arc[2].y > bottom.y {
+                bottom = arc[2];
+            }
+            if count >= 3 && arc[3].y > bottom.y {
+                bottom = arc[3];
+            }
+            (row(arc[1]), row(last), row(bottom))
+        };
         let quad = Quad {
-            l: dda(0),
-            ly1: row(arc[1]),
-            r: dda(5),
-            ry1: row(last),
+            l: S::from_words(&w[..]),
+            ly1,
+            r: S::from_words(&w[S::WORDS..]),
+            ry1,
             arc,
             lo: 1,
             hi: count,
-            end: row(bottom),
+            end,
         };
         self.skip();
         Some((quad, Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)))
@@ -445,10 +451,10 @@ impl Ring {
     /// (or `offset` is not below 2^16). Corners and rows are within
     /// ±2^14 (the corners within ±`SMALL`), so they fit 16 bits.
     #[inline(always)]
-    pub(crate) fn push_quad(
+    pub(crate) fn push_quad<S: Kept>(
         &mut self,
         words: &mut [u32],
-        q: &Quad,
+        q: &Quad<S>,
         (offset, row): (usize, i32),
         rgb: Rgb888,
     ) -> bool {
@@ -473,30 +479,37 @@ impl Ring {
             return false;
         }
         let v = |k: usize| q.arc.get(q.lo + k).map_or(0, |&p| pt(p));
-        let (a, b, [x, y, z]) = (q.l, q.r, [v(0), v(1), v(2)]);
         let c = rgb | (count as u32) << 24 | QUAD;
-        let [l0, l1, l2, l3, l4] = a.to_words();
-        let [s0, s1, s2, s3, s4] = b.to_words();
+        let k = 2 * S::WORDS;
+        let (l, r) = (q.l.to_words(), q.r.to_words());
         // Word by word: a copy of an array is a `memcpy` call.
-        out[0] = l0;
-        out[1] = l1;
-        out[2] = l2;
-        out[3] = l3;
-        out[4] = l4;
-        out[5] = s0;
-        out[6] = s1;
-        out[7] = s2;
-        out[8] = s3;
-        out[9] = s4;
-        out[10] = x;
-        out[11] = y;
-        out[12] = z;
+        for i in 0..S::WORDS {
+            out[i] = l[i];
+            out[S::WORDS + i] = r[i];
+        }
+        out[k] = v(0);
+        out[k + 1] = v(1);
+        out[k + 2] = v(2);
+        if rows_kept::<S>() {
+            out[k + 3] = pack(q.ly1, q.ry1);
+            out[k + 4] = pack(q.end, 0);
+        }
         out[13] = pack(offset as i32, row);
         out[14] = c;
         self.len += 1;
         self.most = self.most.max(self.len);
         true
     }
+}
+
+/// Whether a four-sided polygon's entry with steppers `S` has room for its
+/// chains' end rows and its own (words 2·`S::WORDS` + 3 and + 4, before
+/// the offset's word 13): packed steppers leave it, so a resume reads them
+/// instead of finding them again from the corners ahead (three
+/// `Dda32::rows` and the lowest corner's search a resumed quad).
+#[inline(always)]
+const fn rows_kept<S: Kept>() -> bool {
+    2 * S::WORDS + 5 <= 13
 }
 
 /// The flag of a four-sided polygon's entry (in its colour word).

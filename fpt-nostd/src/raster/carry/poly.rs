@@ -29,7 +29,7 @@
 use embedded_graphics::pixelcolor::Rgb888;
 
 use super::super::chain::{is_y_monotone, TriangleBand};
-use super::super::edge::{Dda32, SMALL};
+use super::super::edge::{packs, Dda32, Kept, Packed, SMALL};
 use super::super::scan::{Bbox, Paint, SpanSink};
 use super::super::transform::ScreenPt;
 use super::quad::{Chains, Quad};
@@ -43,25 +43,25 @@ pub(crate) const MAX_SIDES: usize = 8;
 const ARC: usize = MAX_SIDES + 1;
 
 /// A polygon's fill state on some row: [`Quad`]'s with a longer arc.
-pub(crate) type Poly = Chains<ARC>;
+pub(crate) type Poly<S> = Chains<S, ARC>;
 
 /// What [`TriangleBand::start_poly`] found.
 #[derive(Clone, Copy, Debug)]
-pub(crate) enum PolyStart {
+pub(crate) enum PolyStart<S> {
     /// Not for the chains (more than [`MAX_SIDES`] corners, a corner
     /// outside ±`SMALL`, or not y-monotone): the general fill's.
     Outside,
     /// Nothing to fill in this band.
     Empty,
     /// The state to run from row `.1` (its chains not yet sought).
-    Rows(Poly, i32),
+    Rows(Poly<S>, i32),
 }
 
-impl Poly {
+impl<S: Kept> Poly<S> {
     /// The state as a four-sided polygon's, for the ring: the corners
     /// ahead at `arc[1..=count]`; `None` with more than three ahead (or
     /// before the chains' first seek).
-    fn as_quad(&self) -> Option<Quad> {
+    fn as_quad(&self) -> Option<Quad<S>> {
         let count = self.hi.wrapping_sub(self.lo).wrapping_add(1);
         if self.lo == 0 || count > 3 {
             return None;
@@ -92,7 +92,7 @@ impl TriangleBand {
     /// [`crate::raster::chain::fill_monotone`]'s set-up), to run from the
     /// first row of this band it touches.
     #[inline(always)]
-    pub(crate) fn start_poly(&self, pts: &[ScreenPt]) -> PolyStart {
+    pub(crate) fn start_poly<S: Kept>(&self, pts: &[ScreenPt]) -> PolyStart<S> {
         let n = pts.len();
         if !(3..=MAX_SIDES).contains(&n) {
             return PolyStart::Outside;
@@ -132,9 +132,9 @@ impl TriangleBand {
             *dst = p;
         }
         let poly = Poly {
-            l: Dda32::default(),
+            l: S::default(),
             ly1: y,
-            r: Dda32::default(),
+            r: S::default(),
             ry1: y,
             arc,
             lo: 0,
@@ -158,7 +158,23 @@ impl TriangleBand {
         (here, rgb, id): (usize, Rgb888, u32),
         sink: &mut K,
     ) -> Option<u64> {
-        match self.start_poly(pts) {
+        if packs(self.sub) {
+            self.poly_as::<K, Packed>(pts, (ring, words), (here, rgb, id), sink)
+        } else {
+            self.poly_as::<K, Dda32>(pts, (ring, words), (here, rgb, id), sink)
+        }
+    }
+
+    /// [`TriangleBand::poly`] with steppers `S` (the band's).
+    #[inline(always)]
+    fn poly_as<K: SpanSink, S: Kept>(
+        &self,
+        pts: &[ScreenPt],
+        (ring, words): (&mut Ring, &mut [u32]),
+        (here, rgb, id): (usize, Rgb888, u32),
+        sink: &mut K,
+    ) -> Option<u64> {
+        match self.start_poly::<S>(pts) {
             PolyStart::Outside => None,
             PolyStart::Empty => Some(0),
             PolyStart::Rows(mut q, y) => {
@@ -195,11 +211,32 @@ mod tests {
     /// exactly while it has rows left and at most three corners ahead.
     #[test]
     fn kept_polygons_equal_the_polygon_fill_in_every_band() {
-        let mut rng = Rng(7373);
+        let (kept, fresh_runs, general) = poly_sweep::<Dda32>(7373, false);
+        assert!(
+            kept > 1000 && fresh_runs > 1000 && general > 100,
+            "{kept} {fresh_runs} {general}"
+        );
+        // Packed steppers where the band's sub-pixel bits allow them
+        // (a quarter of the cases), as the replay keeps them there.
+        let (kept, fresh_runs, general) = poly_sweep::<Packed>(73731, true);
+        assert!(
+            kept > 250 && fresh_runs > 250 && general > 10,
+            "{kept} {fresh_runs} {general}"
+        );
+    }
+
+    /// The sweep of [`kept_polygons_equal_the_polygon_fill_in_every_band`] with steppers `S`, over the cases
+    /// whose sub-pixel bits [`packs`] with `packed_only`: how many
+    /// band pieces were resumed, set up fresh, and left to the general fill.
+    fn poly_sweep<S: Kept>(seed: u64, packed_only: bool) -> (usize, usize, usize) {
+        let mut rng = Rng(seed);
         let mut words = [0u32; 2 * WORDS];
         let (mut kept, mut fresh_runs, mut general) = (0, 0, 0);
         for k in 0..4000 {
             let (sub, m, poly) = corners(&mut rng, k, 5 + k % 4, k % 3 != 0);
+            if packed_only && !packs(sub) {
+                continue;
+            }
             let mut ring = Ring::new();
             let rgb = Rgb888::new(k as u8, 2, 3);
             for band in bands(&mut rng, m, sub) {
@@ -211,7 +248,7 @@ mod tests {
                 if let Some((at, row)) = ring.peek(&words) {
                     assert_eq!((at, row), (7, y0));
                     assert!(ring.next_is_quad(&words));
-                    let Some((mut q, c)) = ring.pop_quad(&words, &band) else {
+                    let Some((mut q, c)) = ring.pop_quad::<S>(&words, &band) else {
                         panic!("a kept polygon")
                     };
                     assert_eq!(c, rgb);
@@ -225,7 +262,7 @@ mod tests {
                     }
                 } else {
                     let mut state = None;
-                    match band.start_poly(&poly) {
+                    match band.start_poly::<S>(&poly) {
                         PolyStart::Outside => {
                             general += 1;
                             general_fill(&poly, &band, &mut got);
@@ -248,9 +285,6 @@ mod tests {
                 assert_eq!(got.0, want.0, "{poly:?} {sub} {b:?}");
             }
         }
-        assert!(
-            kept > 1000 && fresh_runs > 1000 && general > 100,
-            "{kept} {fresh_runs} {general}"
-        );
+        (kept, fresh_runs, general)
     }
 }
