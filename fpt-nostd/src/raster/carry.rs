@@ -41,7 +41,7 @@ use super::transform::ScreenPt;
 
 mod poly;
 mod quad;
-use quad::Quad;
+use quad::Chains;
 
 /// Words (`u32`) a kept triangle takes in the ring.
 pub(crate) const WORDS: usize = 15;
@@ -395,44 +395,69 @@ impl Ring {
             .is_some_and(|&c| c & QUAD != 0)
     }
 
-    /// Takes the next incoming entry, a four-sided polygon's, for `band`:
-    /// the state and its colour. `S`: the steppers the entry was kept with
-    /// (the band's, as for [`Ring::push_quad`]).
+    /// The number of corners ahead in the next incoming entry, a
+    /// four-sided polygon's ([`Ring::next_is_quad`]).
     #[inline(always)]
-    pub(crate) fn pop_quad<S: Kept>(
+    pub(crate) fn next_ahead(&self, words: &[u32]) -> usize {
+        words
+            .get(self.head * WORDS + 14)
+            .map_or(0, |&c| (c >> 24 & 7) as usize)
+    }
+
+    /// Takes the next incoming entry, a four-sided polygon's, for `band`:
+    /// the state (its corners ahead at `arc[1..=count]`, so at most `N − 2`
+    /// of them: [`Ring::next_ahead`]) and its colour. `S`: the steppers the
+    /// entry was kept with (the band's, as for [`Ring::push_quad`]).
+    #[inline(always)]
+    pub(crate) fn pop_quad<S: Kept, const N: usize>(
         &mut self,
         words: &[u32],
         band: &TriangleBand,
-    ) -> Option<(Quad<S>, Rgb888)> {
+    ) -> Option<(Chains<S, N>, Rgb888)> {
         let at = self.head * WORDS;
         let w: &[u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
         let lo = |x: u32| i32::from(x as u16 as i16);
         let hi = |x: u32| (x as i32) >> 16;
         let pt = |x: u32| ScreenPt { x: lo(x), y: hi(x) };
-        let k = 2 * S::WORDS;
         let c = w[14];
         // The vertices ahead at `arc[1..=count]`; each chain's edge ends
         // on its vertex's row, and the polygon on the lowest's.
-        let count = (c >> 24 & 3) as usize;
-        let arc = [pt(0), pt(w[k]), pt(w[k + 1]), pt(w[k + 2]), pt(0)];
+        let count = (c >> 24 & 7) as usize;
+        let k = arc_at::<S>();
+        // Unrolled: an iterator's `take(..).skip(..)` here was an
+        // out-of-line `Take::nth` call a resume.
+        let mut arc = [ScreenPt::default(); N];
+        let mut put = |i: usize| {
+            if let (Some(a), Some(&x)) = (arc.get_mut(i + 1), w.get(k + i)) {
+                *a = pt(x);
+            }
+        };
+        put(0);
+        put(1);
+        put(2);
+        if N > 5 {
+            put(3);
+            put(4);
+        }
         let (ly1, ry1, end) = if rows_kept::<S>() {
-            (lo(w[k + 3]), hi(w[k + 3]), lo(w[k + 4]))
+            let r = 2 * S::WORDS;
+            (lo(w[r]), hi(w[r]), lo(w[r + 1]))
         } else {
             let row = |p: ScreenPt| Dda32::rows(p, p, band.sub).1;
-            let last = arc.get(count).copied().unwrap_or_default();
-            // The lowest of `arc[1..=count]` (`count` is 1 to 3),
+            let at = |i: usize| arc.get(i).copied().unwrap_or_default();
+            // The lowest of `arc[1..=count]` (`count` is 1 to 3 here),
             // unrolled: a `take(..).skip(..)` loop made an out-of-line
             // `Take::nth` call for every resumed quad.
-            let mut bottom = arc[1];
-            if count >= 2 && arc[2].y > bottom.y {
-                bottom = arc[2];
+            let mut bottom = at(1);
+            if count >= 2 && at(2).y > bottom.y {
+                bottom = at(2);
             }
-            if count >= 3 && arc[3].y > bottom.y {
-                bottom = arc[3];
+            if count >= 3 && at(3).y > bottom.y {
+                bottom = at(3);
             }
-            (row(arc[1]), row(last), row(bottom))
+            (row(at(1)), row(at(count)), row(bottom))
         };
-        let quad = Quad {
+        let quad = Chains {
             l: S::from_words(&w[..]),
             ly1,
             r: S::from_words(&w[S::WORDS..]),
@@ -446,20 +471,29 @@ impl Ring {
         Some((quad, Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)))
     }
 
-    /// Keeps four-sided polygon `q` (record at `offset`, drawn in `rgb`) for the band
-    /// starting at row `row`; `false`, nothing kept, when the ring is full
-    /// (or `offset` is not below 2^16). Corners and rows are within
-    /// ±2^14 (the corners within ±`SMALL`), so they fit 16 bits.
+    /// Keeps polygon state `q` (record at `offset`, drawn in `rgb`) for the
+    /// band starting at row `row` as a four-sided polygon's entry: its
+    /// steppers and the corners still ahead, at most [`most_ahead`] of
+    /// them; `false`, nothing kept, with more, when the ring is full (or
+    /// `offset` is not below 2^16). Corners and rows are within ±2^14 (the
+    /// corners within ±`SMALL`), so they fit 16 bits.
     #[inline(always)]
-    pub(crate) fn push_quad<S: Kept>(
+    pub(crate) fn push_quad<S: Kept, const N: usize>(
         &mut self,
         words: &mut [u32],
-        q: &Quad<S>,
+        q: &Chains<S, N>,
         (offset, row): (usize, i32),
         rgb: Rgb888,
     ) -> bool {
         let cap = self.cap;
         if self.len >= cap || offset > usize::from(u16::MAX) {
+            return false;
+        }
+        // The vertices ahead: none before the chains' first seek, at most
+        // three for a quad once both chains have left the top (always,
+        // after a run).
+        let count = q.hi.wrapping_sub(q.lo).wrapping_add(1);
+        if q.lo == 0 || count > most_ahead::<S>() {
             return false;
         }
         let at = (self.head + self.len) % cap * WORDS;
@@ -472,27 +506,21 @@ impl Ring {
         let pack = |a: i32, b: i32| (a as u16 as u32) | (b as u32) << 16;
         let pt = |p: ScreenPt| pack(p.x, p.y);
         let rgb = u32::from(rgb.r()) | u32::from(rgb.g()) << 8 | u32::from(rgb.b()) << 16;
-        // The vertices ahead, at most three once both chains have left the
-        // top (always, after a run).
-        let count = q.hi.wrapping_sub(q.lo).wrapping_add(1);
-        if q.lo == 0 || count > 3 {
-            return false;
-        }
-        let v = |k: usize| q.arc.get(q.lo + k).map_or(0, |&p| pt(p));
         let c = rgb | (count as u32) << 24 | QUAD;
-        let k = 2 * S::WORDS;
         let (l, r) = (q.l.to_words(), q.r.to_words());
         // Word by word: a copy of an array is a `memcpy` call.
         for i in 0..S::WORDS {
             out[i] = l[i];
             out[S::WORDS + i] = r[i];
         }
-        out[k] = v(0);
-        out[k + 1] = v(1);
-        out[k + 2] = v(2);
         if rows_kept::<S>() {
-            out[k + 3] = pack(q.ly1, q.ry1);
-            out[k + 4] = pack(q.end, 0);
+            out[2 * S::WORDS] = pack(q.ly1, q.ry1);
+            out[2 * S::WORDS + 1] = pack(q.end, 0);
+        }
+        // The corners an arc of `N` can hold ahead (three for a quad).
+        let k = arc_at::<S>();
+        for i in 0..most_ahead::<S>().min(N - 2) {
+            out[k + i] = q.arc.get(q.lo + i).map_or(0, |&p| pt(p));
         }
         out[13] = pack(offset as i32, row);
         out[14] = c;
@@ -503,17 +531,34 @@ impl Ring {
 }
 
 /// Whether a four-sided polygon's entry with steppers `S` has room for its
-/// chains' end rows and its own (words 2·`S::WORDS` + 3 and + 4, before
-/// the offset's word 13): packed steppers leave it, so a resume reads them
-/// instead of finding them again from the corners ahead (three
+/// chains' end rows and its own (words 2·`S::WORDS` and + 1), with three
+/// corners ahead after them: packed steppers leave it, so a resume reads
+/// them instead of finding them again from the corners ahead (three
 /// `Dda32::rows` and the lowest corner's search a resumed quad).
 #[inline(always)]
 const fn rows_kept<S: Kept>() -> bool {
-    2 * S::WORDS + 5 <= 13
+    2 * S::WORDS + 2 + 3 <= 13
 }
 
+/// Where an entry with steppers `S` keeps its corners ahead: after the
+/// steppers and (when kept) the rows, up to word 12 (word 13 is the
+/// record's offset, 14 the colour).
+#[inline(always)]
+const fn arc_at<S: Kept>() -> usize {
+    2 * S::WORDS + if rows_kept::<S>() { 2 } else { 0 }
+}
+
+/// Most corners ahead an entry with steppers `S` holds: three with
+/// `Dda32`s (a quad's, and a longer polygon's near its bottom), five with
+/// packed steppers (session 21: a polygon of five or six corners is kept
+/// from its first band on, one of seven or eight once it has passed two
+/// or three of its corners).
+#[inline(always)]
+pub(crate) const fn most_ahead<S: Kept>() -> usize {
+    13 - arc_at::<S>()
+}
 /// The flag of a four-sided polygon's entry (in its colour word).
-const QUAD: u32 = 1 << 26;
+const QUAD: u32 = 1 << 27;
 
 #[cfg(test)]
 mod tests {

@@ -32,7 +32,7 @@ use super::super::chain::{is_y_monotone, TriangleBand};
 use super::super::edge::{packs, Dda32, Kept, Packed, SMALL};
 use super::super::scan::{Bbox, Paint, SpanSink};
 use super::super::transform::ScreenPt;
-use super::quad::{Chains, Quad};
+use super::quad::Chains;
 use super::Ring;
 
 /// Most corners of a polygon this path sets up; one with more takes the
@@ -55,35 +55,6 @@ pub(crate) enum PolyStart<S> {
     Empty,
     /// The state to run from row `.1` (its chains not yet sought).
     Rows(Poly<S>, i32),
-}
-
-impl<S: Kept> Poly<S> {
-    /// The state as a four-sided polygon's, for the ring: the corners
-    /// ahead at `arc[1..=count]`; `None` with more than three ahead (or
-    /// before the chains' first seek).
-    fn as_quad(&self) -> Option<Quad<S>> {
-        let count = self.hi.wrapping_sub(self.lo).wrapping_add(1);
-        if self.lo == 0 || count > 3 {
-            return None;
-        }
-        let at = |k: usize| self.arc.get(self.lo + k).copied().unwrap_or_default();
-        Some(Quad {
-            l: self.l,
-            ly1: self.ly1,
-            r: self.r,
-            ry1: self.ry1,
-            arc: [
-                ScreenPt::default(),
-                at(0),
-                at(1),
-                at(2),
-                ScreenPt::default(),
-            ],
-            lo: 1,
-            hi: count,
-            end: self.end,
-        })
-    }
 }
 
 impl TriangleBand {
@@ -181,9 +152,7 @@ impl TriangleBand {
                 let color = sink.color(&Paint { rgb, id });
                 let spans = self.run_chains(&mut q, y, color, sink) as u64;
                 if q.end > self.b.y1 {
-                    if let Some(quad) = q.as_quad() {
-                        ring.push_quad(words, &quad, (here, self.end_row()), rgb);
-                    }
+                    ring.push_quad(words, &q, (here, self.end_row()), rgb);
                 }
                 Some(spans)
             }
@@ -196,7 +165,7 @@ mod tests {
     extern crate std;
     use super::super::super::chain::tests::Rec;
     use super::super::tests::{bands, corners, general_fill};
-    use super::super::WORDS;
+    use super::super::{most_ahead, WORDS};
     use super::*;
     use crate::raster::tests::Rng;
     use std::vec::Vec;
@@ -248,18 +217,12 @@ mod tests {
                 if let Some((at, row)) = ring.peek(&words) {
                     assert_eq!((at, row), (7, y0));
                     assert!(ring.next_is_quad(&words));
-                    let Some((mut q, c)) = ring.pop_quad::<S>(&words, &band) else {
-                        panic!("a kept polygon")
-                    };
-                    assert_eq!(c, rgb);
-                    assert_eq!(
-                        band.run_chains(&mut q, band.first_row(), (), &mut got),
-                        spans
-                    );
+                    assert!(ring.next_ahead(&words) <= most_ahead::<S>());
+                    // The replay's resume: popped, run, kept again while
+                    // it goes on.
+                    let n = band.resume_as::<_, S>(&mut ring, &mut words, (7, true), &mut got);
+                    assert_eq!(n as usize, spans);
                     kept += 1;
-                    if band.continues_quad(&q) {
-                        assert!(ring.push_quad(&mut words, &q, (7, band.end_row()), rgb));
-                    }
                 } else {
                     let mut state = None;
                     match band.start_poly::<S>(&poly) {
@@ -275,11 +238,9 @@ mod tests {
                         }
                     }
                     if let Some(q) = state.filter(|q| q.end > band.end_row()) {
-                        let pushed = q.as_quad().is_some_and(|quad| {
-                            ring.push_quad(&mut words, &quad, (7, band.end_row()), rgb)
-                        });
+                        let pushed = ring.push_quad(&mut words, &q, (7, band.end_row()), rgb);
                         let ahead = q.hi + 1 - q.lo;
-                        assert_eq!(pushed, ahead <= 3, "{poly:?} {q:?}");
+                        assert_eq!(pushed, ahead <= most_ahead::<S>(), "{poly:?} {q:?}");
                     }
                 }
                 assert_eq!(got.0, want.0, "{poly:?} {sub} {b:?}");

@@ -19,7 +19,7 @@ use super::super::chain::{is_y_monotone, TriangleBand};
 use super::super::edge::{packs, Dda32, Kept, Packed, SMALL};
 use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
 use super::super::transform::ScreenPt;
-use super::Ring;
+use super::{most_ahead, Ring};
 
 /// A polygon's fill state on some row, for an arc of `N` points (the
 /// four-sided pieces of split triangles here, `N` = 5; the longer
@@ -205,21 +205,51 @@ impl TriangleBand {
     }
 
     /// [`TriangleBand::resume_quad`] with the ring's steppers `S` (the
-    /// band's).
+    /// band's): a quad's state, or (out of line, with packed steppers) a
+    /// longer polygon's with four or five corners ahead.
     #[inline(always)]
-    fn resume_as<K: SpanSink, S: Kept>(
+    pub(super) fn resume_as<K: SpanSink, S: Kept>(
         &self,
         ring: &mut Ring,
         words: &mut [u32],
         (here, keep): (usize, bool),
         sink: &mut K,
     ) -> u64 {
-        let Some((mut q, rgb)) = ring.pop_quad::<S>(words, self) else {
+        if most_ahead::<S>() > 3 && ring.next_ahead(words) > 3 {
+            return self.resume_long::<K, S>(ring, words, (here, keep), sink);
+        }
+        self.resume_n::<K, S, 5>(ring, words, (here, keep), sink)
+    }
+
+    /// [`TriangleBand::resume_as`] of a polygon with more than three
+    /// corners ahead: out of line, so that the quads' resume in the
+    /// replay's loop stays as it was.
+    #[inline(never)]
+    fn resume_long<K: SpanSink, S: Kept>(
+        &self,
+        ring: &mut Ring,
+        words: &mut [u32],
+        (here, keep): (usize, bool),
+        sink: &mut K,
+    ) -> u64 {
+        self.resume_n::<K, S, 7>(ring, words, (here, keep), sink)
+    }
+
+    /// Resumes the entry at the ring's head as a state of arc `N`.
+    #[inline(always)]
+    fn resume_n<K: SpanSink, S: Kept, const N: usize>(
+        &self,
+        ring: &mut Ring,
+        words: &mut [u32],
+        (here, keep): (usize, bool),
+        sink: &mut K,
+    ) -> u64 {
+        let Some((mut q, rgb)) = ring.pop_quad::<S, N>(words, self) else {
             return 0;
         };
         let color = sink.color(&Paint { rgb, id: 0 });
         let spans = self.run_chains(&mut q, self.first_row(), color, sink) as u64;
-        if keep && self.continues_quad(&q) {
+        if keep && self.continues_quad_at(q.end) {
             ring.push_quad(words, &q, (here, self.end_row()), rgb);
         }
         spans
@@ -277,7 +307,7 @@ impl TriangleBand {
     /// Whether a polygon whose rows end before row `end` has rows after
     /// this band.
     #[inline(always)]
-    fn continues_quad_at(&self, end: i32) -> bool {
+    pub(super) fn continues_quad_at(&self, end: i32) -> bool {
         end > self.b.y1
     }
 }
@@ -358,7 +388,7 @@ mod tests {
                 if let Some((at, row)) = ring.peek(&words) {
                     assert_eq!((at, row), (7, y0));
                     assert!(ring.next_is_quad(&words));
-                    let Some((mut q, c)) = ring.pop_quad::<S>(&words, &band) else {
+                    let Some((mut q, c)) = ring.pop_quad::<S, 5>(&words, &band) else {
                         panic!("a quad")
                     };
                     assert_eq!(c, rgb);
