@@ -15,7 +15,7 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 
-use super::super::chain::{is_y_monotone, TriangleBand};
+use super::super::chain::{is_y_monotone, last_above, TriangleBand};
 use super::super::edge::{packs, Dda32, Kept, Packed, SMALL};
 use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
 use super::super::transform::ScreenPt;
@@ -75,22 +75,20 @@ pub(super) fn seek<S: Kept, const N: usize>(
     sub: u32,
     y: i32,
 ) -> bool {
+    let above = last_above(y, sub);
     for _ in 0..N - 1 {
         let next = if fwd { *at + 1 } else { at.wrapping_sub(1) };
         let (Some(&from), Some(&to)) = (arc.get(*at), arc.get(next)) else {
             return false;
         };
         *at = next;
-        if to.y == from.y {
+        if to.y <= above {
             continue;
         }
-        if to.y < from.y {
+        if to.y <= from.y {
             return false;
         }
         let (first, end) = Dda32::rows(from, to, sub);
-        if end <= y {
-            continue;
-        }
         if first > y {
             return false;
         }
