@@ -28,7 +28,7 @@
 //!   drawn.
 //! * Four-sided polygons, in the same ring (a flag in the entry): see
 //!   [`quad`]. Polygons of five or more corners are set up by their own
-//!   path and, once at most three corners are left ahead, kept as
+//!   path and, once at most five corners are left ahead, kept as
 //!   four-sided polygons' entries: see [`poly`].
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
@@ -508,7 +508,9 @@ impl Ring {
         let rgb = u32::from(rgb.r()) | u32::from(rgb.g()) << 8 | u32::from(rgb.b()) << 16;
         let c = rgb | (count as u32) << 24 | QUAD;
         let (l, r) = (q.l.to_words(), q.r.to_words());
-        // Word by word: a copy of an array is a `memcpy` call.
+        // Word by word: a copy of an array is a `memcpy` call (a
+        // slice's `copy_from_slice` too, for a length the type gives).
+        #[allow(clippy::manual_memcpy)]
         for i in 0..S::WORDS {
             out[i] = l[i];
             out[S::WORDS + i] = r[i];

@@ -1,12 +1,14 @@
 //! Polygons of five to [`MAX_SIDES`] corners carried across band edges
 //! (see [`super`]; bench_city's polygons average 5.3 corners). Such a
 //! polygon cut by a band's end is set up once by the chains (as the
-//! general fill's monotone path does), and once no more than three of
-//! its corners are left ahead it is kept in the ring **as a four-sided
-//! polygon's entry**: two edge steppers and the corners ahead are all a
-//! resumed chain fill needs, whatever the polygon had above. So the next
-//! band resumes it by the quads' own path ([`super::quad`],
-//! `Ring::pop_quad`), unchanged.
+//! general fill's monotone path does), and once no more of its corners
+//! are left ahead than an entry holds (three with `Dda32` steppers, five
+//! with packed ones: `super::most_ahead`) it is kept in the ring **as a
+//! four-sided polygon's entry**: two edge steppers and the corners ahead
+//! are all a resumed chain fill needs, whatever the polygon had above. So
+//! the next band resumes it by the quads' own path ([`super::quad`],
+//! `Ring::pop_quad`; with more than three corners ahead, its out-of-line
+//! twin with a longer arc).
 //!
 //! Why a path of its own: generalising the quads' state to nine corners
 //! (session 15, f55b955) took the general fill's set-ups off these
@@ -21,7 +23,7 @@
 //! exactly the spans of `fill_polygon_in` for the same polygon and band
 //! (or decline, [`PolyStart::Outside`], before emitting anything, where
 //! that one takes its general path). The state [`TriangleBand::poly`]
-//! keeps (only with at most three corners ahead, else nothing: the next
+//! keeps (only with at most `most_ahead` corners ahead, else nothing: the next
 //! band sets the polygon up again, the same picture), resumed in the next
 //! band by `Ring::pop_quad` and `TriangleBand::run_chains`, emits exactly
 //! what `fill_polygon_in` would there.
@@ -116,8 +118,8 @@ impl TriangleBand {
     }
 
     /// Sets up and fills polygon `pts` (record `here`, id `id`, cut by
-    /// this band's end) and keeps it for the next band when at most three
-    /// corners are left ahead (as a quad's entry); `None`, nothing
+    /// this band's end) and keeps it for the next band when its corners
+    /// left ahead fit an entry (as a quad's); `None`, nothing
     /// emitted, when it is the general fill's
     /// ([`TriangleBand::start_poly`]). Out of line: the replay's loop
     /// keeps its registers for the triangles and quads.
@@ -177,7 +179,7 @@ mod tests {
     /// (after a trip through the ring's words), they emit in every band
     /// exactly the spans of `fill_polygon_in` there, the general fill the
     /// replay takes without the carry; and a polygon goes on in the ring
-    /// exactly while it has rows left and at most three corners ahead.
+    /// exactly while it has rows left and its corners ahead fit an entry.
     #[test]
     fn kept_polygons_equal_the_polygon_fill_in_every_band() {
         let (kept, fresh_runs, general) = poly_sweep::<Dda32>(7373, false);
