@@ -636,7 +636,7 @@ mod tests {
     /// `poly`'s spans in `band` by the general fill (`fill_polygon_in`,
     /// the replay's path without the carry) into `rec`; their count.
     pub(super) fn general_fill(poly: &[ScreenPt], band: &TriangleBand, rec: &mut Rec) -> usize {
-        let (mut edges, mut active) = ([Edge::ZERO; 8], [0u16; 8]);
+        let (mut edges, mut active) = ([Edge::ZERO; 16], [0u16; 16]);
         let filled = fill_polygon_in(
             poly,
             None,
