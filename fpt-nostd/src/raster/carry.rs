@@ -34,14 +34,14 @@
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use super::chain::{sort_by_y, TriangleBand};
-use super::edge::{all_small, Dda32, Kept};
+use super::edge::{all_small, Dda32};
 use super::scan::{pair_rows, Pair, SpanSink};
 use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
 
 mod poly;
 mod quad;
-use quad::Chains;
+use quad::{Chains, Kept};
 
 /// Words (`u32`) a kept triangle takes in the ring.
 pub(crate) const WORDS: usize = 15;

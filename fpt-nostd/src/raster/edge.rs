@@ -497,62 +497,21 @@ impl Packed {
             fix: (1 << PACK_K) + d.d,
         }
     }
-}
 
-/// A stepper a kept polygon's state holds between bands (the band carry,
-/// `super::carry`): made from a [`Dda32`] when a chain starts an edge, and
-/// written to and read from the ring's words as it is, so that a resumed
-/// polygon steps on without converting (a [`Packed`] was packed from and
-/// stored back into a `Dda32` on every resume: session 21).
-pub(crate) trait Kept: Stepper + Copy + Default + core::fmt::Debug {
-    /// Words it takes in a ring entry.
-    const WORDS: usize;
-    /// The stepper of the edge `d` starts.
-    fn of(d: &Dda32) -> Self;
-    /// Its words (the first [`Kept::WORDS`] of the array).
-    fn to_words(&self) -> [u32; 5];
-    /// The stepper [`Kept::to_words`] wrote (`w`: its first words).
-    fn from_words(w: &[u32]) -> Self;
-}
+    /// The state as three words, for keeping it in caller memory between
+    /// bands (`super::carry`); [`Packed::from_words`] reads it back.
+    #[inline(always)]
+    pub(crate) fn to_words(self) -> [u32; 3] {
+        [self.w, self.step, self.fix].map(|w| w as u32)
+    }
 
-impl Kept for Dda32 {
-    const WORDS: usize = 5;
+    /// The state [`Packed::to_words`] wrote.
     #[inline(always)]
-    fn of(d: &Dda32) -> Self {
-        *d
-    }
-    #[inline(always)]
-    fn to_words(&self) -> [u32; 5] {
-        Dda32::to_words(*self)
-    }
-    #[inline(always)]
-    fn from_words(w: &[u32]) -> Self {
-        match *w {
-            [c, g, qs, rs, d, ..] => Dda32::from_words([c, g, qs, rs, d]),
-            _ => Dda32::default(),
-        }
-    }
-}
-
-impl Kept for Packed {
-    const WORDS: usize = 3;
-    #[inline(always)]
-    fn of(d: &Dda32) -> Self {
-        Packed::of(d)
-    }
-    #[inline(always)]
-    fn to_words(&self) -> [u32; 5] {
-        [self.w as u32, self.step as u32, self.fix as u32, 0, 0]
-    }
-    #[inline(always)]
-    fn from_words(w: &[u32]) -> Self {
-        match *w {
-            [a, b, c, ..] => Packed {
-                w: a as i32,
-                step: b as i32,
-                fix: c as i32,
-            },
-            _ => Packed::default(),
+    pub(crate) fn from_words([w, step, fix]: [u32; 3]) -> Packed {
+        Packed {
+            w: w as i32,
+            step: step as i32,
+            fix: fix as i32,
         }
     }
 }

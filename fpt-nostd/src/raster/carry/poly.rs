@@ -31,10 +31,10 @@
 use embedded_graphics::pixelcolor::Rgb888;
 
 use super::super::chain::{is_y_monotone, TriangleBand};
-use super::super::edge::{packs, Dda32, Kept, Packed, SMALL};
+use super::super::edge::{packs, Dda32, Packed, SMALL};
 use super::super::scan::{Bbox, Paint, SpanSink};
 use super::super::transform::ScreenPt;
-use super::quad::Chains;
+use super::quad::{Chains, Kept};
 use super::Ring;
 
 /// Most corners of a polygon this path sets up; one with more takes the

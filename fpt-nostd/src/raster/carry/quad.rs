@@ -16,10 +16,65 @@
 use embedded_graphics::pixelcolor::Rgb888;
 
 use super::super::chain::{is_y_monotone, last_above, TriangleBand};
-use super::super::edge::{packs, Dda32, Kept, Packed, SMALL};
+use super::super::edge::{packs, Dda32, Packed, Stepper, SMALL};
 use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
 use super::super::transform::ScreenPt;
 use super::{most_ahead, Ring};
+
+/// A stepper a kept polygon's state holds between bands (the band carry,
+/// [`super`], [`Chains`]): made from a [`Dda32`] when a chain starts an edge, and
+/// written to and read from the ring's words as it is, so that a resumed
+/// polygon steps on without converting (a [`Packed`] was packed from and
+/// stored back into a `Dda32` on every resume: session 21).
+pub(crate) trait Kept: Stepper + Copy + Default + core::fmt::Debug {
+    /// Words it takes in a ring entry.
+    const WORDS: usize;
+    /// The stepper of the edge `d` starts.
+    fn of(d: &Dda32) -> Self;
+    /// Its words (the first [`Kept::WORDS`] of the array).
+    fn to_words(&self) -> [u32; 5];
+    /// The stepper [`Kept::to_words`] wrote (`w`: its first words).
+    fn from_words(w: &[u32]) -> Self;
+}
+
+impl Kept for Dda32 {
+    const WORDS: usize = 5;
+    #[inline(always)]
+    fn of(d: &Dda32) -> Self {
+        *d
+    }
+    #[inline(always)]
+    fn to_words(&self) -> [u32; 5] {
+        Dda32::to_words(*self)
+    }
+    #[inline(always)]
+    fn from_words(w: &[u32]) -> Self {
+        match *w {
+            [c, g, qs, rs, d, ..] => Dda32::from_words([c, g, qs, rs, d]),
+            _ => Dda32::default(),
+        }
+    }
+}
+
+impl Kept for Packed {
+    const WORDS: usize = 3;
+    #[inline(always)]
+    fn of(d: &Dda32) -> Self {
+        Packed::of(d)
+    }
+    #[inline(always)]
+    fn to_words(&self) -> [u32; 5] {
+        let [a, b, c] = Packed::to_words(*self);
+        [a, b, c, 0, 0]
+    }
+    #[inline(always)]
+    fn from_words(w: &[u32]) -> Self {
+        match *w {
+            [a, b, c, ..] => Packed::from_words([a, b, c]),
+            _ => Packed::default(),
+        }
+    }
+}
 
 /// A polygon's fill state on some row, for an arc of `N` points (the
 /// four-sided pieces of split triangles here, `N` = 5; the longer
