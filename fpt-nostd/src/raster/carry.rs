@@ -28,7 +28,7 @@
 //!   drawn.
 //! * Four-sided polygons, in the same ring (a flag in the entry): see
 //!   [`quad`]. Polygons of five or more corners are set up by their own
-//!   path and, once at most three corners are left ahead, kept as
+//!   path and, once at most five corners are left ahead, kept as
 //!   four-sided polygons' entries: see [`poly`].
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
@@ -41,7 +41,7 @@ use super::transform::ScreenPt;
 
 mod poly;
 mod quad;
-use quad::Quad;
+use quad::{Chains, Kept};
 
 /// Words (`u32`) a kept triangle takes in the ring.
 pub(crate) const WORDS: usize = 15;
@@ -395,65 +395,105 @@ impl Ring {
             .is_some_and(|&c| c & QUAD != 0)
     }
 
-    /// Takes the next incoming entry, a four-sided polygon's, for `band`:
-    /// the state and its colour.
+    /// The number of corners ahead in the next incoming entry, a
+    /// four-sided polygon's ([`Ring::next_is_quad`]).
     #[inline(always)]
-    pub(crate) fn pop_quad(
+    pub(crate) fn next_ahead(&self, words: &[u32]) -> usize {
+        words
+            .get(self.head * WORDS + 14)
+            .map_or(0, |&c| (c >> 24 & 7) as usize)
+    }
+
+    /// Takes the next incoming entry, a four-sided polygon's, for `band`:
+    /// the state (its corners ahead at `arc[1..=count]`, so at most `N − 2`
+    /// of them: [`Ring::next_ahead`]) and its colour. `S`: the steppers the
+    /// entry was kept with (the band's, as for [`Ring::push_quad`]).
+    #[inline(always)]
+    pub(crate) fn pop_quad<S: Kept, const N: usize>(
         &mut self,
         words: &[u32],
         band: &TriangleBand,
-    ) -> Option<(Quad, Rgb888)> {
+    ) -> Option<(Chains<S, N>, Rgb888)> {
         let at = self.head * WORDS;
         let w: &[u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
         let lo = |x: u32| i32::from(x as u16 as i16);
         let hi = |x: u32| (x as i32) >> 16;
         let pt = |x: u32| ScreenPt { x: lo(x), y: hi(x) };
-        let dda = |k: usize| Dda32::from_words([w[k], w[k + 1], w[k + 2], w[k + 3], w[k + 4]]);
         let c = w[14];
         // The vertices ahead at `arc[1..=count]`; each chain's edge ends
         // on its vertex's row, and the polygon on the lowest's.
-        let count = (c >> 24 & 3) as usize;
-        let arc = [pt(0), pt(w[10]), pt(w[11]), pt(w[12]), pt(0)];
-        let row = |p: ScreenPt| Dda32::rows(p, p, band.sub).1;
-        let last = arc.get(count).copied().unwrap_or_default();
-        // The lowest of `arc[1..=count]` (`count` is 1 to 3), unrolled:
-        // a `take(..).skip(..)` loop made an out-of-line `Take::nth`
-        // call for every resumed quad.
-        let mut bottom = arc[1];
-        if count >= 2 && arc[2].y > bottom.y {
-            bottom = arc[2];
+        let count = (c >> 24 & 7) as usize;
+        let k = arc_at::<S>();
+        // Unrolled: an iterator's `take(..).skip(..)` here was an
+        // out-of-line `Take::nth` call a resume.
+        let mut arc = [ScreenPt::default(); N];
+        let mut put = |i: usize| {
+            if let (Some(a), Some(&x)) = (arc.get_mut(i + 1), w.get(k + i)) {
+                *a = pt(x);
+            }
+        };
+        put(0);
+        put(1);
+        put(2);
+        if N > 5 {
+            put(3);
+            put(4);
         }
-        if count >= 3 && arc[3].y > bottom.y {
-            bottom = arc[3];
-        }
-        let quad = Quad {
-            l: dda(0),
-            ly1: row(arc[1]),
-            r: dda(5),
-            ry1: row(last),
+        let (ly1, ry1, end) = if rows_kept::<S>() {
+            let r = 2 * S::WORDS;
+            (lo(w[r]), hi(w[r]), lo(w[r + 1]))
+        } else {
+            let row = |p: ScreenPt| Dda32::rows(p, p, band.sub).1;
+            let at = |i: usize| arc.get(i).copied().unwrap_or_default();
+            // The lowest of `arc[1..=count]` (`count` is 1 to 3 here),
+            // unrolled: a `take(..).skip(..)` loop made an out-of-line
+            // `Take::nth` call for every resumed quad.
+            let mut bottom = at(1);
+            if count >= 2 && at(2).y > bottom.y {
+                bottom = at(2);
+            }
+            if count >= 3 && at(3).y > bottom.y {
+                bottom = at(3);
+            }
+            (row(at(1)), row(at(count)), row(bottom))
+        };
+        let quad = Chains {
+            l: S::from_words(&w[..]),
+            ly1,
+            r: S::from_words(&w[S::WORDS..]),
+            ry1,
             arc,
             lo: 1,
             hi: count,
-            end: row(bottom),
+            end,
         };
         self.skip();
         Some((quad, Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)))
     }
 
-    /// Keeps four-sided polygon `q` (record at `offset`, drawn in `rgb`) for the band
-    /// starting at row `row`; `false`, nothing kept, when the ring is full
-    /// (or `offset` is not below 2^16). Corners and rows are within
-    /// ±2^14 (the corners within ±`SMALL`), so they fit 16 bits.
+    /// Keeps polygon state `q` (record at `offset`, drawn in `rgb`) for the
+    /// band starting at row `row` as a four-sided polygon's entry: its
+    /// steppers and the corners still ahead, at most [`most_ahead`] of
+    /// them; `false`, nothing kept, with more, when the ring is full (or
+    /// `offset` is not below 2^16). Corners and rows are within ±2^14 (the
+    /// corners within ±`SMALL`), so they fit 16 bits.
     #[inline(always)]
-    pub(crate) fn push_quad(
+    pub(crate) fn push_quad<S: Kept, const N: usize>(
         &mut self,
         words: &mut [u32],
-        q: &Quad,
+        q: &Chains<S, N>,
         (offset, row): (usize, i32),
         rgb: Rgb888,
     ) -> bool {
         let cap = self.cap;
         if self.len >= cap || offset > usize::from(u16::MAX) {
+            return false;
+        }
+        // The vertices ahead: none before the chains' first seek, at most
+        // three for a quad once both chains have left the top (always,
+        // after a run).
+        let count = q.hi.wrapping_sub(q.lo).wrapping_add(1);
+        if q.lo == 0 || count > most_ahead::<S>() {
             return false;
         }
         let at = (self.head + self.len) % cap * WORDS;
@@ -466,31 +506,24 @@ impl Ring {
         let pack = |a: i32, b: i32| (a as u16 as u32) | (b as u32) << 16;
         let pt = |p: ScreenPt| pack(p.x, p.y);
         let rgb = u32::from(rgb.r()) | u32::from(rgb.g()) << 8 | u32::from(rgb.b()) << 16;
-        // The vertices ahead, at most three once both chains have left the
-        // top (always, after a run).
-        let count = q.hi.wrapping_sub(q.lo).wrapping_add(1);
-        if q.lo == 0 || count > 3 {
-            return false;
-        }
-        let v = |k: usize| q.arc.get(q.lo + k).map_or(0, |&p| pt(p));
-        let (a, b, [x, y, z]) = (q.l, q.r, [v(0), v(1), v(2)]);
         let c = rgb | (count as u32) << 24 | QUAD;
-        let [l0, l1, l2, l3, l4] = a.to_words();
-        let [s0, s1, s2, s3, s4] = b.to_words();
-        // Word by word: a copy of an array is a `memcpy` call.
-        out[0] = l0;
-        out[1] = l1;
-        out[2] = l2;
-        out[3] = l3;
-        out[4] = l4;
-        out[5] = s0;
-        out[6] = s1;
-        out[7] = s2;
-        out[8] = s3;
-        out[9] = s4;
-        out[10] = x;
-        out[11] = y;
-        out[12] = z;
+        let (l, r) = (q.l.to_words(), q.r.to_words());
+        // Word by word: a copy of an array is a `memcpy` call (a
+        // slice's `copy_from_slice` too, for a length the type gives).
+        #[allow(clippy::manual_memcpy)]
+        for i in 0..S::WORDS {
+            out[i] = l[i];
+            out[S::WORDS + i] = r[i];
+        }
+        if rows_kept::<S>() {
+            out[2 * S::WORDS] = pack(q.ly1, q.ry1);
+            out[2 * S::WORDS + 1] = pack(q.end, 0);
+        }
+        // The corners an arc of `N` can hold ahead (three for a quad).
+        let k = arc_at::<S>();
+        for i in 0..most_ahead::<S>().min(N - 2) {
+            out[k + i] = q.arc.get(q.lo + i).map_or(0, |&p| pt(p));
+        }
         out[13] = pack(offset as i32, row);
         out[14] = c;
         self.len += 1;
@@ -499,8 +532,35 @@ impl Ring {
     }
 }
 
+/// Whether a four-sided polygon's entry with steppers `S` has room for its
+/// chains' end rows and its own (words 2·`S::WORDS` and + 1), with three
+/// corners ahead after them: packed steppers leave it, so a resume reads
+/// them instead of finding them again from the corners ahead (three
+/// `Dda32::rows` and the lowest corner's search a resumed quad).
+#[inline(always)]
+const fn rows_kept<S: Kept>() -> bool {
+    2 * S::WORDS + 2 + 3 <= 13
+}
+
+/// Where an entry with steppers `S` keeps its corners ahead: after the
+/// steppers and (when kept) the rows, up to word 12 (word 13 is the
+/// record's offset, 14 the colour).
+#[inline(always)]
+const fn arc_at<S: Kept>() -> usize {
+    2 * S::WORDS + if rows_kept::<S>() { 2 } else { 0 }
+}
+
+/// Most corners ahead an entry with steppers `S` holds: three with
+/// `Dda32`s (a quad's, and a longer polygon's near its bottom), five with
+/// packed steppers (session 21: a polygon of five or six corners is kept
+/// from its first band on, one of seven or eight once it has passed two
+/// or three of its corners).
+#[inline(always)]
+pub(crate) const fn most_ahead<S: Kept>() -> usize {
+    13 - arc_at::<S>()
+}
 /// The flag of a four-sided polygon's entry (in its colour word).
-const QUAD: u32 = 1 << 26;
+const QUAD: u32 = 1 << 27;
 
 #[cfg(test)]
 mod tests {
@@ -576,7 +636,7 @@ mod tests {
     /// `poly`'s spans in `band` by the general fill (`fill_polygon_in`,
     /// the replay's path without the carry) into `rec`; their count.
     pub(super) fn general_fill(poly: &[ScreenPt], band: &TriangleBand, rec: &mut Rec) -> usize {
-        let (mut edges, mut active) = ([Edge::ZERO; 8], [0u16; 8]);
+        let (mut edges, mut active) = ([Edge::ZERO; 16], [0u16; 16]);
         let filled = fill_polygon_in(
             poly,
             None,

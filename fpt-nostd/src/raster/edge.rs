@@ -498,12 +498,21 @@ impl Packed {
         }
     }
 
-    /// Writes the crossing and excess back into `d`, the [`Dda32`] this
-    /// was packed from (its increments are this one's).
+    /// The state as three words, for keeping it in caller memory between
+    /// bands (`super::carry`); [`Packed::from_words`] reads it back.
     #[inline(always)]
-    pub(crate) fn store(self, d: &mut Dda32) {
-        d.c = self.w >> PACK_K;
-        d.g = self.w & ((1 << PACK_K) - 1);
+    pub(crate) fn to_words(self) -> [u32; 3] {
+        [self.w, self.step, self.fix].map(|w| w as u32)
+    }
+
+    /// The state [`Packed::to_words`] wrote.
+    #[inline(always)]
+    pub(crate) fn from_words([w, step, fix]: [u32; 3]) -> Packed {
+        Packed {
+            w: w as i32,
+            step: step as i32,
+            fix: fix as i32,
+        }
     }
 }
 

@@ -15,24 +15,82 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 
-use super::super::chain::{is_y_monotone, TriangleBand};
+use super::super::chain::{is_y_monotone, last_above, TriangleBand};
 use super::super::edge::{packs, Dda32, Packed, Stepper, SMALL};
 use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
 use super::super::transform::ScreenPt;
-use super::Ring;
+use super::{most_ahead, Ring};
+
+/// A stepper a kept polygon's state holds between bands (the band carry,
+/// [`super`], [`Chains`]): made from a [`Dda32`] when a chain starts an edge, and
+/// written to and read from the ring's words as it is, so that a resumed
+/// polygon steps on without converting (a [`Packed`] was packed from and
+/// stored back into a `Dda32` on every resume: session 21).
+pub(crate) trait Kept: Stepper + Copy + Default + core::fmt::Debug {
+    /// Words it takes in a ring entry.
+    const WORDS: usize;
+    /// The stepper of the edge `d` starts.
+    fn of(d: &Dda32) -> Self;
+    /// Its words (the first [`Kept::WORDS`] of the array).
+    fn to_words(&self) -> [u32; 5];
+    /// The stepper [`Kept::to_words`] wrote (`w`: its first words).
+    fn from_words(w: &[u32]) -> Self;
+}
+
+impl Kept for Dda32 {
+    const WORDS: usize = 5;
+    #[inline(always)]
+    fn of(d: &Dda32) -> Self {
+        *d
+    }
+    #[inline(always)]
+    fn to_words(&self) -> [u32; 5] {
+        Dda32::to_words(*self)
+    }
+    #[inline(always)]
+    fn from_words(w: &[u32]) -> Self {
+        match *w {
+            [c, g, qs, rs, d, ..] => Dda32::from_words([c, g, qs, rs, d]),
+            _ => Dda32::default(),
+        }
+    }
+}
+
+impl Kept for Packed {
+    const WORDS: usize = 3;
+    #[inline(always)]
+    fn of(d: &Dda32) -> Self {
+        Packed::of(d)
+    }
+    #[inline(always)]
+    fn to_words(&self) -> [u32; 5] {
+        let [a, b, c] = Packed::to_words(*self);
+        [a, b, c, 0, 0]
+    }
+    #[inline(always)]
+    fn from_words(w: &[u32]) -> Self {
+        match *w {
+            [a, b, c, ..] => Packed::from_words([a, b, c]),
+            _ => Packed::default(),
+        }
+    }
+}
 
 /// A polygon's fill state on some row, for an arc of `N` points (the
 /// four-sided pieces of split triangles here, `N` = 5; the longer
 /// polygons of [`super::poly`] share it with a longer arc): each chain's
 /// current edge, and the vertices still ahead of them (see
-/// [`crate::raster::chain::fill_monotone`] for the two chains).
+/// [`crate::raster::chain::fill_monotone`] for the two chains). The edges
+/// step as `S`: [`Packed`] where [`packs`] holds (as the chains of
+/// `fill_polygon_in` step them), else [`Dda32`]; a band picks one by its
+/// sub-pixel bits ([`TriangleBand::quad`]) and the ring keeps it as it is.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Chains<const N: usize> {
+pub(crate) struct Chains<S, const N: usize> {
     /// The chain walking the vertex list forward, and its edge's end row.
-    pub(super) l: Dda32,
+    pub(super) l: S,
     pub(super) ly1: i32,
     /// The chain walking it backward, and its edge's end row.
-    pub(super) r: Dda32,
+    pub(super) r: S,
     pub(super) ry1: i32,
     /// The vertices from the top, in list order, the top again at the
     /// end: the forward chain's edge ends at `arc[lo]`, the backward
@@ -46,18 +104,18 @@ pub(crate) struct Chains<const N: usize> {
 
 /// A four-sided polygon's fill state: its four corners from the top, the
 /// top again after them.
-pub(crate) type Quad = Chains<5>;
+pub(crate) type Quad<S> = Chains<S, 5>;
 
 /// What [`TriangleBand::start_quad`] found.
 #[derive(Clone, Copy, Debug)]
-pub(crate) enum QuadStart {
+pub(crate) enum QuadStart<S> {
     /// Not for the chains (a corner outside ±`SMALL`, or not y-monotone):
     /// the general fill's.
     Outside,
     /// Nothing to fill in this band.
     Empty,
     /// The state to run from row `.1` (its chains not yet sought).
-    Rows(Quad, i32),
+    Rows(Quad<S>, i32),
 }
 
 /// The chain of `arc` from vertex `*at` one vertex on (`fwd`: forward)
@@ -65,34 +123,32 @@ pub(crate) enum QuadStart {
 /// [`crate::raster::chain`] (without clamping the end row to a band: the state
 /// goes on in the next band); false where that one gives up.
 #[inline(always)]
-pub(super) fn seek<const N: usize>(
+pub(super) fn seek<S: Kept, const N: usize>(
     arc: &[ScreenPt; N],
     (at, fwd): (&mut usize, bool),
-    (dda, y1): (&mut Dda32, &mut i32),
+    (dda, y1): (&mut S, &mut i32),
     sub: u32,
     y: i32,
 ) -> bool {
+    let above = last_above(y, sub);
     for _ in 0..N - 1 {
         let next = if fwd { *at + 1 } else { at.wrapping_sub(1) };
         let (Some(&from), Some(&to)) = (arc.get(*at), arc.get(next)) else {
             return false;
         };
         *at = next;
-        if to.y == from.y {
+        if to.y <= above {
             continue;
         }
-        if to.y < from.y {
+        if to.y <= from.y {
             return false;
         }
         let (first, end) = Dda32::rows(from, to, sub);
-        if end <= y {
-            continue;
-        }
         if first > y {
             return false;
         }
         *y1 = end;
-        *dda = Dda32::start(from, to, sub, y);
+        *dda = S::of(&Dda32::start(from, to, sub, y));
         return true;
     }
     false
@@ -103,7 +159,7 @@ impl TriangleBand {
     /// (its box rejects, then [`crate::raster::chain::fill_monotone`]'s set-up),
     /// to run from the first row of this band it touches.
     #[inline(always)]
-    pub(crate) fn start_quad(&self, pts: [ScreenPt; 4]) -> QuadStart {
+    pub(crate) fn start_quad<S: Kept>(&self, pts: [ScreenPt; 4]) -> QuadStart<S> {
         let bbox = Bbox::of(&pts);
         let Bbox {
             lo, hi, top, bot, ..
@@ -130,9 +186,9 @@ impl TriangleBand {
         }
         let at = |k: usize| pts[(t + k) % 4];
         let quad = Quad {
-            l: Dda32::default(),
+            l: S::default(),
             ly1: y,
-            r: Dda32::default(),
+            r: S::default(),
             ry1: y,
             arc: [at(0), at(1), at(2), at(3), at(0)],
             lo: 0,
@@ -148,35 +204,12 @@ impl TriangleBand {
     /// ([`TriangleBand::continues_quad`]), and only then is it left stepped
     /// to that row (else only `q.end` is meaningful).
     #[inline(always)]
-    pub(crate) fn run_chains<K: SpanSink, const N: usize>(
+    pub(crate) fn run_chains<K: SpanSink, S: Kept, const N: usize>(
         &self,
-        q: &mut Chains<N>,
-        y: i32,
+        q: &mut Chains<S, N>,
+        mut y: i32,
         color: K::Color,
         sink: &mut K,
-    ) -> usize {
-        // The rows with the steppers packed where that is exact (as the
-        // chains of `fill_polygon_in` step them), the state kept between
-        // bands as `Dda32`s.
-        if packs(self.sub) {
-            self.chain_rows(q, y, (color, sink), Packed::of, Packed::store)
-        } else {
-            self.chain_rows(q, y, (color, sink), |d| *d, |s, d| *d = s)
-        }
-    }
-
-    /// [`TriangleBand::run_chains`] with steppers `S`, made from a chain's
-    /// `Dda32` by `of` when it starts an edge (the `Dda32` left as it
-    /// started) and written back by `store` only for a polygon that goes
-    /// on: packed once an edge rather than once a run of rows.
-    #[inline(always)]
-    fn chain_rows<K: SpanSink, S: Stepper, const N: usize>(
-        &self,
-        q: &mut Chains<N>,
-        mut y: i32,
-        (color, sink): (K::Color, &mut K),
-        of: impl Fn(&Dda32) -> S,
-        store: impl Fn(S, &mut Dda32),
     ) -> usize {
         let stop = q.end.min(self.b.y1);
         let mut spans = 0;
@@ -184,24 +217,16 @@ impl TriangleBand {
         // vertices left in memory.
         let (mut l, mut ly1, mut r, mut ry1) = (q.l, q.ly1, q.r, q.ry1);
         let (mut lo, mut hi) = (q.lo, q.hi);
-        let (mut sl, mut sr) = (of(&l), of(&r));
         while y < stop {
-            let ok = (ly1 > y || {
-                let found = seek(&q.arc, (&mut lo, true), (&mut l, &mut ly1), self.sub, y);
-                sl = of(&l);
-                found
-            }) && (ry1 > y || {
-                let found = seek(&q.arc, (&mut hi, false), (&mut r, &mut ry1), self.sub, y);
-                sr = of(&r);
-                found
-            });
+            let ok = (ly1 > y || seek(&q.arc, (&mut lo, true), (&mut l, &mut ly1), self.sub, y))
+                && (ry1 > y || seek(&q.arc, (&mut hi, false), (&mut r, &mut ry1), self.sub, y));
             if !ok {
                 // Where the chain fill gives up: nothing more, here or after.
                 q.end = y;
                 break;
             }
             let run = ly1.min(ry1).min(stop);
-            spans += pair_rows(&mut sl, &mut sr, Pair::Span, &self.b, y, run, color, sink);
+            spans += pair_rows(&mut l, &mut r, Pair::Span, &self.b, y, run, color, sink);
             y = run;
         }
         // Stepped to the band's end only for a polygon that goes on (the
@@ -209,8 +234,6 @@ impl TriangleBand {
         // end in the band, and the fourteen stores were 30 k of a
         // bench_city band frame.
         if self.continues_quad_at(q.end) {
-            store(sl, &mut l);
-            store(sr, &mut r);
             (q.l, q.ly1, q.r, q.ry1, q.lo, q.hi) = (l, ly1, r, ry1, lo, hi);
         }
         spans
@@ -218,8 +241,7 @@ impl TriangleBand {
 
     /// Resumes the four-sided polygon at the ring's head (record `here`)
     /// in this band, keeping it again (with `keep`) when it goes on;
-    /// returns the spans. Out of line: the replay's loop, which inlines
-    /// the triangle fills, keeps its registers.
+    /// returns the spans. In line in the replay's loop.
     #[inline(always)]
     pub(crate) fn resume_quad<K: SpanSink>(
         &self,
@@ -228,12 +250,59 @@ impl TriangleBand {
         (here, keep): (usize, bool),
         sink: &mut K,
     ) -> u64 {
-        let Some((mut q, rgb)) = ring.pop_quad(words, self) else {
+        if packs(self.sub) {
+            self.resume_as::<K, Packed>(ring, words, (here, keep), sink)
+        } else {
+            self.resume_as::<K, Dda32>(ring, words, (here, keep), sink)
+        }
+    }
+
+    /// [`TriangleBand::resume_quad`] with the ring's steppers `S` (the
+    /// band's): a quad's state, or (out of line, with packed steppers) a
+    /// longer polygon's with four or five corners ahead.
+    #[inline(always)]
+    pub(super) fn resume_as<K: SpanSink, S: Kept>(
+        &self,
+        ring: &mut Ring,
+        words: &mut [u32],
+        (here, keep): (usize, bool),
+        sink: &mut K,
+    ) -> u64 {
+        if most_ahead::<S>() > 3 && ring.next_ahead(words) > 3 {
+            return self.resume_long::<K, S>(ring, words, (here, keep), sink);
+        }
+        self.resume_n::<K, S, 5>(ring, words, (here, keep), sink)
+    }
+
+    /// [`TriangleBand::resume_as`] of a polygon with more than three
+    /// corners ahead: out of line, so that the quads' resume in the
+    /// replay's loop stays as it was.
+    #[inline(never)]
+    fn resume_long<K: SpanSink, S: Kept>(
+        &self,
+        ring: &mut Ring,
+        words: &mut [u32],
+        (here, keep): (usize, bool),
+        sink: &mut K,
+    ) -> u64 {
+        self.resume_n::<K, S, 7>(ring, words, (here, keep), sink)
+    }
+
+    /// Resumes the entry at the ring's head as a state of arc `N`.
+    #[inline(always)]
+    fn resume_n<K: SpanSink, S: Kept, const N: usize>(
+        &self,
+        ring: &mut Ring,
+        words: &mut [u32],
+        (here, keep): (usize, bool),
+        sink: &mut K,
+    ) -> u64 {
+        let Some((mut q, rgb)) = ring.pop_quad::<S, N>(words, self) else {
             return 0;
         };
         let color = sink.color(&Paint { rgb, id: 0 });
         let spans = self.run_chains(&mut q, self.first_row(), color, sink) as u64;
-        if keep && self.continues_quad(&q) {
+        if keep && self.continues_quad_at(q.end) {
             ring.push_quad(words, &q, (here, self.end_row()), rgb);
         }
         spans
@@ -252,7 +321,23 @@ impl TriangleBand {
         (here, rgb, id): (usize, Rgb888, u32),
         sink: &mut K,
     ) -> Option<u64> {
-        match self.start_quad(pts) {
+        if packs(self.sub) {
+            self.quad_as::<K, Packed>(pts, (ring, words), (here, rgb, id), sink)
+        } else {
+            self.quad_as::<K, Dda32>(pts, (ring, words), (here, rgb, id), sink)
+        }
+    }
+
+    /// [`TriangleBand::quad`] with steppers `S` (the band's).
+    #[inline(always)]
+    fn quad_as<K: SpanSink, S: Kept>(
+        &self,
+        pts: [ScreenPt; 4],
+        (ring, words): (&mut Ring, &mut [u32]),
+        (here, rgb, id): (usize, Rgb888, u32),
+        sink: &mut K,
+    ) -> Option<u64> {
+        match self.start_quad::<S>(pts) {
             QuadStart::Outside => None,
             QuadStart::Empty => Some(0),
             QuadStart::Rows(mut q, y) => {
@@ -268,14 +353,14 @@ impl TriangleBand {
 
     /// Whether `q`, run through this band, has rows after it.
     #[inline(always)]
-    pub(crate) fn continues_quad(&self, q: &Quad) -> bool {
+    pub(crate) fn continues_quad<S>(&self, q: &Quad<S>) -> bool {
         self.continues_quad_at(q.end)
     }
 
     /// Whether a polygon whose rows end before row `end` has rows after
     /// this band.
     #[inline(always)]
-    fn continues_quad_at(&self, end: i32) -> bool {
+    pub(super) fn continues_quad_at(&self, end: i32) -> bool {
         end > self.b.y1
     }
 }
@@ -298,11 +383,32 @@ mod tests {
     /// there, the general fill's path the replay takes without the carry.
     #[test]
     fn kept_quads_equal_the_polygon_fill_in_every_band() {
-        let mut rng = Rng(4545);
+        let (kept, fresh_runs, general) = quad_sweep::<Dda32>(4545, false);
+        assert!(
+            kept > 1000 && fresh_runs > 1000 && general > 100,
+            "{kept} {fresh_runs} {general}"
+        );
+        // Packed steppers where the band's sub-pixel bits allow them
+        // (a quarter of the cases), as the replay keeps them there.
+        let (kept, fresh_runs, general) = quad_sweep::<Packed>(45451, true);
+        assert!(
+            kept > 250 && fresh_runs > 250 && general > 10,
+            "{kept} {fresh_runs} {general}"
+        );
+    }
+
+    /// The sweep of [`kept_quads_equal_the_polygon_fill_in_every_band`] with steppers `S`, over the cases
+    /// whose sub-pixel bits [`packs`] with `packed_only`: how many
+    /// band pieces were resumed, set up fresh, and left to the general fill.
+    fn quad_sweep<S: Kept>(seed: u64, packed_only: bool) -> (usize, usize, usize) {
+        let mut rng = Rng(seed);
         let mut words = [0u32; 4 * WORDS];
         let (mut kept, mut fresh_runs, mut general) = (0, 0, 0);
         for k in 0..4000 {
             let (sub, m, quad) = corners(&mut rng, k, 4, k % 3 != 0);
+            if packed_only && !packs(sub) {
+                continue;
+            }
             let quad = [quad[0], quad[1], quad[2], quad[3]];
             let tri = [quad[0], quad[1], quad[2]];
             let mut ring = Ring::new();
@@ -335,7 +441,7 @@ mod tests {
                 if let Some((at, row)) = ring.peek(&words) {
                     assert_eq!((at, row), (7, y0));
                     assert!(ring.next_is_quad(&words));
-                    let Some((mut q, c)) = ring.pop_quad(&words, &band) else {
+                    let Some((mut q, c)) = ring.pop_quad::<S, 5>(&words, &band) else {
                         panic!("a quad")
                     };
                     assert_eq!(c, rgb);
@@ -343,7 +449,7 @@ mod tests {
                     kept += 1;
                     state = Some(q);
                 } else {
-                    match band.start_quad(quad) {
+                    match band.start_quad::<S>(quad) {
                         QuadStart::Outside => {
                             general += 1;
                             general_fill(&quad, &band, &mut got);
@@ -362,9 +468,6 @@ mod tests {
                 }
             }
         }
-        assert!(
-            kept > 1000 && fresh_runs > 1000 && general > 100,
-            "{kept} {fresh_runs} {general}"
-        );
+        (kept, fresh_runs, general)
     }
 }

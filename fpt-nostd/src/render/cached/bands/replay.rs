@@ -201,8 +201,9 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
             }
         }
         // Polygons of five or more corners the band cuts: set up by the
-        // chains out of line, and kept (as quads) once at most three
-        // corners are left ahead (`raster::carry::poly`).
+        // chains out of line, and kept (as quads) once at most five
+        // corners (three with `Dda32` steppers) are left ahead
+        // (`raster::carry::poly`).
         if let (true, Some(band), true) = (CARRY_POLYS, &carry, n > 4 && keep && e.end > y1) {
             if let Some(pts) = scratch.screen().get(..n) {
                 if let Some(s) = band.poly(pts, (ring, words), (here, e.rgb, e.id), sink) {
