@@ -22,7 +22,7 @@
 //!   equals stepping from an earlier row), so pixels are identical,
 //!   shared edges included.
 
-use super::edge::{all_small, Dda32, Packed};
+use super::edge::{all_small, packs, Dda32, Packed};
 use super::scan::{pair_rows, Bbox, Pair, SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
@@ -205,27 +205,49 @@ pub(crate) fn fill_triangle<K: SpanSink>(
     // without comparing. Collinear vertices give equal crossings on every
     // row, so no span at all.
     let side = (m.x - t.x) * (u.y - t.y) - (m.y - t.y) * (u.x - t.x);
-    let pair = match side {
-        0 => return 0,
-        1.. => Pair::Ab,
-        _ => Pair::Ba,
+    let col = |x: i32| (2 * x - (1 << sub)) >> (sub + 1);
+    let within = col(t.x.min(m.x).min(u.x)) >= b.x0 && col(t.x.max(m.x).max(u.x)) < b.x1;
+    let pair = match (side, within) {
+        (0, _) => return 0,
+        (1.., true) => Pair::AbWithin,
+        (1.., false) => Pair::Ab,
+        (_, true) => Pair::BaWithin,
+        (_, false) => Pair::Ba,
     };
     // `first ≤ y < end`: `t.y < u.y`, and `y` is one of the long edge's
     // active rows.
-    let mut long = Dda32::start(t, u, sub, y);
+    let mut long = Packed::start_inline(t, u, sub, y);
     let mut spans = 0;
     if y < mid {
         // `t → m` is active on `[first, mid)`, which holds `y`.
-        let mut e = Dda32::start(t, m, sub, y);
+        let e = Packed::start_inline(t, m, sub, y);
         let run = mid.min(stop);
-        spans += pair_rows(&mut long, &mut e, pair, b, y, run, color, sink);
+        spans += half_rows(&mut long, e, pair, b, y, run, color, sink);
         y = run;
     }
     if y < stop {
         // `mid ≤ y < end`: `m → u` is active on row `y`.
-        let mut e = Dda32::start(m, u, sub, y);
-        spans += pair_rows(&mut long, &mut e, pair, b, y, stop, color, sink);
+        let e = Packed::start_inline(m, u, sub, y);
+        spans += half_rows(&mut long, e, pair, b, y, stop, color, sink);
     }
+    spans
+}
+
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn half_rows<K: SpanSink>(
+    long: &mut Packed,
+    e: Packed,
+    pair: Pair,
+    b: &SpanBounds,
+    y: i32,
+    stop: i32,
+    color: K::Color,
+    sink: &mut K,
+) -> usize {
+    let (mut l, mut e) = (*long, e);
+    let spans = pair_rows(&mut l, &mut e, pair, b, y, stop, color, sink);
+    *long = l;
     spans
 }
 
@@ -273,7 +295,7 @@ impl TriangleBand {
         active: usize,
     ) -> Option<Self> {
         let b = clip.intersect(sink);
-        (sub <= 8 && edges >= 3 && active >= 3 && !b.is_empty()).then_some(Self { sub, b })
+        (packs(sub) && edges >= 3 && active >= 3 && !b.is_empty()).then_some(Self { sub, b })
     }
 
     /// Fills triangle `pts` as `fill_polygon_in` would with this band's
@@ -446,7 +468,7 @@ pub(super) mod tests {
         let mut rnd = |m: i32| rng.range(-m, m);
         let (mut accepted, mut declined) = (0, 0);
         for k in 0..20_000 {
-            let sub = [0u32, 2, 4, 8][k % 4];
+            let sub = [0u32, 3, 4, 8][k % 4];
             let m = match k % 5 {
                 0 => SMALL + SMALL / 4,
                 1 => SMALL - 1,
@@ -472,7 +494,7 @@ pub(super) mod tests {
                 panic!("capacity")
             };
             let Some(band) = TriangleBand::new(sub, &clip, &bounds, 3, 3) else {
-                assert!(clip.intersect(&bounds).is_empty() && n == 0);
+                assert!(!packs(sub) || clip.intersect(&bounds).is_empty() && n == 0);
                 continue;
             };
             let mut fast = Rec(Vec::new(), bounds);
@@ -498,6 +520,7 @@ pub(super) mod tests {
             y1: 8,
         };
         assert!(TriangleBand::new(9, &b, &b, 3, 3).is_none());
+        assert!(TriangleBand::new(2, &b, &b, 3, 3).is_none());
         assert!(TriangleBand::new(4, &b, &b, 2, 3).is_none());
         assert!(TriangleBand::new(4, &b, &b, 3, 2).is_none());
         assert!(TriangleBand::new(4, &b, &b, 3, 3).is_some());
