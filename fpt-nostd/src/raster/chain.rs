@@ -193,7 +193,7 @@ pub(crate) fn fill_triangle<K: SpanSink>(
     let [t, m, u] = sort_by_y(pts);
     let (first, mid) = Dda32::rows(t, m, sub);
     let end = Dda32::rows(m, u, sub).1;
-    let mut y = first.max(b.y0);
+    let y = first.max(b.y0);
     let stop = end.min(b.y1);
     if y >= stop {
         return 0;
@@ -214,40 +214,36 @@ pub(crate) fn fill_triangle<K: SpanSink>(
         (_, true) => Pair::BaWithin,
         (_, false) => Pair::Ba,
     };
+    triangle_rows([t, m, u], sub, [y, mid, stop], pair, b, color, sink)
+}
+
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn triangle_rows<K: SpanSink>(
+    [t, m, u]: [ScreenPt; 3],
+    sub: u32,
+    [mut y, mid, stop]: [i32; 3],
+    pair: Pair,
+    b: &SpanBounds,
+    color: K::Color,
+    sink: &mut K,
+) -> usize {
     // `first ≤ y < end`: `t.y < u.y`, and `y` is one of the long edge's
     // active rows.
     let mut long = Packed::start_inline(t, u, sub, y);
     let mut spans = 0;
     if y < mid {
         // `t → m` is active on `[first, mid)`, which holds `y`.
-        let e = Packed::start_inline(t, m, sub, y);
+        let mut e = Packed::start_inline(t, m, sub, y);
         let run = mid.min(stop);
-        spans += half_rows(&mut long, e, pair, b, y, run, color, sink);
+        spans += pair_rows(&mut long, &mut e, pair, b, y, run, color, sink);
         y = run;
     }
     if y < stop {
         // `mid ≤ y < end`: `m → u` is active on row `y`.
-        let e = Packed::start_inline(m, u, sub, y);
-        spans += half_rows(&mut long, e, pair, b, y, stop, color, sink);
+        let mut e = Packed::start_inline(m, u, sub, y);
+        spans += pair_rows(&mut long, &mut e, pair, b, y, stop, color, sink);
     }
-    spans
-}
-
-#[allow(clippy::too_many_arguments)]
-#[inline(never)]
-fn half_rows<K: SpanSink>(
-    long: &mut Packed,
-    e: Packed,
-    pair: Pair,
-    b: &SpanBounds,
-    y: i32,
-    stop: i32,
-    color: K::Color,
-    sink: &mut K,
-) -> usize {
-    let (mut l, mut e) = (*long, e);
-    let spans = pair_rows(&mut l, &mut e, pair, b, y, stop, color, sink);
-    *long = l;
     spans
 }
 

@@ -304,7 +304,11 @@ pub(crate) fn fill_polygon_in<K: SpanSink>(
     // check, so that the outcome is the same.)
     if let [p0, p1, p2] = *pts {
         let near = |p: ScreenPt| p.x.abs() < SMALL && p.y.abs() < SMALL;
-        if packs(sub) && edges.len() >= 3 && near(p0) && near(p1) && near(p2) {
+        let small = match bbox {
+            Some(b) => b.lo > -SMALL && b.hi < SMALL && b.top > -SMALL && b.bot < SMALL,
+            None => near(p0) && near(p1) && near(p2),
+        };
+        if packs(sub) && edges.len() >= 3 && small {
             return Ok(fill_triangle([p0, p1, p2], sub, &b, color, sink));
         }
     }
