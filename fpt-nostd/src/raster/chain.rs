@@ -179,9 +179,10 @@ pub(crate) fn fill_monotone<K: SpanSink>(
 /// two active edges run in opposite directions around it, so each row is
 /// `[min, max)` of the two crossings. No box, monotonicity pass or chain
 /// seek: three compare-and-swaps, three row bounds and two or three edge
-/// starts. The caller guarantees `|x|, |y| < edge::SMALL` and `sub ≤ 8`.
-/// Its edges keep [`Dda32`]: with [`Packed`] ones (session 20) the
-/// socket's frames cost 20 k more and `bench_city`'s bands 44 k more.
+/// starts. The caller guarantees `|x|, |y| < edge::SMALL` and
+/// `packs(sub)`: the edges step as [`Packed`]. A triangle whose corners'
+/// columns lie within `b`'s has every crossing within them too (as in
+/// [`fill_monotone`]): its rows are not clamped.
 #[inline(always)]
 pub(crate) fn fill_triangle<K: SpanSink>(
     pts: [ScreenPt; 3],
@@ -217,6 +218,14 @@ pub(crate) fn fill_triangle<K: SpanSink>(
     triangle_rows([t, m, u], sub, [y, mid, stop], pair, b, color, sink)
 }
 
+/// The edge starts and the rows of a triangle sorted by y (`t`, `m`, `u`),
+/// from row `y` (an active row of the long edge) to `stop`, the short edge
+/// changing at `mid`: [`fill_triangle`]'s second half. Not inlined: in a
+/// function of their own the two steppers stay in registers through the
+/// row loops (inlined into the fill they were stored every row); with the
+/// whole of [`fill_triangle`] out of line instead, the fill's chain path
+/// cost `bench_city` 69–84 k more a full frame (`docs/cortex-m4.md`,
+/// session 21).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn triangle_rows<K: SpanSink>(
@@ -280,7 +289,7 @@ impl TriangleBand {
     /// The set-up for a fill clipped to `clip` into a sink with bounds
     /// `sink`, with `edges` edge slots and `active` active-edge slots in
     /// the scratch; `None` when `fill_polygon_in` would not take the
-    /// triangle path (`sub > 8`, too few slots) or would fill nothing
+    /// triangle path (`packs(sub)` false, too few slots) or would fill nothing
     /// (the bounds are empty), so that the caller takes the general fill.
     #[inline]
     pub(crate) fn new(

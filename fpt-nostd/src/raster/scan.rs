@@ -303,6 +303,8 @@ pub(crate) fn fill_polygon_in<K: SpanSink>(
     // about what the rejects would. (With the general path's capacity
     // check, so that the outcome is the same.)
     if let [p0, p1, p2] = *pts {
+        // The walk's box, when it handed one, answers in four comparisons
+        // what six magnitudes would (session 21: socket −20 k a frame).
         let near = |p: ScreenPt| p.x.abs() < SMALL && p.y.abs() < SMALL;
         let small = match bbox {
             Some(b) => b.lo > -SMALL && b.hi < SMALL && b.top > -SMALL && b.bot < SMALL,
