@@ -22,7 +22,7 @@
 //!   equals stepping from an earlier row), so pixels are identical,
 //!   shared edges included.
 
-use super::edge::{all_small, Dda32, Packed};
+use super::edge::{all_small, packs, Dda32, Packed};
 use super::scan::{pair_rows, Bbox, Pair, SpanBounds, SpanSink};
 use super::transform::ScreenPt;
 
@@ -191,9 +191,10 @@ pub(crate) fn fill_monotone<K: SpanSink>(
 /// two active edges run in opposite directions around it, so each row is
 /// `[min, max)` of the two crossings. No box, monotonicity pass or chain
 /// seek: three compare-and-swaps, three row bounds and two or three edge
-/// starts. The caller guarantees `|x|, |y| < edge::SMALL` and `sub ≤ 8`.
-/// Its edges keep [`Dda32`]: with [`Packed`] ones (session 20) the
-/// socket's frames cost 20 k more and `bench_city`'s bands 44 k more.
+/// starts. The caller guarantees `|x|, |y| < edge::SMALL` and
+/// `packs(sub)`: the edges step as [`Packed`]. A triangle whose corners'
+/// columns lie within `b`'s has every crossing within them too (as in
+/// [`fill_monotone`]): its rows are not clamped.
 #[inline(always)]
 pub(crate) fn fill_triangle<K: SpanSink>(
     pts: [ScreenPt; 3],
@@ -205,7 +206,7 @@ pub(crate) fn fill_triangle<K: SpanSink>(
     let [t, m, u] = sort_by_y(pts);
     let (first, mid) = Dda32::rows(t, m, sub);
     let end = Dda32::rows(m, u, sub).1;
-    let mut y = first.max(b.y0);
+    let y = first.max(b.y0);
     let stop = end.min(b.y1);
     if y >= stop {
         return 0;
@@ -217,25 +218,51 @@ pub(crate) fn fill_triangle<K: SpanSink>(
     // without comparing. Collinear vertices give equal crossings on every
     // row, so no span at all.
     let side = (m.x - t.x) * (u.y - t.y) - (m.y - t.y) * (u.x - t.x);
-    let pair = match side {
-        0 => return 0,
-        1.. => Pair::Ab,
-        _ => Pair::Ba,
+    let col = |x: i32| (2 * x - (1 << sub)) >> (sub + 1);
+    let within = col(t.x.min(m.x).min(u.x)) >= b.x0 && col(t.x.max(m.x).max(u.x)) < b.x1;
+    let pair = match (side, within) {
+        (0, _) => return 0,
+        (1.., true) => Pair::AbWithin,
+        (1.., false) => Pair::Ab,
+        (_, true) => Pair::BaWithin,
+        (_, false) => Pair::Ba,
     };
+    triangle_rows([t, m, u], sub, [y, mid, stop], pair, b, color, sink)
+}
+
+/// The edge starts and the rows of a triangle sorted by y (`t`, `m`, `u`),
+/// from row `y` (an active row of the long edge) to `stop`, the short edge
+/// changing at `mid`: [`fill_triangle`]'s second half. Not inlined: in a
+/// function of their own the two steppers stay in registers through the
+/// row loops (inlined into the fill they were stored every row); with the
+/// whole of [`fill_triangle`] out of line instead, the fill's chain path
+/// cost `bench_city` 69–84 k more a full frame (`docs/cortex-m4.md`,
+/// session 21).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn triangle_rows<K: SpanSink>(
+    [t, m, u]: [ScreenPt; 3],
+    sub: u32,
+    [mut y, mid, stop]: [i32; 3],
+    pair: Pair,
+    b: &SpanBounds,
+    color: K::Color,
+    sink: &mut K,
+) -> usize {
     // `first ≤ y < end`: `t.y < u.y`, and `y` is one of the long edge's
     // active rows.
-    let mut long = Dda32::start(t, u, sub, y);
+    let mut long = Packed::start_inline(t, u, sub, y);
     let mut spans = 0;
     if y < mid {
         // `t → m` is active on `[first, mid)`, which holds `y`.
-        let mut e = Dda32::start(t, m, sub, y);
+        let mut e = Packed::start_inline(t, m, sub, y);
         let run = mid.min(stop);
         spans += pair_rows(&mut long, &mut e, pair, b, y, run, color, sink);
         y = run;
     }
     if y < stop {
         // `mid ≤ y < end`: `m → u` is active on row `y`.
-        let mut e = Dda32::start(m, u, sub, y);
+        let mut e = Packed::start_inline(m, u, sub, y);
         spans += pair_rows(&mut long, &mut e, pair, b, y, stop, color, sink);
     }
     spans
@@ -274,7 +301,7 @@ impl TriangleBand {
     /// The set-up for a fill clipped to `clip` into a sink with bounds
     /// `sink`, with `edges` edge slots and `active` active-edge slots in
     /// the scratch; `None` when `fill_polygon_in` would not take the
-    /// triangle path (`sub > 8`, too few slots) or would fill nothing
+    /// triangle path (`packs(sub)` false, too few slots) or would fill nothing
     /// (the bounds are empty), so that the caller takes the general fill.
     #[inline]
     pub(crate) fn new(
@@ -285,7 +312,7 @@ impl TriangleBand {
         active: usize,
     ) -> Option<Self> {
         let b = clip.intersect(sink);
-        (sub <= 8 && edges >= 3 && active >= 3 && !b.is_empty()).then_some(Self { sub, b })
+        (packs(sub) && edges >= 3 && active >= 3 && !b.is_empty()).then_some(Self { sub, b })
     }
 
     /// Fills triangle `pts` as `fill_polygon_in` would with this band's
@@ -473,7 +500,7 @@ pub(super) mod tests {
         let mut rnd = |m: i32| rng.range(-m, m);
         let (mut accepted, mut declined) = (0, 0);
         for k in 0..20_000 {
-            let sub = [0u32, 2, 4, 8][k % 4];
+            let sub = [0u32, 3, 4, 8][k % 4];
             let m = match k % 5 {
                 0 => SMALL + SMALL / 4,
                 1 => SMALL - 1,
@@ -499,7 +526,7 @@ pub(super) mod tests {
                 panic!("capacity")
             };
             let Some(band) = TriangleBand::new(sub, &clip, &bounds, 3, 3) else {
-                assert!(clip.intersect(&bounds).is_empty() && n == 0);
+                assert!(!packs(sub) || clip.intersect(&bounds).is_empty() && n == 0);
                 continue;
             };
             let mut fast = Rec(Vec::new(), bounds);
@@ -525,6 +552,7 @@ pub(super) mod tests {
             y1: 8,
         };
         assert!(TriangleBand::new(9, &b, &b, 3, 3).is_none());
+        assert!(TriangleBand::new(2, &b, &b, 3, 3).is_none());
         assert!(TriangleBand::new(4, &b, &b, 2, 3).is_none());
         assert!(TriangleBand::new(4, &b, &b, 3, 2).is_none());
         assert!(TriangleBand::new(4, &b, &b, 3, 3).is_some());

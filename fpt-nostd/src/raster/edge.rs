@@ -365,19 +365,32 @@ impl Dda32 {
     /// hold): the state `Edge::new_small(t, b, sub, y, _)` would give.
     #[inline]
     pub(crate) fn start(t: ScreenPt, b: ScreenPt, sub: u32, y: i32) -> Dda32 {
+        Dda32::start_inline(t, b, sub, y)
+    }
+
+    /// [`Dda32::start`], always inlined (the triangle path's set-up).
+    #[inline(always)]
+    pub(crate) fn start_inline(t: ScreenPt, b: ScreenPt, sub: u32, y: i32) -> Dda32 {
         let half = 1i32 << sub;
         let (dx, dy) = (b.x - t.x, b.y - t.y);
         let d = dy << (sub + 1);
+        if d <= 0 {
+            // Never (`t.y < b.y`); tells the compiler that both divisions
+            // below neither divide by zero nor overflow.
+            return Dda32::default();
+        }
         let n = (2 * t.x - half) * dy + ((2 * y + 1) * half - 2 * t.y) * dx;
         // ceil(n / d) = −floor(−n / d), with excess (−n) mod d; |n| < 2^31
         // (see `Edge::new_small`), so −n does not overflow.
         let (q, g) = div_floor32(-n, d);
-        let (qs, rs) = div_floor32(dx, dy);
+        // floor(dx / dy) and (dx mod dy)·2^(sub+1) in one division by `d`
+        // (`|dx|·2^(sub+1) < 2^23`).
+        let (qs, rs) = div_floor32(dx << (sub + 1), d);
         Dda32 {
             c: -q,
             g,
             qs,
-            rs: rs << (sub + 1),
+            rs,
             d,
         }
     }
@@ -486,6 +499,12 @@ impl Packed {
     #[inline(always)]
     pub(crate) fn start(t: ScreenPt, b: ScreenPt, sub: u32, y: i32) -> Packed {
         Packed::of(&Dda32::start(t, b, sub, y))
+    }
+
+    /// [`Packed::start`] with the start always inlined (the triangles').
+    #[inline(always)]
+    pub(crate) fn start_inline(t: ScreenPt, b: ScreenPt, sub: u32, y: i32) -> Packed {
+        Packed::of(&Dda32::start_inline(t, b, sub, y))
     }
 
     /// `d` packed (where [`packs`] holds and its edge is within ±[`SMALL`]).
