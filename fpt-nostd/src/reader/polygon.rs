@@ -6,7 +6,7 @@
 #[cfg(doc)]
 use super::Tree;
 use super::{Geometry, Plane, RawVertex, VertexFormat, VertexIndices, Vertices};
-use crate::format::{plane_at, RUN_LEN};
+use crate::format::plane_at;
 /// One polygon of a [`Tree`].
 #[derive(Clone, Copy, Debug)]
 pub struct PolygonRef<'a> {
@@ -217,7 +217,8 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         } else {
             self.g.polygon_run(self.id)
         };
-        Plane::from_record(plane_at(self.g.runs, (r as usize).wrapping_mul(RUN_LEN)))
+        let at = (r as usize).wrapping_mul(usize::from(self.g.plane_len));
+        Plane::from_record(plane_at(self.g.planes, at))
     }
 
     /// [`PolygonRef::vertex_indices`].

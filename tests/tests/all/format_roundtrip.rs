@@ -196,6 +196,29 @@ fn random_trees_round_trip_in_every_format() {
             .unwrap();
             assert_eq!(check_round_trip(&t, &compact, f), order);
             same_polygons(&compact, &wide);
+            // And the narrow records with 20-byte runs of sessions 17 to
+            // 20 (the default has a plane table).
+            let narrow = serialize(
+                &t,
+                &SerializeOptions {
+                    plane_table: false,
+                    ..opts(f)
+                },
+            )
+            .unwrap();
+            assert_eq!(check_round_trip(&t, &narrow, f), order);
+            same_polygons(&narrow, &wide);
+            let (tn, tt) = (
+                Tree::from_bytes(&narrow).unwrap(),
+                Tree::from_bytes(&bytes).unwrap(),
+            );
+            assert!(tt.has_plane_table() && !tn.has_plane_table());
+            assert!(tt.plane_table_len() <= tt.run_count() + tt.switch_count());
+            assert!(
+                bytes.len() <= narrow.len() + 4,
+                "the table made a file larger"
+            );
+            compared += check_orders(&t, &narrow, &order, &views, scale);
             assert!(Tree::from_bytes(&compact)
                 .unwrap()
                 .records()
