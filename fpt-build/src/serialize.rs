@@ -30,7 +30,7 @@
 //!   the bytes its five fields need, and a switch's plane is the index of
 //!   a plane record: the first run with that exact plane, or one stored
 //!   after the runs ([`fpt_nostd::format::FLAG_NARROW`]);
-//! - with [`SerializeOptions::plane_table`] too (the default), every
+//! - with [`SerializeOptions::plane_table`] too (opt-in), every
 //!   distinct run and switch plane is stored once in a table, a run is
 //!   4 bytes (`u16` end, `u16` plane index), and a polygon's run field and
 //!   a switch record name table entries
@@ -88,8 +88,10 @@ pub struct SerializeOptions {
     pub narrow: bool,
     /// With `narrow`: a shared plane table and 4-byte runs
     /// ([`fpt_nostd::format::FLAG_PLANES`]), when the file has at most
-    /// 65,535 polygons and 65,536 distinct planes; `false` writes the
-    /// 20-byte runs of session 17.
+    /// 65,535 polygons and 65,536 distinct planes and is no larger for
+    /// it; `false` (the default: the walk reads a table file's runs at a
+    /// cost, see `docs/tree-format.md`) writes the 20-byte runs of
+    /// session 17.
     pub plane_table: bool,
 }
 
@@ -102,7 +104,7 @@ impl Default for SerializeOptions {
             crease_deg: DEFAULT_CREASE_DEG,
             compact: true,
             narrow: true,
-            plane_table: true,
+            plane_table: false,
         }
     }
 }

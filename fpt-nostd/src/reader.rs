@@ -247,8 +247,13 @@ impl<'a> Tree<'a> {
         }
 
         let flags = rd_u32(bytes, h::FLAGS);
-        let known =
-            FLAG_CLOSED | FLAG_EDGES | FLAG_NORMALS | FLAG_COMPACT | FLAG_NARROW | FLAG_PLANES;
+        // A plane table only with the `plane-table` feature.
+        let planes = if cfg!(feature = "plane-table") {
+            FLAG_PLANES
+        } else {
+            0
+        };
+        let known = FLAG_CLOSED | FLAG_EDGES | FLAG_NORMALS | FLAG_COMPACT | FLAG_NARROW | planes;
         if flags & !known != 0
             || (flags & FLAG_NARROW != 0 && flags & FLAG_COMPACT == 0)
             || (flags & FLAG_PLANES != 0 && flags & FLAG_NARROW == 0)

@@ -148,7 +148,7 @@ impl Seg {
                 return Some((start, end));
             }
         };
-        if runs.table {
+        if runs.is_table() {
             self.scan::<TableRun>(runs, face, want)
         } else {
             self.scan::<InlineRun>(runs, face, want)
@@ -200,7 +200,7 @@ impl Seg {
             Pick::Forward => false,
             Pick::All => return self.take(runs, face),
         };
-        if runs.table {
+        if runs.is_table() {
             self.scan_walk::<TableRun>(runs, face, want)
         } else {
             self.scan_walk::<InlineRun>(runs, face, want)

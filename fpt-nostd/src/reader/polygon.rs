@@ -6,7 +6,7 @@
 #[cfg(doc)]
 use super::Tree;
 use super::{Geometry, Plane, RawVertex, VertexFormat, VertexIndices, Vertices};
-use crate::format::plane_at;
+use crate::format::{plane_at, RUN_LEN};
 /// One polygon of a [`Tree`].
 #[derive(Clone, Copy, Debug)]
 pub struct PolygonRef<'a> {
@@ -217,7 +217,13 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         } else {
             self.g.polygon_run(self.id)
         };
-        let at = (r as usize).wrapping_mul(usize::from(self.g.plane_len));
+        // A constant record length without the `plane-table` feature.
+        let len = if cfg!(feature = "plane-table") {
+            usize::from(self.g.plane_len)
+        } else {
+            RUN_LEN
+        };
+        let at = (r as usize).wrapping_mul(len);
         Plane::from_record(plane_at(self.g.planes, at))
     }
 

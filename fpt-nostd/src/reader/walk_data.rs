@@ -29,10 +29,18 @@ pub(crate) struct Runs<'a> {
 }
 
 impl<'a> Runs<'a> {
+    /// Whether the runs index a plane table: never without the
+    /// `plane-table` feature, so that the walk's choice of layout is
+    /// compiled out.
+    #[inline(always)]
+    pub(crate) fn is_table(&self) -> bool {
+        cfg!(feature = "plane-table") && self.table
+    }
+
     /// One past the last polygon of run `r < run_count`.
     #[inline(always)]
     pub(crate) fn end(&self, r: u32) -> u32 {
-        if self.table {
+        if self.is_table() {
             let [a, b, _, _] = rec::<TABLE_RUN_LEN>(self.recs, r as usize);
             u32::from(u16::from_le_bytes([a, b]))
         } else {
@@ -45,7 +53,7 @@ impl<'a> Runs<'a> {
     /// plane index and the table entry with one.
     #[inline(always)]
     pub(crate) fn plane(&self, r: u32) -> (u32, &'a [u8; 16]) {
-        if self.table {
+        if self.is_table() {
             let i = self.plane_index(r);
             (i, table_plane(self.planes, i))
         } else {
@@ -169,7 +177,7 @@ impl<'a> WalkData<'a> {
         let no = base.wrapping_add(k);
         if self.shared {
             let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
-            if self.runs.table {
+            if self.runs.is_table() {
                 (i, table_plane(self.runs.planes, i))
             } else {
                 (

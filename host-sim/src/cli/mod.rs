@@ -149,16 +149,16 @@ pub struct BuildArgs {
     /// normals are averaged only over faces within this angle.
     #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
     pub crease: f32,
-    /// Polygon records: `table` (narrow records, and every distinct plane
-    /// stored once in a table that 4-byte runs and the switches index),
-    /// `narrow` (bit fields in as few bytes as they need, a colour table,
-    /// and switch planes shared with the 20-byte runs, as files of
-    /// sessions 17–20), `compact` (8 bytes a polygon and a colour table,
+    /// Polygon records: `narrow` (bit fields in as few bytes as they need,
+    /// a colour table, and switch planes shared with the 20-byte runs),
+    /// `table` (narrow records, and every distinct plane stored once in a
+    /// table that 4-byte runs and the switches index: smaller files, a
+    /// dearer walk), `compact` (8 bytes a polygon and a colour table,
     /// as files of sessions 10–16) or `wide` (16 bytes, as files written
     /// before compact records existed); for comparisons and older
     /// readers. `table` falls back to `narrow` beyond 65,535 polygons,
     /// `narrow` and `compact` to `wide` when the fields do not fit.
-    #[arg(long, default_value = "table", value_parser = ["table", "narrow", "compact", "wide"])]
+    #[arg(long, default_value = "narrow", value_parser = ["narrow", "table", "compact", "wide"])]
     pub records: String,
 }
 

@@ -367,7 +367,11 @@ fn plane_tables_are_validated() {
     for seed in 0..16 {
         // BSP trees: every node a switch, so there are switch records.
         let t = random_tree(seed, 8, seed % 2 == 0, true, 1.0, DVec3::ZERO);
-        let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+        let table = SerializeOptions {
+            plane_table: true,
+            ..SerializeOptions::default()
+        };
+        let bytes = serialize(&t, &table).unwrap();
         let tree = Tree::from_bytes(&bytes).unwrap();
         assert!(tree.has_plane_table() && tree.switch_count() > 0);
         let planes = tree.plane_table_len();
