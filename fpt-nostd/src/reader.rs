@@ -336,17 +336,14 @@ impl<'a> Tree<'a> {
         let table = narrow.is_some_and(|n| n.table);
         let switch_len = if shared { SWITCH_REF_LEN } else { SWITCH_LEN };
         let runs = if table {
-            Runs {
-                recs: section(s.runs, counts.runs, TABLE_RUN_LEN)?,
-                planes: section(s.planes, extra_planes, PLANE_LEN)?,
+            Runs::new(
+                section(s.runs, counts.runs, TABLE_RUN_LEN)?,
+                section(s.planes, extra_planes, PLANE_LEN)?,
                 table,
-            }
+            )
         } else {
-            Runs {
-                recs: section(s.runs, counts.runs.saturating_add(extra_planes), RUN_LEN)?,
-                planes: &[],
-                table,
-            }
+            let records = counts.runs.saturating_add(extra_planes);
+            Runs::new(section(s.runs, records, RUN_LEN)?, &[], table)
         };
         let w = WalkData {
             runs,
@@ -369,7 +366,7 @@ impl<'a> Tree<'a> {
             vertices: s.vertices,
             polygons: s.polygons,
             indices: s.indices,
-            planes: if table { runs.planes } else { runs.recs },
+            planes: if table { runs.planes() } else { runs.recs },
             plane_len: if table { PLANE_LEN } else { RUN_LEN } as u8,
             polygon_count: counts.polygons,
             index_count: counts.indices,
@@ -460,12 +457,12 @@ impl<'a> Tree<'a> {
     /// Whether the run and switch planes are in a shared plane table
     /// ([`FLAG_PLANES`]).
     pub fn has_plane_table(&self) -> bool {
-        self.w.runs.table
+        self.w.runs.is_table()
     }
 
     /// Entries of the plane table (0 without one).
     pub fn plane_table_len(&self) -> u32 {
-        (self.w.runs.planes.len() / PLANE_LEN) as u32
+        (self.w.runs.planes().len() / PLANE_LEN) as u32
     }
 
     /// What the compact records add to the sections
@@ -475,12 +472,12 @@ impl<'a> Tree<'a> {
             colours: self.colour_count(),
             narrow: self.w.shared.then(|| crate::format::Narrow {
                 record_len: self.g.rec_len,
-                extra_planes: if self.w.runs.table {
+                extra_planes: if self.w.runs.is_table() {
                     self.plane_table_len()
                 } else {
                     self.extra_plane_count()
                 },
-                table: self.w.runs.table,
+                table: self.w.runs.is_table(),
             }),
         })
     }
@@ -488,7 +485,7 @@ impl<'a> Tree<'a> {
     /// Plane records stored after the runs for switches whose plane no run
     /// has (0 without [`FLAG_NARROW`], and with a plane table).
     pub fn extra_plane_count(&self) -> u32 {
-        if self.w.runs.table {
+        if self.w.runs.is_table() {
             return 0;
         }
         (self.w.runs.recs.len() / RUN_LEN).saturating_sub(self.counts.runs as usize) as u32

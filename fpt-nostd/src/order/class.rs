@@ -169,7 +169,7 @@ impl Seg {
         let mut recs = R::records(runs.recs, self.run, self.run_end);
         let mut start = self.start;
         let mut run = self.run;
-        while let Some((end, no, plane, rest)) = R::split(recs, runs.planes, run) {
+        while let Some((end, no, plane, rest)) = R::split(recs, runs.planes(), run) {
             recs = rest;
             let passes = face.backward_at(no, plane) == want;
             run = run.wrapping_add(1);
@@ -224,7 +224,7 @@ impl Seg {
         // Record by record off the front (a length test each), rather than
         // `chunks_exact`, whose set-up divides the length: a class has one
         // or two runs, mostly.
-        while let Some((end, no, plane, rest)) = R::split(recs, runs.planes, run) {
+        while let Some((end, no, plane, rest)) = R::split(recs, runs.planes(), run) {
             recs = rest;
             let passes = face.backward_at(no, plane) == want;
             run = run.wrapping_add(1);

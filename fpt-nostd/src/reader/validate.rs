@@ -116,7 +116,7 @@ impl Tree<'_> {
         let mut start = 0u32;
         for r in 0..self.counts.runs {
             // What a polygon of the run names: the run, or its plane.
-            let named = if runs.table {
+            let named = if runs.is_table() {
                 let i = runs.plane_index(r);
                 if i >= table_len {
                     return Err(FormatError::BadRuns);
@@ -213,7 +213,7 @@ impl Tree<'_> {
         }
         // What a switch record may name: a plane record, or with a plane
         // table an entry of it.
-        let records = if self.w.runs.table {
+        let records = if self.w.runs.is_table() {
             u64::from(self.plane_table_len())
         } else {
             u64::from(runs) + u64::from(extra)
