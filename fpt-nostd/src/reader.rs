@@ -21,6 +21,10 @@
 //! - shared switch planes ([`crate::format::FLAG_NARROW`]): every switch
 //!   names a plane record below `run_count + extra_planes`, and the extra
 //!   plane records have finite planes and an end of 0;
+//! - a shared plane table ([`crate::format::FLAG_PLANES`], read only with
+//!   the `plane-table` feature): every entry finite, every run's and
+//!   switch's plane index below the table's length, and each polygon's
+//!   run field its run's plane index;
 //! - every vertex index is below the vertex count, every polygon has at least
 //!   3 vertices and the polygons tile the index list; every edge record
 //!   (optional section) has a known kind; every corner normal (optional
