@@ -29,7 +29,13 @@
 //! - with [`SerializeOptions::narrow`] (the default), a record takes only
 //!   the bytes its five fields need, and a switch's plane is the index of
 //!   a plane record: the first run with that exact plane, or one stored
-//!   after the runs ([`fpt_nostd::format::FLAG_NARROW`]).
+//!   after the runs ([`fpt_nostd::format::FLAG_NARROW`]);
+//! - with [`SerializeOptions::plane_table`] too (opt-in), every
+//!   distinct run and switch plane is stored once in a table, a run is
+//!   4 bytes (`u16` end, `u16` plane index), and a polygon's run field and
+//!   a switch record name table entries
+//!   ([`fpt_nostd::format::FLAG_PLANES`]; files of more than 65,535
+//!   polygons keep the 20-byte runs).
 //!
 //! Every tree whose bunches hold each polygon exactly once, with at least 3
 //! finite vertices each, serializes; the output passes
@@ -40,19 +46,20 @@ use std::fmt;
 
 pub use fpt_nostd::format::VertexFormat;
 use fpt_nostd::format::{
-    crc32, header as h, polygon as pg, Counts, Sections, UpAxis, FLAG_CLOSED, HEADER_LEN, MAGIC,
-    MAX_SHIFT, NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION,
+    crc32, header as h, polygon as pg, Counts, UpAxis, FLAG_CLOSED, HEADER_LEN, MAGIC, MAX_SHIFT,
+    NO_SWITCH, POLYGON_LEN, Q16_MAX, RUN_LEN, VERSION,
 };
-use fpt_nostd::format::{Narrow, Records, FLAG_NARROW, NARROW_LEN, SWITCH_REF_LEN};
 use fpt_nostd::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT};
 use fpt_nostd::format::{EDGE_LEN, FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
+use fpt_nostd::format::{FLAG_NARROW, NARROW_LEN, SWITCH_REF_LEN};
+use fpt_nostd::format::{FLAG_PLANES, PLANE_LEN, TABLE_RUN_LEN};
 use glam::DVec3;
 
 use crate::edges::{edge_kinds, hidden_edges, FaceKey, DEFAULT_CREASE_DEG};
 use crate::geom::Plane;
 use crate::normals::stored_corner_normals;
 use crate::tree::{Connecting, FpTree};
-use records::{compact_layout, share_planes};
+use records::{Plan, PlanInput};
 
 /// Choices made when writing a file.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,6 +86,13 @@ pub struct SerializeOptions {
     /// ([`fpt_nostd::format::FLAG_NARROW`]), when the five fields fit in
     /// 64 bits; `false` writes the 8-byte records of sessions 10 to 16.
     pub narrow: bool,
+    /// With `narrow`: a shared plane table and 4-byte runs
+    /// ([`fpt_nostd::format::FLAG_PLANES`]), when the file has at most
+    /// 65,535 polygons and 65,536 distinct planes and is no larger for
+    /// it; `false` (the default: the walk reads a table file's runs at a
+    /// cost, see `docs/tree-format.md`) writes the 20-byte runs of
+    /// session 17.
+    pub plane_table: bool,
 }
 
 impl Default for SerializeOptions {
@@ -90,6 +104,7 @@ impl Default for SerializeOptions {
             crease_deg: DEFAULT_CREASE_DEG,
             compact: true,
             narrow: true,
+            plane_table: false,
         }
     }
 }
@@ -522,27 +537,25 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         edges: if outline { count(indices.len())? } else { 0 },
         normals: if smooth { count(indices.len())? } else { 0 },
     };
-    let layout = if opts.compact {
-        compact_layout(tree, &order, &first_index, &runs, &hidden, opts.narrow)
-    } else {
-        None
-    };
-    // Shared switch planes: each switch names the first run with its exact
-    // plane, or a plane record after the runs.
-    let (switch_refs, extra_planes) = if layout.as_ref().is_some_and(|l| l.narrow.is_some()) {
-        share_planes(&runs, &switch_planes)?
-    } else {
-        (Vec::new(), Vec::new())
-    };
-    let records = layout.as_ref().map(|l| Records {
-        colours: l.colours.len() as u32,
-        narrow: l.narrow.map(|(_, record_len)| Narrow {
-            record_len,
-            extra_planes: extra_planes.len() as u32,
-        }),
-    });
-    let s = Sections::with_records(&counts, opts.vertex_format, index_size, records.as_ref())
-        .ok_or(SerializeError::TooLarge)?;
+    let plan = Plan::new(&PlanInput {
+        tree,
+        order: &order,
+        first_index: &first_index,
+        hidden: &hidden,
+        runs: &runs,
+        switch_planes: &switch_planes,
+        counts: &counts,
+        opts,
+        index_size,
+    })?;
+    let Plan {
+        layout,
+        table,
+        switch_refs,
+        extra_planes,
+        records,
+        sections: s,
+    } = plan;
 
     let mut out = Vec::with_capacity(s.file_len);
     out.extend_from_slice(&MAGIC);
@@ -561,7 +574,8 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
                 FLAG_NARROW
             } else {
                 0
-            },
+            }
+            | if table.is_some() { FLAG_PLANES } else { 0 },
     );
     put_u32(&mut out, effects);
     out.extend_from_slice(&[
@@ -608,7 +622,10 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         if let Some((hidden_bits, record_len)) = l.narrow {
             out.resize(s.narrow, 0);
             out.extend_from_slice(&[hidden_bits, record_len, 0, 0]);
-            put_u32(&mut out, extra_planes.len() as u32);
+            put_u32(
+                &mut out,
+                records.and_then(|r| r.narrow).map_or(0, |n| n.extra_planes),
+            );
             debug_assert_eq!(out.len(), s.narrow + NARROW_LEN);
         }
     }
@@ -621,6 +638,8 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         match &layout {
             Some(l) => {
                 let colour = l.colour_index[&p.color];
+                // With a plane table, the run field is the run's plane.
+                let run = table.as_ref().map_or(run, |t| t.run_plane[run as usize]);
                 let r = l.pack([first, run, p.source, colour], mask).to_le_bytes();
                 let len = l
                     .narrow
@@ -668,18 +687,37 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         }
     }
     debug_assert_eq!(out.len(), s.normals + counts.normals as usize * NORMAL_LEN);
+    out.resize(s.planes, 0);
+    if let Some(t) = &table {
+        t.planes.iter().for_each(|&p| put_plane(&mut out, p));
+        debug_assert_eq!(out.len(), s.planes + t.planes.len() * PLANE_LEN);
+    }
     out.resize(s.runs, 0);
-    for &(plane, end) in &runs {
-        put_plane(&mut out, plane);
-        put_u32(&mut out, end);
+    for (&(plane, end), r) in runs.iter().zip(0..) {
+        match &table {
+            // Both fit: at most 65,535 polygons and 65,536 planes.
+            Some(t) => {
+                out.extend_from_slice(&(end as u16).to_le_bytes());
+                out.extend_from_slice(&(t.run_plane[r] as u16).to_le_bytes());
+            }
+            None => {
+                put_plane(&mut out, plane);
+                put_u32(&mut out, end);
+            }
+        }
     }
     for &plane in &extra_planes {
         put_plane(&mut out, plane);
         put_u32(&mut out, 0);
     }
+    let run_len = if table.is_some() {
+        TABLE_RUN_LEN
+    } else {
+        RUN_LEN
+    };
     debug_assert_eq!(
         out.len(),
-        s.runs + (runs.len() + extra_planes.len()) * RUN_LEN
+        s.runs + runs.len() * run_len + extra_planes.len() * RUN_LEN
     );
     out.resize(s.bunches, 0);
     bunch_offsets.iter().for_each(|&o| put_u32(&mut out, o));

@@ -8,7 +8,7 @@
 //!
 //! # Layout
 //!
-//! `header · [layout · colours · [narrow]] · vertices · polygons · indices · [edges] · [normals] · runs · [extra planes] · bunches · nodes · switches · crc`
+//! `header · [layout · colours · [narrow]] · vertices · polygons · indices · [edges] · [normals] · [plane table] · runs · [extra planes] · bunches · nodes · switches · crc`
 //!
 //! The bracketed sections are optional: present only when the header's
 //! flags say so (version 3, see below); a version 2 file never has them.
@@ -31,7 +31,7 @@
 //! | 4 | `u16` | version | [`VERSION`] (3; version 2 had no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (112) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
-//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; other bits must be 0 |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; bit 5 [`FLAG_PLANES`] (only with bit 4): a shared plane table and 4-byte runs; other bits must be 0 |
 //! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
@@ -149,6 +149,38 @@
 //! `run_count + extra_planes` of the record whose plane (its first 16 bytes)
 //! is the switch's, bit for bit. The walk's facing test reads the same
 //! floats as from a 16-byte switch record, so the order is the same.
+//!
+//! ## Plane table (flag [`FLAG_PLANES`])
+//!
+//! Written by default since session 21 (`fpt build --records narrow`
+//! writes the 20-byte runs of sessions 17 to 20), when the file has at
+//! most 65,535 polygons and 65,536 distinct planes and the table makes
+//! the file no larger. On a curved model nearly every polygon is a run
+//! of its own and a plane is shared by the pieces of one split face in
+//! several bunches, so the 16 bytes of a plane were stored once per run;
+//! with the table they are stored once per distinct plane:
+//!
+//! * the narrow layout's `extra_planes` field is the table's length `P`;
+//! * the **plane table** (`P` entries of [`PLANE_LEN`] = 16 bytes: normal
+//!   `f32 × 3`, offset `f32`, as a run's first 16 bytes) comes before the
+//!   runs; every entry is finite, each distinct bit pattern once (the
+//!   facing tests read the same floats as from a 20-byte run, so the
+//!   order is the same);
+//! * a **run** is [`TABLE_RUN_LEN`] = 4 bytes: `u16` end, then the `u16`
+//!   index of its plane (below `P`); there are no extra plane records;
+//! * a **switch record** (4 bytes) is the index of its plane's entry
+//!   (below `P`);
+//! * a polygon's **run field** holds its run's plane index (the run is
+//!   found from the ids: the walk never needs it), so its width is that
+//!   of the table's indices.
+//!
+//! `Tree::from_bytes` checks every entry finite
+//! ([`FormatError::NonFinite`]`("plane table")`), every run's plane index
+//! below `P` and every polygon's field equal to its run's plane index
+//! ([`FormatError::BadRuns`]), every switch index below `P`
+//! ([`FormatError::BadSwitch`]). A walk with a facing memo (cores without
+//! an FPU) numbers the planes by their table index, so a plane shared by
+//! several runs is tested once a frame.
 //!
 //! ## Vertex index list (`index_count` entries of `index_size` bytes)
 //!
@@ -284,6 +316,23 @@ pub const NARROW_LEN: usize = 8;
 /// Length of one switch record of a file with [`FLAG_NARROW`]: the index
 /// of its plane record.
 pub const SWITCH_REF_LEN: usize = 4;
+/// Header flag (with [`FLAG_NARROW`] only): a shared plane table. Every
+/// distinct run and switch plane is stored once ([`PLANE_LEN`] bytes) in
+/// a table before the runs, a run is a [`TABLE_RUN_LEN`]-byte record
+/// (`u16` end, `u16` plane index), and a polygon's run field and a
+/// switch record hold plane indices.
+pub const FLAG_PLANES: u32 = 1 << 5;
+/// Length of one plane table entry ([`FLAG_PLANES`]): normal, offset.
+pub const PLANE_LEN: usize = 16;
+/// Length of one run record with a plane table ([`FLAG_PLANES`]).
+pub const TABLE_RUN_LEN: usize = 4;
+/// Byte offsets inside a run record of a file with a plane table.
+pub mod table_run {
+    /// `u16` one past the last polygon id of the run.
+    pub const END: usize = 0;
+    /// `u16` index of the run's plane in the plane table.
+    pub const PLANE: usize = 2;
+}
 /// Length of one run record.
 pub const RUN_LEN: usize = 20;
 /// Length of one connecting node record.

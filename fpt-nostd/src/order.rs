@@ -245,9 +245,15 @@ impl Frame {
 }
 
 /// Words of a memo that holds every plane of `tree` for
-/// [`Order::with_memo`]: two bits a plane run and a switch record.
+/// [`Order::with_memo`]: two bits a plane run and a switch record, or with
+/// a plane table ([`crate::format::FLAG_PLANES`]) a table entry.
 pub fn memo_words(tree: &Tree<'_>) -> usize {
-    (tree.run_count() as usize + tree.switch_count() as usize).div_ceil(16)
+    let planes = if tree.has_plane_table() {
+        tree.plane_table_len() as usize
+    } else {
+        tree.run_count() as usize + tree.switch_count() as usize
+    };
+    planes.div_ceil(16)
 }
 
 /// The walk of one view: an iterator over the classes, back to front.
@@ -422,7 +428,7 @@ impl<'a, const N: usize> Order<'a, N> {
         let mut at = Cursor::EMPTY;
         if self.closed && self.prelude == 0 && tree.is_closed() {
             let seg = Seg::new(&self.w, (0, self.switch_base), Pick::Forward);
-            at.start(self.w.runs, &self.face, [seg, Seg::EMPTY]);
+            at.start(&self.w.runs, &self.face, [seg, Seg::EMPTY]);
         }
         Class::resume(&self.w, self.face, at)
     }
@@ -492,7 +498,7 @@ impl<'a, const N: usize> Order<'a, N> {
             Seg::new(&self.w, a, pick),
             Seg::new(&self.w, b, Pick::Forward),
         ];
-        self.at.start_walk(self.w.runs, &self.face, segs)
+        self.at.start_walk(&self.w.runs, &self.face, segs)
     }
 
     /// The way up through the levels of `f` (frame `top`, in phase `UP`)
@@ -539,7 +545,7 @@ impl<'a, const N: usize> Order<'a, N> {
     #[inline(never)]
     pub fn next_range(&mut self) -> Option<core::ops::Range<u32>> {
         loop {
-            if let Some(r) = self.at.next_range_walk(self.w.runs, &self.face) {
+            if let Some(r) = self.at.next_range_walk(&self.w.runs, &self.face) {
                 return Some(r);
             }
             if !self.advance() {
@@ -592,8 +598,8 @@ impl<'a, const N: usize> Order<'a, N> {
                         continue;
                     }
                     // The back group is farther when the eye is in front.
-                    let plane = self.switch_base.wrapping_add(f.switch);
-                    let back_is_far = self.face.backward_at(plane, self.w.switch_record(f.switch));
+                    let (plane, rec) = self.w.switch_at(f.switch, self.switch_base);
+                    let back_is_far = self.face.backward_at(plane, rec);
                     f.phase = ON | if back_is_far { FAR_IS_BACK } else { 0 };
                     self.put(top, f);
                     self.push(child(f.switch, back_is_far));
@@ -638,7 +644,7 @@ impl<'a, const N: usize> Iterator for Order<'a, N> {
     fn next(&mut self) -> Option<Class<'a>> {
         // What is left of the current class first (nothing, unless
         // `next_range` stopped inside it).
-        if !self.at.pending(self.w.runs, &self.face) && !self.advance() {
+        if !self.at.pending(&self.w.runs, &self.face) && !self.advance() {
             return None;
         }
         let at = core::mem::replace(&mut self.at, Cursor::EMPTY);

@@ -21,6 +21,10 @@
 //! - shared switch planes ([`crate::format::FLAG_NARROW`]): every switch
 //!   names a plane record below `run_count + extra_planes`, and the extra
 //!   plane records have finite planes and an end of 0;
+//! - a shared plane table ([`crate::format::FLAG_PLANES`], read only with
+//!   the `plane-table` feature): every entry finite, every run's and
+//!   switch's plane index below the table's length, and each polygon's
+//!   run field its run's plane index;
 //! - every vertex index is below the vertex count, every polygon has at least
 //!   3 vertices and the polygons tile the index list; every edge record
 //!   (optional section) has a known kind; every corner normal (optional
@@ -102,6 +106,7 @@ use crate::format::{
 };
 use crate::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT, FLAG_NARROW, SWITCH_REF_LEN};
 use crate::format::{FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
+use crate::format::{FLAG_PLANES, PLANE_LEN, TABLE_RUN_LEN};
 
 /// A plane `normal · (x − origin) + d = 0`, relative to the tree's origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -246,8 +251,17 @@ impl<'a> Tree<'a> {
         }
 
         let flags = rd_u32(bytes, h::FLAGS);
-        let known = FLAG_CLOSED | FLAG_EDGES | FLAG_NORMALS | FLAG_COMPACT | FLAG_NARROW;
-        if flags & !known != 0 || (flags & FLAG_NARROW != 0 && flags & FLAG_COMPACT == 0) {
+        // A plane table only with the `plane-table` feature.
+        let planes = if cfg!(feature = "plane-table") {
+            FLAG_PLANES
+        } else {
+            0
+        };
+        let known = FLAG_CLOSED | FLAG_EDGES | FLAG_NORMALS | FLAG_COMPACT | FLAG_NARROW | planes;
+        if flags & !known != 0
+            || (flags & FLAG_NARROW != 0 && flags & FLAG_COMPACT == 0)
+            || (flags & FLAG_PLANES != 0 && flags & FLAG_NARROW == 0)
+        {
             return Err(FormatError::BadHeader("flags"));
         }
         let format = VertexFormat::from_code(rd_u8(bytes, h::VERTEX_FORMAT))
@@ -323,9 +337,20 @@ impl<'a> Tree<'a> {
                 .ok_or(FormatError::SectionSizes)
         };
         let shared = narrow.is_some();
+        let table = narrow.is_some_and(|n| n.table);
         let switch_len = if shared { SWITCH_REF_LEN } else { SWITCH_LEN };
+        let runs = if table {
+            Runs::new(
+                section(s.runs, counts.runs, TABLE_RUN_LEN)?,
+                section(s.planes, extra_planes, PLANE_LEN)?,
+                table,
+            )
+        } else {
+            let records = counts.runs.saturating_add(extra_planes);
+            Runs::new(section(s.runs, records, RUN_LEN)?, &[], table)
+        };
         let w = WalkData {
-            runs: section(s.runs, counts.runs.saturating_add(extra_planes), RUN_LEN)?,
+            runs,
             bunches: section(s.bunches, counts.bunches.saturating_add(1), 4)?,
             nodes: section(s.nodes, counts.nodes, NODE_LEN)?,
             switches: section(s.switches, counts.switches, switch_len)?,
@@ -345,7 +370,8 @@ impl<'a> Tree<'a> {
             vertices: s.vertices,
             polygons: s.polygons,
             indices: s.indices,
-            runs: w.runs,
+            planes: if table { runs.planes() } else { runs.recs },
+            plane_len: if table { PLANE_LEN } else { RUN_LEN } as u8,
             polygon_count: counts.polygons,
             index_count: counts.indices,
             format,
@@ -394,7 +420,7 @@ impl<'a> Tree<'a> {
         tree.check_runs()?;
         tree.check_bunches()?;
         tree.level_count = tree.check_nodes()?;
-        tree.check_switches(extra_planes)?;
+        tree.check_switches(if table { 0 } else { extra_planes })?;
         tree.check_depth()?;
         Ok(tree)
     }
@@ -432,6 +458,17 @@ impl<'a> Tree<'a> {
         self.w.shared
     }
 
+    /// Whether the run and switch planes are in a shared plane table
+    /// ([`FLAG_PLANES`]).
+    pub fn has_plane_table(&self) -> bool {
+        self.w.runs.is_table()
+    }
+
+    /// Entries of the plane table (0 without one).
+    pub fn plane_table_len(&self) -> u32 {
+        (self.w.runs.planes().len() / PLANE_LEN) as u32
+    }
+
     /// What the compact records add to the sections
     /// ([`Sections::with_records`]); `None` for 16-byte records.
     pub fn records(&self) -> Option<crate::format::Records> {
@@ -439,22 +476,30 @@ impl<'a> Tree<'a> {
             colours: self.colour_count(),
             narrow: self.w.shared.then(|| crate::format::Narrow {
                 record_len: self.g.rec_len,
-                extra_planes: self.extra_plane_count(),
+                extra_planes: if self.w.runs.is_table() {
+                    self.plane_table_len()
+                } else {
+                    self.extra_plane_count()
+                },
+                table: self.w.runs.is_table(),
             }),
         })
     }
 
     /// Plane records stored after the runs for switches whose plane no run
-    /// has (0 without [`FLAG_NARROW`]).
+    /// has (0 without [`FLAG_NARROW`], and with a plane table).
     pub fn extra_plane_count(&self) -> u32 {
-        (self.w.runs.len() / RUN_LEN).saturating_sub(self.counts.runs as usize) as u32
+        if self.w.runs.is_table() {
+            return 0;
+        }
+        (self.w.runs.recs.len() / RUN_LEN).saturating_sub(self.counts.runs as usize) as u32
     }
 
     /// Bytes of each section, in file order, with its name (padding
     /// counted in the section it follows; the header includes nothing
     /// else): what `fpt info` prints. Sections a file does not have are
     /// left out.
-    pub fn section_bytes(&self) -> [(&'static str, usize); 14] {
+    pub fn section_bytes(&self) -> [(&'static str, usize); 15] {
         let s = self.sections;
         let n = self.g.bytes.len();
         [
@@ -466,7 +511,8 @@ impl<'a> Tree<'a> {
             ("polygons", s.indices - s.polygons),
             ("indices", s.edges - s.indices),
             ("edges", s.normals - s.edges),
-            ("normals", s.runs - s.normals),
+            ("normals", s.planes - s.normals),
+            ("plane table", s.runs - s.planes),
             ("runs", s.bunches - s.runs),
             ("bunches", s.nodes - s.bunches),
             ("nodes", s.switches - s.nodes),
@@ -691,7 +737,7 @@ pub(crate) use polygon::PolygonAt;
 pub use polygon::PolygonRef;
 mod validate;
 mod walk_data;
-pub(crate) use walk_data::WalkData;
+pub(crate) use walk_data::{table_plane, Runs, WalkData};
 mod vertices;
 pub use vertices::{VertexDecoder, VertexIndices, Vertices};
 

@@ -5,10 +5,124 @@
 
 use std::collections::HashMap;
 
-use fpt_nostd::format::COMPACT_HIDDEN_SHIFT;
+use fpt_nostd::format::{Counts, Narrow, Records, Sections, COMPACT_HIDDEN_SHIFT};
 
-use super::{count_u32, SerializeError};
+use super::{count_u32, SerializeError, SerializeOptions};
 use crate::tree::FpTree;
+
+/// What [`Plan::new`] decides from.
+pub(super) struct PlanInput<'a> {
+    pub(super) tree: &'a FpTree,
+    /// The file polygons (tree ids), their first indices and masks.
+    pub(super) order: &'a [u32],
+    pub(super) first_index: &'a [u32],
+    pub(super) hidden: &'a [u8],
+    /// The runs (stored plane, end) and the switch planes.
+    pub(super) runs: &'a [([f32; 4], u32)],
+    pub(super) switch_planes: &'a [[f32; 4]],
+    pub(super) counts: &'a Counts,
+    pub(super) opts: &'a SerializeOptions,
+    pub(super) index_size: usize,
+}
+
+/// How a file stores its polygon records and planes, and its layout.
+pub(super) struct Plan {
+    /// The compact layout (`None`: 16-byte records).
+    pub(super) layout: Option<CompactLayout>,
+    /// The plane table ([`fpt_nostd::format::FLAG_PLANES`]).
+    pub(super) table: Option<PlaneTable>,
+    /// The switch records with shared planes: plane record or table
+    /// indices (empty without).
+    pub(super) switch_refs: Vec<u32>,
+    /// The plane records after the runs (shared planes, no table).
+    pub(super) extra_planes: Vec<[f32; 4]>,
+    pub(super) records: Option<Records>,
+    pub(super) sections: Sections,
+}
+
+impl Plan {
+    /// The records `input.opts` asks for; with a plane table, the smaller
+    /// file of with and without it (the table needs narrow records, and
+    /// a file whose switch planes are mostly not run planes may need a
+    /// wider run field for the table's indices).
+    pub(super) fn new(input: &PlanInput<'_>) -> Result<Plan, SerializeError> {
+        let o = input.opts;
+        let table = (o.compact && o.narrow && o.plane_table)
+            .then(|| plane_table(input.runs, input.switch_planes, input.order.len()))
+            .flatten();
+        let without = Plan::with(input, None)?;
+        match table {
+            Some(t) => {
+                let with = Plan::with(input, Some(t))?;
+                let smaller = with.sections.file_len <= without.sections.file_len;
+                Ok(if with.table.is_some() && smaller {
+                    with
+                } else {
+                    without
+                })
+            }
+            None => Ok(without),
+        }
+    }
+
+    /// The plan with `table` if the narrow records hold its indices.
+    fn with(input: &PlanInput<'_>, table: Option<PlaneTable>) -> Result<Plan, SerializeError> {
+        let o = input.opts;
+        let planes = table.as_ref().map_or(input.runs.len(), |t| t.planes.len());
+        let layout = o
+            .compact
+            .then(|| {
+                let (tree, order) = (input.tree, input.order);
+                compact_layout(
+                    tree,
+                    order,
+                    input.first_index,
+                    planes,
+                    input.hidden,
+                    o.narrow,
+                )
+            })
+            .flatten();
+        let narrow = layout.as_ref().is_some_and(|l| l.narrow.is_some());
+        if table.is_some() && !narrow {
+            return Plan::with(input, None);
+        }
+        // Shared switch planes: each switch names its entry of the plane
+        // table, or the first run with its exact plane, or a plane record
+        // after the runs.
+        let (switch_refs, extra_planes) = match &table {
+            Some(t) => (t.switch_plane.clone(), Vec::new()),
+            None if narrow => share_planes(input.runs, input.switch_planes)?,
+            None => (Vec::new(), Vec::new()),
+        };
+        let records = layout.as_ref().map(|l| Records {
+            colours: l.colours.len() as u32,
+            narrow: l.narrow.map(|(_, record_len)| Narrow {
+                record_len,
+                extra_planes: table
+                    .as_ref()
+                    .map_or(extra_planes.len(), |t| t.planes.len())
+                    as u32,
+                table: table.is_some(),
+            }),
+        });
+        let sections = Sections::with_records(
+            input.counts,
+            o.vertex_format,
+            input.index_size,
+            records.as_ref(),
+        )
+        .ok_or(SerializeError::TooLarge)?;
+        Ok(Plan {
+            layout,
+            table,
+            switch_refs,
+            extra_planes,
+            records,
+            sections,
+        })
+    }
+}
 
 /// The compact record layout of a file (see [`fpt_nostd::format`]).
 pub(super) struct CompactLayout {
@@ -47,7 +161,7 @@ impl CompactLayout {
 /// the index of the first run with that exact plane (bit for bit), or of a
 /// plane record after the runs; and those extra planes, each stored once.
 #[allow(clippy::type_complexity)]
-pub(super) fn share_planes(
+fn share_planes(
     runs: &[([f32; 4], u32)],
     switch_planes: &[[f32; 4]],
 ) -> Result<(Vec<u32>, Vec<[f32; 4]>), SerializeError> {
@@ -69,19 +183,63 @@ pub(super) fn share_planes(
     Ok((refs, extra))
 }
 
+/// A shared plane table ([`fpt_nostd::format::FLAG_PLANES`]): every
+/// distinct run and switch plane once (bit for bit, so that the facing
+/// tests and the order are the builder's), the runs' planes first in
+/// order of first use, then the switch planes no run has.
+pub(super) struct PlaneTable {
+    /// The distinct planes.
+    pub(super) planes: Vec<[f32; 4]>,
+    /// Each run's entry.
+    pub(super) run_plane: Vec<u32>,
+    /// Each switch's entry.
+    pub(super) switch_plane: Vec<u32>,
+}
+
+/// The plane table of a file with `polygons` polygons, these runs and
+/// switch planes, or `None` when its `u16` run records cannot hold it
+/// (more than 65,535 polygons or 65,536 planes).
+fn plane_table(
+    runs: &[([f32; 4], u32)],
+    switch_planes: &[[f32; 4]],
+    polygons: usize,
+) -> Option<PlaneTable> {
+    if polygons > usize::from(u16::MAX) {
+        return None;
+    }
+    let key = |p: &[f32; 4]| p.map(f32::to_bits);
+    let mut index: HashMap<[u32; 4], u32> = HashMap::new();
+    let mut planes = Vec::new();
+    let mut entry = |p: &[f32; 4]| {
+        let next = planes.len() as u32;
+        *index.entry(key(p)).or_insert_with(|| {
+            planes.push(*p);
+            next
+        })
+    };
+    let run_plane: Vec<u32> = runs.iter().map(|(p, _)| entry(p)).collect();
+    let switch_plane: Vec<u32> = switch_planes.iter().map(&mut entry).collect();
+    (planes.len() <= 1 << 16).then_some(PlaneTable {
+        planes,
+        run_plane,
+        switch_plane,
+    })
+}
+
 /// Bits to hold every value up to `max`.
 pub(super) fn bits(max: u32) -> u8 {
     (32 - max.leading_zeros()) as u8
 }
 
 /// The narrowest compact layout for the file polygons `order` (with their
-/// index ranges, runs and masks as computed for the file), or `None` when
-/// the fields need more than the 56 bits below the mask.
-pub(super) fn compact_layout(
+/// index ranges and masks as computed for the file, and a run field that
+/// takes `planes` values: the runs, or the entries of a plane table), or
+/// `None` when the fields need more than the 56 bits below the mask.
+fn compact_layout(
     tree: &FpTree,
     order: &[u32],
     first_index: &[u32],
-    runs: &[([f32; 4], u32)],
+    planes: usize,
     hidden: &[u8],
     narrow: bool,
 ) -> Option<CompactLayout> {
@@ -99,7 +257,7 @@ pub(super) fn compact_layout(
     }
     let widths = [
         bits(first_index.last().copied().unwrap_or(0)),
-        bits(u32::try_from(runs.len().saturating_sub(1)).ok()?),
+        bits(u32::try_from(planes.saturating_sub(1)).ok()?),
         bits(max_source),
         bits(u32::try_from(colours.len().saturating_sub(1)).ok()?),
     ];

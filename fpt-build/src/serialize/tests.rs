@@ -1,6 +1,7 @@
 use super::*;
 use crate::geom::Polygon;
 use crate::tree::{Level, Method, Stats, Switch};
+use fpt_nostd::format::Sections;
 use fpt_nostd::reader::Tree;
 
 fn quad(z: f64, flip: bool, source: u32) -> Polygon {

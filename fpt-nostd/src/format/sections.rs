@@ -10,10 +10,11 @@
 
 use super::{
     VertexFormat, COLOUR_LEN, COMPACT_POLYGON_LEN, CRC_LEN, EDGE_LEN, HEADER_LEN, LAYOUT_LEN,
-    NARROW_LEN, NODE_LEN, NORMAL_LEN, POLYGON_LEN, RUN_LEN, SWITCH_LEN, SWITCH_REF_LEN,
+    NARROW_LEN, NODE_LEN, NORMAL_LEN, PLANE_LEN, POLYGON_LEN, RUN_LEN, SWITCH_LEN, SWITCH_REF_LEN,
+    TABLE_RUN_LEN,
 };
 #[cfg(doc)]
-use super::{FLAG_COMPACT, FLAG_NARROW};
+use super::{FLAG_COMPACT, FLAG_NARROW, FLAG_PLANES};
 
 /// Entry counts of the sections, as stored in the header.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -54,8 +55,12 @@ pub struct Records {
 pub struct Narrow {
     /// Bytes of one polygon record, 1 to 8.
     pub record_len: u8,
-    /// Plane records after the runs: the switch planes that no run has.
+    /// Plane records after the runs: the switch planes that no run has;
+    /// with `table`, the entries of the plane table instead.
     pub extra_planes: u32,
+    /// A shared plane table ([`FLAG_PLANES`]): `extra_planes` planes of
+    /// [`PLANE_LEN`] bytes before the runs, runs of [`TABLE_RUN_LEN`].
+    pub table: bool,
 }
 
 /// Byte offsets of the sections of a file, computed from its counts.
@@ -78,9 +83,12 @@ pub struct Sections {
     /// Start of the edge section (where the next section starts when it
     /// is absent).
     pub edges: usize,
-    /// Start of the corner normal section (where the runs start when it is
-    /// absent).
+    /// Start of the corner normal section (where the plane table or the
+    /// runs start when it is absent).
     pub normals: usize,
+    /// Start of the plane table ([`FLAG_PLANES`]; where the runs start
+    /// without it).
+    pub planes: usize,
     /// Start of the runs.
     pub runs: usize,
     /// Start of the bunch offsets.
@@ -145,18 +153,25 @@ impl Sections {
             None => (l, l, l, POLYGON_LEN),
         };
         // Shared switch planes: the plane records not of a run follow the
-        // runs, and a switch record is the index of one.
-        let (extra, switch_len) = match records.and_then(|r| r.narrow) {
-            Some(n) => (n.extra_planes, SWITCH_REF_LEN),
-            None => (0, SWITCH_LEN),
+        // runs, and a switch record is the index of one; with a plane
+        // table, every plane is in the table before the runs.
+        let (table, extra, switch_len) = match records.and_then(|r| r.narrow) {
+            Some(n) if n.table => (n.extra_planes, 0, SWITCH_REF_LEN),
+            Some(n) => (0, n.extra_planes, SWITCH_REF_LEN),
+            None => (0, 0, SWITCH_LEN),
+        };
+        let run_len = match records.and_then(|r| r.narrow) {
+            Some(n) if n.table => TABLE_RUN_LEN,
+            _ => RUN_LEN,
         };
         let plane_records = counts.runs.checked_add(extra)?;
         let p = next(v, counts.vertices, format.vertex_len());
         let i = next(p, counts.polygons, poly_len);
         let e = next(i, counts.indices, index_size);
         let nm = next(e, counts.edges, EDGE_LEN);
-        let r = next(nm, counts.normals, NORMAL_LEN);
-        let b = next(r, plane_records, RUN_LEN);
+        let pt = next(nm, counts.normals, NORMAL_LEN);
+        let r = next(pt, table, PLANE_LEN);
+        let b = next(r, plane_records, run_len);
         let n = next(b, counts.bunches.checked_add(1)?, 4);
         let s = next(n, counts.nodes, NODE_LEN);
         let c = next(s, counts.switches, switch_len);
@@ -176,6 +191,7 @@ impl Sections {
             indices: cv(i)?,
             edges: cv(e)?,
             normals: cv(nm)?,
+            planes: cv(pt)?,
             runs: cv(r)?,
             bunches: cv(b)?,
             nodes: cv(n)?,

@@ -109,6 +109,7 @@ fn narrow_sections_follow_the_colours_and_share_planes() {
         narrow: Some(Narrow {
             record_len: 5,
             extra_planes: 1,
+            table: false,
         }),
     };
     let n = Sections::with_records(&c, VertexFormat::Q16, 2, Some(&records)).unwrap();
@@ -123,4 +124,19 @@ fn narrow_sections_follow_the_colours_and_share_planes() {
     assert_eq!(n.bunches, n.runs + 3 * RUN_LEN);
     assert_eq!(n.crc, n.switches + SWITCH_REF_LEN);
     assert_eq!(compact.crc, compact.switches + SWITCH_LEN);
+    // A plane table of two planes before the runs, two 4-byte runs.
+    let table = Records {
+        colours: 2,
+        narrow: Some(Narrow {
+            record_len: 5,
+            extra_planes: 2,
+            table: true,
+        }),
+    };
+    let t = Sections::with_records(&c, VertexFormat::Q16, 2, Some(&table)).unwrap();
+    assert_eq!(t.planes, n.runs);
+    assert_eq!(t.runs, t.planes + 2 * PLANE_LEN);
+    assert_eq!(t.bunches, t.runs + 2 * TABLE_RUN_LEN);
+    assert_eq!(t.crc, t.switches + SWITCH_REF_LEN);
+    assert_eq!(n.planes, n.runs);
 }

@@ -10,9 +10,9 @@ use core::cell::Cell;
 use core::ops::Range;
 
 use super::LocalView;
-use crate::format::{le_f32, le_u32, rec, run as rn, RUN_LEN};
+use crate::format::{le_f32, le_u32, plane_at, run as rn, table_run as tr, RUN_LEN, TABLE_RUN_LEN};
 use crate::raster::shade::HAS_FPU;
-use crate::reader::{PolygonRef, Tree, WalkData};
+use crate::reader::{table_plane, PolygonRef, Runs, Tree, WalkData};
 
 /// Whether facing memos are used: on cores without an FPU, where a facing
 /// test is four software-float products and three sums; with one, a test
@@ -130,7 +130,7 @@ impl Seg {
 
     /// The polygon ids of the next run that passes, and moves past it.
     #[inline(always)]
-    fn take(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<(u32, u32)> {
+    fn take(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> Option<(u32, u32)> {
         // Emptiness first: the second bunch of a closed volume's class is
         // always empty, and this keeps that case to one predictable branch.
         if self.is_empty() {
@@ -141,27 +141,37 @@ impl Seg {
             Pick::Forward => false,
             Pick::All => {
                 // Everything at once: the runs are contiguous.
-                let last = self.run_end.wrapping_sub(1) as usize;
-                let end = le_u32(&rec::<RUN_LEN>(runs, last), rn::END);
+                let end = runs.end(self.run_end.wrapping_sub(1));
                 let start = self.start;
                 self.run = self.run_end;
                 self.start = end;
                 return Some((start, end));
             }
         };
+        if runs.is_table() {
+            self.scan::<TableRun>(runs, face, want)
+        } else {
+            self.scan::<InlineRun>(runs, face, want)
+        }
+    }
+
+    /// [`Seg::take`]'s scan for a run whose facing is `want`, over the
+    /// records of layout `R`.
+    #[inline(always)]
+    fn scan<R: RunRecord>(
+        &mut self,
+        runs: &Runs<'_>,
+        face: &Facing<'_>,
+        want: bool,
+    ) -> Option<(u32, u32)> {
         // One range check for the whole scan; the records are then read
         // from fixed-size arrays (see `crate::reader`).
-        let lo = (self.run as usize).wrapping_mul(RUN_LEN);
-        let hi = (self.run_end as usize).wrapping_mul(RUN_LEN);
-        let recs = runs.get(lo..hi).unwrap_or(&[]);
+        let mut recs = R::records(runs.recs, self.run, self.run_end);
         let mut start = self.start;
         let mut run = self.run;
-        for r in recs.chunks_exact(RUN_LEN) {
-            let Ok(r) = <&[u8; RUN_LEN]>::try_from(r) else {
-                break;
-            };
-            let end = le_u32(r, rn::END);
-            let passes = face.backward_at(run, r) == want;
+        while let Some((end, no, plane, rest)) = R::split(recs, runs.planes(), run) {
+            recs = rest;
+            let passes = face.backward_at(no, plane) == want;
             run = run.wrapping_add(1);
             if passes {
                 self.run = run;
@@ -181,7 +191,7 @@ impl Seg {
     /// The first run that then fails is used up with them (tested once,
     /// never emitted). The ids and their order are [`Seg::take`]'s.
     #[inline(always)]
-    fn take_walk(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<(u32, u32)> {
+    fn take_walk(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> Option<(u32, u32)> {
         if self.is_empty() {
             return None;
         }
@@ -190,9 +200,23 @@ impl Seg {
             Pick::Forward => false,
             Pick::All => return self.take(runs, face),
         };
-        let lo = (self.run as usize).wrapping_mul(RUN_LEN);
-        let hi = (self.run_end as usize).wrapping_mul(RUN_LEN);
-        let mut recs = runs.get(lo..hi).unwrap_or(&[]);
+        if runs.is_table() {
+            self.scan_walk::<TableRun>(runs, face, want)
+        } else {
+            self.scan_walk::<InlineRun>(runs, face, want)
+        }
+    }
+
+    /// [`Seg::take_walk`]'s scan for runs whose facing is `want`, over the
+    /// records of layout `R`.
+    #[inline(always)]
+    fn scan_walk<R: RunRecord>(
+        &mut self,
+        runs: &Runs<'_>,
+        face: &Facing<'_>,
+        want: bool,
+    ) -> Option<(u32, u32)> {
+        let mut recs = R::records(runs.recs, self.run, self.run_end);
         let mut start = self.start;
         let mut run = self.run;
         // The first passing run's start, once one passed.
@@ -200,10 +224,9 @@ impl Seg {
         // Record by record off the front (a length test each), rather than
         // `chunks_exact`, whose set-up divides the length: a class has one
         // or two runs, mostly.
-        while let Some((r, rest)) = recs.split_first_chunk::<RUN_LEN>() {
+        while let Some((end, no, plane, rest)) = R::split(recs, runs.planes(), run) {
             recs = rest;
-            let end = le_u32(r, rn::END);
-            let passes = face.backward_at(run, r) == want;
+            let passes = face.backward_at(no, plane) == want;
             run = run.wrapping_add(1);
             match (passes, first) {
                 (true, None) => first = Some(start),
@@ -224,13 +247,76 @@ impl Seg {
     }
 
     /// Polygons left (an upper bound on what passes).
-    fn left(&self, runs: &[u8]) -> u32 {
+    fn left(&self, runs: &Runs<'_>) -> u32 {
         match self.run_end.checked_sub(1).filter(|_| !self.is_empty()) {
-            Some(last) => {
-                le_u32(&rec::<RUN_LEN>(runs, last as usize), rn::END).saturating_sub(self.start)
-            }
+            Some(last) => runs.end(last).saturating_sub(self.start),
             None => 0,
         }
+    }
+}
+
+/// How a scan reads one layout of run records ([`Runs`]): chosen once per
+/// scan, so that the loop over the records has no branch on the layout.
+trait RunRecord {
+    /// The records of the runs `run..run_end` (one range check for the
+    /// whole scan; empty if out of range).
+    fn records(recs: &[u8], run: u32, run_end: u32) -> &[u8];
+
+    /// The first record of `recs` (that of run `run`): its end, the memo's
+    /// number of its plane, the plane's 16 bytes (in `recs` or in the
+    /// table `planes`), and the records after it.
+    fn split<'a>(
+        recs: &'a [u8],
+        planes: &'a [u8],
+        run: u32,
+    ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])>;
+}
+
+/// Records of [`RUN_LEN`] bytes: the plane, then a `u32` end.
+struct InlineRun;
+
+impl RunRecord for InlineRun {
+    #[inline(always)]
+    fn records(recs: &[u8], run: u32, run_end: u32) -> &[u8] {
+        let lo = (run as usize).wrapping_mul(RUN_LEN);
+        let hi = (run_end as usize).wrapping_mul(RUN_LEN);
+        recs.get(lo..hi).unwrap_or(&[])
+    }
+
+    #[inline(always)]
+    fn split<'a>(
+        recs: &'a [u8],
+        _planes: &'a [u8],
+        run: u32,
+    ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])> {
+        let (r, rest) = recs.split_first_chunk::<RUN_LEN>()?;
+        Some((le_u32(r, rn::END), run, plane_at(r, 0), rest))
+    }
+}
+
+/// Records of [`TABLE_RUN_LEN`] bytes: a `u16` end and a `u16` index into
+/// the plane table, which is also the memo's number of the plane (a plane
+/// that several runs share is tested once a frame with a memo).
+struct TableRun;
+
+impl RunRecord for TableRun {
+    #[inline(always)]
+    fn records(recs: &[u8], run: u32, run_end: u32) -> &[u8] {
+        let lo = (run as usize).wrapping_mul(TABLE_RUN_LEN);
+        let hi = (run_end as usize).wrapping_mul(TABLE_RUN_LEN);
+        recs.get(lo..hi).unwrap_or(&[])
+    }
+
+    #[inline(always)]
+    fn split<'a>(
+        recs: &'a [u8],
+        planes: &'a [u8],
+        _run: u32,
+    ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])> {
+        let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
+        let end = u32::from(u16::from_le_bytes([r[tr::END], r[tr::END + 1]]));
+        let i = u32::from(u16::from_le_bytes([r[tr::PLANE], r[tr::PLANE + 1]]));
+        Some((end, i, table_plane(planes, i), rest))
     }
 }
 
@@ -259,7 +345,7 @@ impl Cursor {
     /// Starts on `segs`; false (and nothing to hand out) when nothing in
     /// them passes.
     #[inline]
-    pub(super) fn start(&mut self, runs: &[u8], face: &Facing<'_>, segs: [Seg; 2]) -> bool {
+    pub(super) fn start(&mut self, runs: &Runs<'_>, face: &Facing<'_>, segs: [Seg; 2]) -> bool {
         self.next = 0;
         self.end = 0;
         self.segs = segs;
@@ -273,7 +359,12 @@ impl Cursor {
     /// cursor written once, at the end: written first and read back, as
     /// [`Cursor::start`] does, they went through memory for every run.
     #[inline(always)]
-    pub(super) fn start_walk(&mut self, runs: &[u8], face: &Facing<'_>, segs: [Seg; 2]) -> bool {
+    pub(super) fn start_walk(
+        &mut self,
+        runs: &Runs<'_>,
+        face: &Facing<'_>,
+        segs: [Seg; 2],
+    ) -> bool {
         let [mut s0, mut s1] = segs;
         let (found, cur) = match s0.take_walk(runs, face) {
             Some(r) => (Some(r), 0),
@@ -300,7 +391,7 @@ impl Cursor {
     /// [`Cursor::settle`] with [`Seg::take_walk`]: `next..end` becomes the
     /// next passing runs in a row.
     #[inline(always)]
-    fn settle_walk(&mut self, runs: &[u8], face: &Facing<'_>) -> bool {
+    fn settle_walk(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> bool {
         while let Some(seg) = self.segs.get_mut(self.cur) {
             if let Some((start, end)) = seg.take_walk(runs, face) {
                 self.next = start;
@@ -316,7 +407,11 @@ impl Cursor {
     /// ([`super::Order::next_range`]): the rest of the current range, else
     /// the next passing runs in a row ([`Seg::take_walk`]).
     #[inline(always)]
-    pub(super) fn next_range_walk(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<Range<u32>> {
+    pub(super) fn next_range_walk(
+        &mut self,
+        runs: &Runs<'_>,
+        face: &Facing<'_>,
+    ) -> Option<Range<u32>> {
         if self.next >= self.end && !self.settle_walk(runs, face) {
             return None;
         }
@@ -328,7 +423,7 @@ impl Cursor {
     /// Makes `next..end` the next passing run; false when there is none.
     /// Each run is tested once.
     #[inline]
-    fn settle(&mut self, runs: &[u8], face: &Facing<'_>) -> bool {
+    fn settle(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> bool {
         while let Some(seg) = self.segs.get_mut(self.cur) {
             if let Some((start, end)) = seg.take(runs, face) {
                 self.next = start;
@@ -342,7 +437,7 @@ impl Cursor {
 
     /// The next range of ids (a whole run, or what is left of it).
     #[inline]
-    pub(super) fn next_range(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<Range<u32>> {
+    pub(super) fn next_range(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> Option<Range<u32>> {
         if !self.pending(runs, face) {
             return None;
         }
@@ -354,13 +449,13 @@ impl Cursor {
     /// Whether an id is left to hand out (settling on the next passing run
     /// if the current one is used up).
     #[inline]
-    pub(super) fn pending(&mut self, runs: &[u8], face: &Facing<'_>) -> bool {
+    pub(super) fn pending(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> bool {
         self.next < self.end || self.settle(runs, face)
     }
 
     /// The next id.
     #[inline]
-    fn next_id(&mut self, runs: &[u8], face: &Facing<'_>) -> Option<u32> {
+    fn next_id(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> Option<u32> {
         if !self.pending(runs, face) {
             return None;
         }
@@ -372,7 +467,7 @@ impl Cursor {
 
     /// Ids surely left (the rest of the current run) and an upper bound on
     /// all the ids left (every later run passing).
-    fn bounds(&self, runs: &[u8]) -> (u32, u32) {
+    fn bounds(&self, runs: &Runs<'_>) -> (u32, u32) {
         let current = self.end.saturating_sub(self.next);
         let rest = self
             .segs
@@ -393,7 +488,7 @@ impl Cursor {
 /// [`super::Order::next_range`].)
 #[derive(Clone, Copy, Debug)]
 pub struct Class<'a> {
-    runs: &'a [u8],
+    runs: Runs<'a>,
     face: Facing<'a>,
     at: Cursor,
 }
@@ -417,7 +512,7 @@ impl<'a> Class<'a> {
     /// the range belongs to the class.
     #[inline]
     pub fn next_range(&mut self) -> Option<Range<u32>> {
-        self.at.next_range(self.runs, &self.face)
+        self.at.next_range(&self.runs, &self.face)
     }
 
     /// The polygons of this class.
@@ -432,11 +527,11 @@ impl Iterator for Class<'_> {
 
     #[inline]
     fn next(&mut self) -> Option<u32> {
-        self.at.next_id(self.runs, &self.face)
+        self.at.next_id(&self.runs, &self.face)
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
-        let (current, rest) = self.at.bounds(self.runs);
+        let (current, rest) = self.at.bounds(&self.runs);
         (current as usize, Some(rest as usize))
     }
 }

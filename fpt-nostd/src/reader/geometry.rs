@@ -11,7 +11,7 @@ use crate::format::{
     EDGE_LEN, HEADER_LEN, LAYOUT_LEN, Q16_MAX,
 };
 #[cfg(doc)]
-use crate::format::{FLAG_COMPACT, FLAG_NARROW};
+use crate::format::{FLAG_COMPACT, FLAG_NARROW, FLAG_PLANES};
 /// What decoding a vertex needs; copied into every [`PolygonRef`].
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Geometry<'a> {
@@ -38,8 +38,12 @@ pub(super) struct Geometry<'a> {
     pub(super) vertices: usize,
     pub(super) polygons: usize,
     pub(super) indices: usize,
-    /// The run section, for a polygon's plane.
-    pub(super) runs: &'a [u8],
+    /// The section a polygon's run field indexes for its plane: the run
+    /// records, or the plane table ([`FLAG_PLANES`], where that field is
+    /// a plane index).
+    pub(super) planes: &'a [u8],
+    /// Bytes of one entry of `planes` (the plane at its start).
+    pub(super) plane_len: u8,
     pub(super) polygon_count: u32,
     pub(super) index_count: u32,
     pub(super) format: VertexFormat,

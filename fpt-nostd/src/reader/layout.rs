@@ -1,11 +1,12 @@
 //! The layout sections of a compact file (see [`crate::format`]): the
 //! fields' widths, the colour count and, with [`FLAG_NARROW`], the record
-//! length and the extra planes, checked once at load.
+//! length and the extra planes (or, with [`FLAG_PLANES`], the plane
+//! table's length), checked once at load.
 
 use super::CompactFields;
 use crate::format::{
     rd, rd_u16, rd_u32, FormatError, Narrow, Records, COLOUR_LEN, COMPACT_HIDDEN_SHIFT, CRC_LEN,
-    FLAG_COMPACT, FLAG_NARROW, HEADER_LEN, LAYOUT_LEN, NARROW_LEN,
+    FLAG_COMPACT, FLAG_NARROW, FLAG_PLANES, HEADER_LEN, LAYOUT_LEN, NARROW_LEN,
 };
 
 /// The fields of the polygon records and what the records add to the
@@ -65,6 +66,7 @@ pub(super) fn read(
         narrow: Some(Narrow {
             record_len,
             extra_planes: rd_u32(&ext, 4),
+            table: flags & FLAG_PLANES != 0,
         }),
     };
     let f = CompactFields::new([w[0], w[1], w[2], w[3], hidden]);

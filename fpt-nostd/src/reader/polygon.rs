@@ -217,7 +217,14 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         } else {
             self.g.polygon_run(self.id)
         };
-        Plane::from_record(plane_at(self.g.runs, (r as usize).wrapping_mul(RUN_LEN)))
+        // A constant record length without the `plane-table` feature.
+        let len = if cfg!(feature = "plane-table") {
+            usize::from(self.g.plane_len)
+        } else {
+            RUN_LEN
+        };
+        let at = (r as usize).wrapping_mul(len);
+        Plane::from_record(plane_at(self.g.planes, at))
     }
 
     /// [`PolygonRef::vertex_indices`].

@@ -101,19 +101,39 @@ impl Tree<'_> {
 
     /// The runs tile the polygons (non-empty, in order, the last ending at
     /// the polygon count), their planes are finite, and each polygon's `run`
-    /// field names the run holding it.
+    /// field names the run holding it. With a plane table
+    /// ([`crate::format::FLAG_PLANES`]): every table entry is finite, every
+    /// run's plane index is below the table's length, and each polygon's
+    /// `run` field is its run's plane index.
     pub(super) fn check_runs(&self) -> Result<(), FormatError> {
+        let runs = self.w.runs;
+        let table_len = self.plane_table_len();
+        for i in 0..table_len {
+            if !self.w.table_plane(i).is_finite() {
+                return Err(FormatError::NonFinite("plane table"));
+            }
+        }
         let mut start = 0u32;
         for r in 0..self.counts.runs {
-            if !self.w.run_plane(r).is_finite() {
-                return Err(FormatError::NonFinite("run planes"));
-            }
+            // What a polygon of the run names: the run, or its plane.
+            let named = if runs.is_table() {
+                let i = runs.plane_index(r);
+                if i >= table_len {
+                    return Err(FormatError::BadRuns);
+                }
+                i
+            } else {
+                if !self.w.run_plane(r).is_finite() {
+                    return Err(FormatError::NonFinite("run planes"));
+                }
+                r
+            };
             let end = self.w.run_end(r);
             if end <= start || end > self.counts.polygons {
                 return Err(FormatError::BadRuns);
             }
             for p in start..end {
-                if self.g.polygon_run(p) != r {
+                if self.g.polygon_run(p) != named {
                     return Err(FormatError::BadRuns);
                 }
             }
@@ -177,8 +197,9 @@ impl Tree<'_> {
     }
 
     /// Switch planes finite. With shared planes, every switch names a plane
-    /// record below `run_count + extra`, and the `extra` records after the
-    /// runs have finite planes and an end field of 0.
+    /// record below `run_count + extra` (an entry of the plane table with
+    /// one), and the `extra` records after the runs have finite planes and
+    /// an end field of 0.
     pub(super) fn check_switches(&self, extra: u32) -> Result<(), FormatError> {
         let runs = self.counts.runs;
         for i in runs..runs.saturating_add(extra) {
@@ -190,9 +211,16 @@ impl Tree<'_> {
                 return Err(FormatError::BadRuns);
             }
         }
+        // What a switch record may name: a plane record, or with a plane
+        // table an entry of it.
+        let records = if self.w.runs.is_table() {
+            u64::from(self.plane_table_len())
+        } else {
+            u64::from(runs) + u64::from(extra)
+        };
         for k in 0..self.counts.switches {
             if let Some(i) = self.w.switch_plane_index(k) {
-                if u64::from(i) >= u64::from(runs) + u64::from(extra) {
+                if u64::from(i) >= records {
                     return Err(FormatError::BadSwitch(k));
                 }
             }

@@ -7,8 +7,105 @@
 
 use super::Plane;
 use crate::format::{
-    le_u32, node as nd, plane_at, rec, run as rn, NODE_LEN, RUN_LEN, SWITCH_LEN, SWITCH_REF_LEN,
+    le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, PLANE_LEN, RUN_LEN,
+    SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
+#[cfg(doc)]
+use crate::format::{FLAG_NARROW, FLAG_PLANES};
+
+/// The run section as the walk reads it: [`RUN_LEN`]-byte records (plane,
+/// `u32` end), or with a plane table ([`FLAG_PLANES`]) [`TABLE_RUN_LEN`]-byte
+/// records (`u16` end, `u16` index of a [`PLANE_LEN`]-byte plane of
+/// `planes`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Runs<'a> {
+    /// The run records (with shared switch planes and no table, followed
+    /// by the extra plane records).
+    pub(crate) recs: &'a [u8],
+    /// The plane table, empty without one. Only with the `plane-table`
+    /// feature, like `table`: without it the walk carries what it did
+    /// before the table (two more words made the firmware's stack 64
+    /// bytes deeper and its frames with effects 0.6 % dearer).
+    #[cfg(feature = "plane-table")]
+    planes: &'a [u8],
+    /// Whether the runs index the plane table.
+    #[cfg(feature = "plane-table")]
+    table: bool,
+}
+
+impl<'a> Runs<'a> {
+    /// The runs `recs`, indexing the plane table `planes` if `table` (a
+    /// table is refused without the `plane-table` feature, before this).
+    #[inline]
+    pub(crate) fn new(recs: &'a [u8], planes: &'a [u8], table: bool) -> Runs<'a> {
+        #[cfg(not(feature = "plane-table"))]
+        let _ = (planes, table);
+        Runs {
+            recs,
+            #[cfg(feature = "plane-table")]
+            planes,
+            #[cfg(feature = "plane-table")]
+            table,
+        }
+    }
+
+    /// Whether the runs index a plane table: never without the
+    /// `plane-table` feature, so that the walk's choice of layout is
+    /// compiled out.
+    #[inline(always)]
+    pub(crate) fn is_table(&self) -> bool {
+        #[cfg(feature = "plane-table")]
+        return self.table;
+        #[cfg(not(feature = "plane-table"))]
+        false
+    }
+
+    /// The plane table (empty without one).
+    #[inline(always)]
+    pub(crate) fn planes(&self) -> &'a [u8] {
+        #[cfg(feature = "plane-table")]
+        return self.planes;
+        #[cfg(not(feature = "plane-table"))]
+        &[]
+    }
+
+    /// One past the last polygon of run `r < run_count`.
+    #[inline(always)]
+    pub(crate) fn end(&self, r: u32) -> u32 {
+        if self.is_table() {
+            let [a, b, _, _] = rec::<TABLE_RUN_LEN>(self.recs, r as usize);
+            u32::from(u16::from_le_bytes([a, b]))
+        } else {
+            le_u32(&rec::<RUN_LEN>(self.recs, r as usize), rn::END)
+        }
+    }
+
+    /// The memo's number and the 16 bytes of the plane of run `r <
+    /// run_count`: the run itself and its record without a table, the
+    /// plane index and the table entry with one.
+    #[inline(always)]
+    pub(crate) fn plane(&self, r: u32) -> (u32, &'a [u8; 16]) {
+        if self.is_table() {
+            let i = self.plane_index(r);
+            (i, table_plane(self.planes(), i))
+        } else {
+            (r, plane_at(self.recs, (r as usize).wrapping_mul(RUN_LEN)))
+        }
+    }
+
+    /// The plane index of run `r` with a table (0 without one).
+    #[inline(always)]
+    pub(crate) fn plane_index(&self, r: u32) -> u32 {
+        let rr = rec::<TABLE_RUN_LEN>(self.recs, r as usize);
+        u32::from(u16::from_le_bytes([rr[tr::PLANE], rr[tr::PLANE + 1]]))
+    }
+}
+
+/// Entry `i` of the plane table `planes` (zeros past its end).
+#[inline(always)]
+pub(crate) fn table_plane(planes: &[u8], i: u32) -> &[u8; 16] {
+    plane_at(planes, (i as usize).wrapping_mul(PLANE_LEN))
+}
 
 /// One connecting node record.
 #[derive(Clone, Copy, Debug)]
@@ -23,8 +120,8 @@ pub(crate) struct NodeRec {
 /// walk and class.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct WalkData<'a> {
-    /// `run_count` records of [`RUN_LEN`] bytes.
-    pub(crate) runs: &'a [u8],
+    /// `run_count` run records and the plane table ([`Runs`]).
+    pub(crate) runs: Runs<'a>,
     /// `bunch_count + 1` offsets.
     pub(super) bunches: &'a [u8],
     /// `node_count` records of [`NODE_LEN`] bytes.
@@ -33,9 +130,10 @@ pub(crate) struct WalkData<'a> {
     /// [`SWITCH_REF_LEN`] with shared planes ([`FLAG_NARROW`]).
     pub(super) switches: &'a [u8],
     /// Whether the switch records index plane records ([`FLAG_NARROW`]):
-    /// `runs` then holds `run_count + extra_planes` records, the runs and
-    /// then the extra planes (the walk reads a run only by an index below
-    /// `run_count`, so the extra ones are only ever read as planes).
+    /// without a plane table, `runs` then holds `run_count + extra_planes`
+    /// records, the runs and then the extra planes (the walk reads a run
+    /// only by an index below `run_count`, so the extra ones are only ever
+    /// read as planes); with one ([`FLAG_PLANES`]), they index the table.
     pub(super) shared: bool,
 }
 
@@ -73,7 +171,7 @@ impl<'a> WalkData<'a> {
     /// One past the last polygon of run `r < run_count`.
     #[inline(always)]
     pub(crate) fn run_end(&self, r: u32) -> u32 {
-        le_u32(&rec::<RUN_LEN>(self.runs, r as usize), rn::END)
+        self.runs.end(r)
     }
 
     /// The first polygon of run `r ≤ run_count` (the polygon count for
@@ -89,23 +187,42 @@ impl<'a> WalkData<'a> {
     /// The plane of run `r < run_count`.
     #[inline]
     pub(crate) fn run_plane(&self, r: u32) -> Plane {
-        Plane::from_record(&rec::<RUN_LEN>(self.runs, r as usize))
+        Plane::from_record(self.runs.plane(r).1)
     }
 
     /// The record of switch `k < switch_count`: its plane's normal and
     /// offset (with shared planes, the first 16 bytes of the plane record
-    /// it names; one bounds check either way), borrowed from the tree: a
-    /// copy kept its zero fallback in registers (session 20: the firmware
-    /// full frames 0.5–2.6 k cheaper).
+    /// or table entry it names; one bounds check either way), borrowed
+    /// from the tree: a copy kept its zero fallback in registers (session
+    /// 20: the firmware full frames 0.5–2.6 k cheaper).
     #[inline(always)]
     pub(crate) fn switch_record(&self, k: u32) -> &'a [u8; SWITCH_LEN] {
-        let (section, at) = if self.shared {
+        self.switch_at(k, 0).1
+    }
+
+    /// The memo's number of the plane of switch `k` and its record
+    /// ([`WalkData::switch_record`]): `base + k` (`base` the run count,
+    /// the switches numbered after the runs), or with a plane table the
+    /// entry's index, as the runs number their planes.
+    #[inline(always)]
+    pub(crate) fn switch_at(&self, k: u32, base: u32) -> (u32, &'a [u8; SWITCH_LEN]) {
+        let no = base.wrapping_add(k);
+        if self.shared {
             let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
-            (self.runs, (i as usize).wrapping_mul(RUN_LEN))
+            if self.runs.is_table() {
+                (i, table_plane(self.runs.planes(), i))
+            } else {
+                (
+                    no,
+                    plane_at(self.runs.recs, (i as usize).wrapping_mul(RUN_LEN)),
+                )
+            }
         } else {
-            (self.switches, (k as usize).wrapping_mul(SWITCH_LEN))
-        };
-        plane_at(section, at)
+            (
+                no,
+                plane_at(self.switches, (k as usize).wrapping_mul(SWITCH_LEN)),
+            )
+        }
     }
 
     /// The plane index of switch `k` with shared planes (`None` without
@@ -118,12 +235,18 @@ impl<'a> WalkData<'a> {
             .then(|| u32::from_le_bytes(r.try_into().unwrap_or([0; 4])))
     }
 
-    /// Plane record `i` of the shared planes (`run_count + extra_planes`
-    /// of them): its plane and end field.
+    /// Plane record `i` of the shared planes without a table
+    /// (`run_count + extra_planes` of them): its plane and end field.
     #[inline]
     pub(crate) fn plane_record(&self, i: u32) -> (Plane, u32) {
-        let r = rec::<RUN_LEN>(self.runs, i as usize);
+        let r = rec::<RUN_LEN>(self.runs.recs, i as usize);
         (Plane::from_record(&r), le_u32(&r, rn::END))
+    }
+
+    /// Entry `i` of the plane table ([`FLAG_PLANES`]).
+    #[inline]
+    pub(crate) fn table_plane(&self, i: u32) -> Plane {
+        Plane::from_record(table_plane(self.runs.planes(), i))
     }
 
     /// The plane of switch `k < switch_count`.

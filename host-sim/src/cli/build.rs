@@ -329,7 +329,8 @@ pub fn run(a: &BuildArgs) -> CliResult {
         up,
         crease_deg: a.crease,
         compact: a.records != "wide",
-        narrow: a.records == "narrow",
+        narrow: a.records == "narrow" || a.records == "table",
+        plane_table: a.records == "table",
     };
     let bytes = crate::serialize::serialize(&tree, &opts)?;
     // Stats first: if it cannot be written, no tree file appears either.

@@ -181,7 +181,12 @@ pub fn info(a: &InfoArgs) -> CliResult {
     println!("levels:            {}", t.level_count());
     println!("connecting nodes:  {}", t.node_count());
     println!("switch nodes:      {}", t.switch_count());
-    if t.has_shared_planes() {
+    if t.has_plane_table() {
+        println!(
+            "plane table:       {} planes, shared by the runs and the switches",
+            t.plane_table_len()
+        );
+    } else if t.has_shared_planes() {
         println!(
             "switch planes:     shared with the runs, {} extra plane records",
             t.extra_plane_count()

@@ -150,12 +150,15 @@ pub struct BuildArgs {
     #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
     pub crease: f32,
     /// Polygon records: `narrow` (bit fields in as few bytes as they need,
-    /// a colour table, and switch planes shared with the runs), `compact`
-    /// (8 bytes a polygon and a colour table, as files of sessions 10–16)
-    /// or `wide` (16 bytes, as files written before compact records
-    /// existed); for comparisons and older readers. `narrow` and `compact`
-    /// fall back to `wide` when the fields do not fit.
-    #[arg(long, default_value = "narrow", value_parser = ["narrow", "compact", "wide"])]
+    /// a colour table, and switch planes shared with the 20-byte runs),
+    /// `table` (narrow records, and every distinct plane stored once in a
+    /// table that 4-byte runs and the switches index: smaller files, a
+    /// dearer walk), `compact` (8 bytes a polygon and a colour table,
+    /// as files of sessions 10–16) or `wide` (16 bytes, as files written
+    /// before compact records existed); for comparisons and older
+    /// readers. `table` falls back to `narrow` beyond 65,535 polygons,
+    /// `narrow` and `compact` to `wide` when the fields do not fit.
+    #[arg(long, default_value = "narrow", value_parser = ["narrow", "table", "compact", "wide"])]
     pub records: String,
 }
 

@@ -128,15 +128,17 @@ proptest! {
         closed: bool,
         bsp: bool,
         format in 0usize..3,
-        records in 0usize..3,
+        records in 0usize..4,
         c in corruption(),
     ) {
         let t = random_tree(seed, n, closed, bsp, 1.0, DVec3::new(0.5, -2.0, 1.0));
-        // Wide, compact and narrow records (shared switch planes).
+        // Wide, compact and narrow records (shared switch planes), and the
+        // plane table.
         let opts = SerializeOptions {
             vertex_format: VertexFormat::ALL[format],
             compact: records > 0,
-            narrow: records == 2,
+            narrow: records >= 2,
+            plane_table: records == 3,
             ..SerializeOptions::default()
         };
         let original = serialize(&t, &opts).unwrap();
@@ -272,9 +274,14 @@ fn narrow_records_and_shared_planes_are_validated() {
     for seed in 0..16 {
         // BSP trees: every node a switch, so there are switch records.
         let t = random_tree(seed, 8, seed % 2 == 0, true, 1.0, DVec3::ZERO);
-        let bytes = serialize(&t, &SerializeOptions::default()).unwrap();
+        let narrow = SerializeOptions {
+            plane_table: false,
+            ..SerializeOptions::default()
+        };
+        let bytes = serialize(&t, &narrow).unwrap();
         let tree = Tree::from_bytes(&bytes).unwrap();
         assert!(tree.has_shared_planes() && tree.switch_count() > 0);
+        assert!(!tree.has_plane_table());
         let ext = section_start(&tree, "narrow layout");
         let len = tree.record_len();
         assert!((1..=8).contains(&len));
@@ -346,4 +353,86 @@ fn narrow_records_and_shared_planes_are_validated() {
         );
     }
     assert!(spare_bits > 0, "no tree left a spare bit in its records");
+}
+
+#[test]
+fn plane_tables_are_validated() {
+    use fpt_nostd::format::{FormatError, FLAG_NARROW, PLANE_LEN, TABLE_RUN_LEN};
+    let reject = |bytes: &[u8], edit: &dyn Fn(&mut Vec<u8>)| {
+        let mut b = bytes.to_vec();
+        edit(&mut b);
+        fix_length_and_crc(&mut b);
+        Tree::from_bytes(&b).err()
+    };
+    for seed in 0..16 {
+        // BSP trees: every node a switch, so there are switch records.
+        let t = random_tree(seed, 8, seed % 2 == 0, true, 1.0, DVec3::ZERO);
+        let table = SerializeOptions {
+            plane_table: true,
+            ..SerializeOptions::default()
+        };
+        let bytes = serialize(&t, &table).unwrap();
+        let tree = Tree::from_bytes(&bytes).unwrap();
+        assert!(tree.has_plane_table() && tree.switch_count() > 0);
+        let planes = tree.plane_table_len();
+        assert!(planes > 0 && planes <= tree.run_count() + tree.switch_count());
+        assert_eq!(tree.extra_plane_count(), 0);
+        // The table needs the narrow records.
+        let flags = Some(FormatError::BadHeader("flags"));
+        assert_eq!(reject(&bytes, &|b| b[12] &= !(FLAG_NARROW as u8)), flags);
+        // A run naming a plane past the table.
+        let runs = section_start(&tree, "runs");
+        let past = u16::try_from(planes).unwrap();
+        assert_eq!(
+            reject(&bytes, &|b| b[runs + 2..runs + 4]
+                .copy_from_slice(&past.to_le_bytes())),
+            Some(FormatError::BadRuns)
+        );
+        // A run end that breaks the tiling.
+        let last = runs + TABLE_RUN_LEN * (tree.run_count() as usize - 1);
+        assert_eq!(
+            reject(&bytes, &|b| b[last..last + 2]
+                .copy_from_slice(&0u16.to_le_bytes())),
+            Some(FormatError::BadRuns)
+        );
+        // A switch naming a plane past the table.
+        let sw = section_start(&tree, "switches");
+        assert_eq!(
+            reject(&bytes, &|b| b[sw..sw + 4]
+                .copy_from_slice(&planes.to_le_bytes())),
+            Some(FormatError::BadSwitch(0))
+        );
+        // Naming another entry is a valid file (another order).
+        let mut b = bytes.clone();
+        b[sw..sw + 4].copy_from_slice(&0u32.to_le_bytes());
+        fix_length_and_crc(&mut b);
+        assert!(exercise(&b));
+        // A table entry that is not finite.
+        let table = section_start(&tree, "plane table");
+        assert_eq!(
+            reject(&bytes, &|b| b[table + PLANE_LEN - 4..table + PLANE_LEN]
+                .copy_from_slice(&f32::INFINITY.to_le_bytes())),
+            Some(FormatError::NonFinite("plane table"))
+        );
+        // A polygon's run field must be its run's plane: the records of
+        // polygon 0 name plane 0 (the first run's), so naming another
+        // plane (when the width leaves room) is rejected.
+        if planes > 1 {
+            let polys = polygon_section(&tree);
+            let w = &bytes[fpt_nostd::format::HEADER_LEN..];
+            let (first, width) = (u32::from(w[0]), u32::from(w[1]));
+            let mut r = [0u8; 8];
+            let len = tree.record_len();
+            r[..len].copy_from_slice(&bytes[polys..polys + len]);
+            let rec = u64::from_le_bytes(r);
+            let field = (rec >> first) & ((1 << width) - 1);
+            assert_eq!(field, 0, "polygon 0 is in run 0, whose plane is entry 0");
+            let bad = rec | 1 << first;
+            assert_eq!(
+                reject(&bytes, &|b| b[polys..polys + len]
+                    .copy_from_slice(&bad.to_le_bytes()[..len])),
+                Some(FormatError::BadRuns)
+            );
+        }
+    }
 }

@@ -196,6 +196,27 @@ fn random_trees_round_trip_in_every_format() {
             .unwrap();
             assert_eq!(check_round_trip(&t, &compact, f), order);
             same_polygons(&compact, &wide);
+            // And the plane table (opt-in, session 21).
+            let table = serialize(
+                &t,
+                &SerializeOptions {
+                    plane_table: true,
+                    ..opts(f)
+                },
+            )
+            .unwrap();
+            assert_eq!(check_round_trip(&t, &table, f), order);
+            same_polygons(&table, &wide);
+            let (tn, tt) = (
+                Tree::from_bytes(&bytes).unwrap(),
+                Tree::from_bytes(&table).unwrap(),
+            );
+            assert!(!tn.has_plane_table());
+            if tt.has_plane_table() {
+                assert!(tt.plane_table_len() <= tt.run_count() + tt.switch_count());
+            }
+            assert!(table.len() <= bytes.len(), "the table made a file larger");
+            compared += check_orders(&t, &table, &order, &views, scale);
             assert!(Tree::from_bytes(&compact)
                 .unwrap()
                 .records()

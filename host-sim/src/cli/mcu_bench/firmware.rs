@@ -159,6 +159,17 @@ pub fn link_overflows(stderr: &str) -> Vec<(String, u64)> {
 /// Thumb-1 code with 4 MiB of RAM at the same address).
 pub(super) const MEASURE_RAM_KIB: u32 = 1024;
 
+/// The firmware features a tree needs: `plane-table` for a tree with a
+/// shared plane table (the firmware reads none by default: the feature
+/// costs every walk).
+fn plane_table_feature(tree: &std::path::Path) -> Vec<&'static str> {
+    let bytes = std::fs::read(tree).unwrap_or_default();
+    match fpt_nostd::reader::Tree::from_bytes(&bytes) {
+        Ok(t) if t.has_plane_table() => vec!["--features", "plane-table"],
+        _ => vec![],
+    }
+}
+
 /// Builds the benchmark firmware (with `MEASURE_RAM_KIB` of RAM if
 /// `measure`); returns a private copy of its ELF.
 pub(super) fn build_firmware(
@@ -186,6 +197,7 @@ pub(super) fn build_firmware(
             "--target",
         ])
         .arg(b.cpu.target())
+        .args(plane_table_feature(&tree))
         .env("CARGO_TARGET_DIR", &target_dir)
         .env("FPT_BENCH_TREE", &tree)
         .env("FPT_BENCH_WIDTH", b.size.0.to_string())
