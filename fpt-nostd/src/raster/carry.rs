@@ -34,7 +34,7 @@
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use super::chain::{sort_by_y, TriangleBand};
-use super::edge::{all_small, Dda32};
+use super::edge::{all_small, Dda32, Packed};
 use super::scan::{pair_rows, Pair, SpanSink};
 use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
@@ -48,11 +48,14 @@ pub(crate) const WORDS: usize = 15;
 
 /// A triangle's fill state on some row (see [`super::chain::fill_triangle`]
 /// for the edges): the long edge `t → u`, the short edge active on that
-/// row, and what the lower short edge needs to start.
+/// row, and what the lower short edge needs to start. The edges step as
+/// [`Packed`] (a [`TriangleBand`] exists only where `packs(sub)`), as in
+/// the full frame's triangles: three words each in registers and in the
+/// ring instead of [`Dda32`]'s five (session 21).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Tri {
-    long: Dda32,
-    short: Dda32,
+    long: Packed,
+    short: Packed,
     /// The middle and bottom corners (`m → u` starts from them).
     m: ScreenPt,
     u: ScreenPt,
@@ -109,12 +112,12 @@ impl TriangleBand {
         }
         let upper = y < mid;
         let short = if upper {
-            Dda32::start(t, m, sub, y)
+            Packed::start(t, m, sub, y)
         } else {
-            Dda32::start(m, u, sub, y)
+            Packed::start(m, u, sub, y)
         };
         let tri = Tri {
-            long: Dda32::start(t, u, sub, y),
+            long: Packed::start(t, u, sub, y),
             short,
             m,
             u,
@@ -149,7 +152,7 @@ impl TriangleBand {
             } else if y < tri.mid {
                 tri.mid.min(stop)
             } else {
-                tri.short = Dda32::start(tri.m, tri.u, self.sub, y);
+                tri.short = Packed::start(tri.m, tri.u, self.sub, y);
                 tri.upper = false;
                 stop
             };
@@ -312,7 +315,7 @@ impl Ring {
         let w: &[u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
         let lo = |x: u32| i32::from(x as u16 as i16);
         let hi = |x: u32| (x as i32) >> 16;
-        let dda = |k: usize| Dda32::from_words([w[k], w[k + 1], w[k + 2], w[k + 3], w[k + 4]]);
+        let dda = |k: usize| Packed::from_words([w[k], w[k + 1], w[k + 2]]);
         let c = w[14];
         let tri = Tri {
             long: dda(0),
@@ -358,8 +361,8 @@ impl Ring {
             return false;
         };
         let pack = |a: i32, b: i32| (a as u16 as u32) | (b as u32) << 16;
-        let [l0, l1, l2, l3, l4] = tri.long.to_words();
-        let [s0, s1, s2, s3, s4] = tri.short.to_words();
+        let [l0, l1, l2] = tri.long.to_words();
+        let [s0, s1, s2] = tri.short.to_words();
         let c = u32::from(rgb.r())
             | u32::from(rgb.g()) << 8
             | u32::from(rgb.b()) << 16
@@ -369,13 +372,11 @@ impl Ring {
         out[0] = l0;
         out[1] = l1;
         out[2] = l2;
-        out[3] = l3;
-        out[4] = l4;
+        // Words 3, 4, 8 and 9 unused: the quads' entries (`QUAD`) need
+        // the 15.
         out[5] = s0;
         out[6] = s1;
         out[7] = s2;
-        out[8] = s3;
-        out[9] = s4;
         out[10] = pack(tri.m.x, tri.m.y);
         out[11] = pack(tri.u.x, tri.u.y);
         out[12] = pack(tri.mid, tri.end);
