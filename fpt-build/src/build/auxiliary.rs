@@ -292,21 +292,22 @@ fn verified(
         .collect()
 }
 
-/// Up to `n` planes through edges of the group (`pivot.rs`), cutting
-/// nothing if `uncut`, the best by `score(f, b, c)` first: candidates for
-/// the lookahead.
+/// Up to `n` planes through edges of the group (`pivot.rs`) of each
+/// kind, the best by `score(f, b, c)` first: those that cut nothing, then
+/// those that cut some; candidates for the lookahead.
 pub fn pivot_aux(
     t: &Table,
     ctx: &mut Ctx,
     score: impl Fn(u32, u32, u32) -> (u32, u32),
-    uncut: bool,
     n: usize,
 ) -> Vec<AuxPlane> {
     let alive: Vec<usize> = (0..t.len()).filter(|&q| t.is_alive(q)).collect();
     if alive.len() < 3 || n == 0 {
         return Vec::new();
     }
-    let (candidates, edges) = pivot::candidates(t, &alive, ctx, uncut, &score);
-    ctx.relations += (edges * alive.len()) as u64;
-    verified(t, ctx, &alive, candidates, &score, uncut, n)
+    let c = pivot::candidates(t, &alive, ctx, &score);
+    ctx.relations += (c.edges * alive.len()) as u64;
+    let mut out = verified(t, ctx, &alive, c.uncut, &score, true, n);
+    out.extend(verified(t, ctx, &alive, c.cutting, &score, false, n));
+    out
 }

@@ -110,13 +110,11 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
             // Planes through an edge of the group, one family cutting
             // nothing and one cutting few (`pivot.rs`): judged only by
             // their trials (the greedy rule below takes them for worse).
-            for uncut in [true, false] {
-                options.extend(
-                    pivot_aux(&table, ctx, split_score, uncut, lookahead::PIVOTS)
-                        .into_iter()
-                        .map(Divide::Aux),
-                );
-            }
+            options.extend(
+                pivot_aux(&table, ctx, split_score, lookahead::PIVOTS)
+                    .into_iter()
+                    .map(Divide::Aux),
+            );
         }
         let pick = if look && options.len() > 1 {
             lookahead::cheapest(&table, &options, mode, ctx)

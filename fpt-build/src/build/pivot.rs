@@ -136,16 +136,14 @@ impl Pencil {
     }
 }
 
-/// The pencil of the edge `a → b` with the members' arcs in `arcs`;
-/// `None` if a member lies across the line and `uncut` asks for planes
-/// that cut nothing.
+/// The pencil of the edge `a → b` with the members' arcs in `arcs`
+/// (those the line pierces counted in `always`).
 fn pencil(
     a: DVec3,
     b: DVec3,
     t: &Table,
     alive: &[usize],
     ctx: &Ctx,
-    uncut: bool,
     arcs: &mut Vec<Arc>,
 ) -> Option<Pencil> {
     let tol = ctx.tol.0;
@@ -158,7 +156,6 @@ fn pencil(
         match arc(&ctx.polys[t.ids[q] as usize].verts, a, e1, e2, tol) {
             Some(Some(r)) => arcs.push(r),
             Some(None) => {}
-            None if uncut => return None,
             None => always += 1,
         }
     }
@@ -234,50 +231,75 @@ fn sides(arcs: &[Arc], theta: f64, always: u32) -> [u32; 3] {
     [f, b, c]
 }
 
+/// The candidates of one kind through each distinct edge of a group.
+#[derive(Default)]
+pub struct Candidates {
+    /// The best plane through each edge that cuts nothing, by the score.
+    pub uncut: Vec<Scored>,
+    /// The best plane through each edge among the [`GAPS`] angles that
+    /// cut fewest, by the score.
+    pub cutting: Vec<Scored>,
+    /// The distinct edges (each placed every member: the relations
+    /// counted, the same at any scale whatever rounding does to the arcs).
+    pub edges: usize,
+}
+
+/// The best of `angles` by `score(f, b, c)` (by the arcs) with members on
+/// both sides, cutting nothing if `uncut`.
+fn best_angle(
+    arcs: &[Arc],
+    p: &Pencil,
+    angles: impl Iterator<Item = f64>,
+    uncut: bool,
+    score: &impl Fn(u32, u32, u32) -> (u32, u32),
+) -> Option<Scored> {
+    let mut best: Option<((u32, u32), f64)> = None;
+    for theta in angles {
+        let [f, b, c] = sides(arcs, theta, p.always);
+        if f == 0 || b == 0 || (uncut && c > 0) {
+            continue;
+        }
+        let s = score(f, b, c);
+        if best.is_none_or(|(x, _)| s < x) {
+            best = Some((s, theta));
+        }
+    }
+    best.map(|(s, theta)| (s, p.plane(theta)))
+}
+
 /// For each distinct edge of the members `alive`, the best plane through
-/// it by `score(f, b, c)` (by the arcs) with members on both sides: only
-/// planes that cut nothing with `uncut`, else the [`GAPS`] angles that
-/// cut fewest are scored. Also returns the number of edges (each edge
-/// placed every member: the relations counted, the same at any scale
-/// whatever rounding does to the arcs).
+/// it by `score(f, b, c)` (by the arcs) with members on both sides, of
+/// each kind: among the planes that cut nothing (none when a member lies
+/// across the edge's line), and among the [`GAPS`] angles that cut
+/// fewest. One pass: the edges are found, and each edge's arcs built and
+/// swept, once for both kinds.
 pub fn candidates(
     t: &Table,
     alive: &[usize],
     ctx: &Ctx,
-    uncut: bool,
     score: &impl Fn(u32, u32, u32) -> (u32, u32),
-) -> (Vec<Scored>, usize) {
+) -> Candidates {
     let mut arcs = Vec::with_capacity(alive.len());
-    let mut out = Vec::new();
     let edges = edges(t, alive, ctx);
-    let n = edges.len();
+    let mut out = Candidates {
+        edges: edges.len(),
+        ..Candidates::default()
+    };
     for (a, b) in edges {
-        let Some(p) = pencil(a, b, t, alive, ctx, uncut, &mut arcs) else {
+        let Some(p) = pencil(a, b, t, alive, ctx, &mut arcs) else {
             continue;
         };
         let mut st = stretches(&arcs);
-        if uncut {
-            st.retain(|s| s.1 == 0);
-        } else {
-            st.sort_by(|x, y| x.1.cmp(&y.1).then(x.0.total_cmp(&y.0)));
+        if p.always == 0 {
+            let gaps = st.iter().filter(|s| s.1 == 0).take(GAPS).map(|s| s.0);
+            out.uncut.extend(best_angle(&arcs, &p, gaps, true, score));
         }
-        st.truncate(GAPS);
-        let mut best: Option<((u32, u32), f64)> = None;
-        for (theta, _) in st {
-            let [f, bk, c] = sides(&arcs, theta, p.always);
-            if f == 0 || bk == 0 || (uncut && c > 0) {
-                continue;
-            }
-            let s = score(f, bk, c);
-            if best.is_none_or(|(x, _)| s < x) {
-                best = Some((s, theta));
-            }
-        }
-        if let Some((s, theta)) = best {
-            out.push((s, p.plane(theta)));
-        }
+        st.sort_by(|x, y| x.1.cmp(&y.1).then(x.0.total_cmp(&y.0)));
+        let fewest = st.iter().take(GAPS).map(|s| s.0);
+        out.cutting
+            .extend(best_angle(&arcs, &p, fewest, false, score));
     }
-    (out, n)
+    out
 }
 
 #[cfg(test)]
