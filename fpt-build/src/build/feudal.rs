@@ -116,7 +116,24 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
                     .map(Divide::Aux),
             );
         }
-        let pick = if look && options.len() > 1 {
+        // The plane of a member that holds a large share of the group's
+        // area (`lookahead::dominant`): an option of the lookahead, and
+        // tried against the greedy choice in larger groups too.
+        let wide = !look && !ctx.in_trial();
+        if look || wide {
+            if wide {
+                options.truncate(1);
+            }
+            if let Some(m) = lookahead::dominant(&table, ctx) {
+                if !options
+                    .iter()
+                    .any(|o| matches!(o, Divide::Member(x) if *x == m))
+                {
+                    options.push(Divide::Member(m));
+                }
+            }
+        }
+        let pick = if (look || wide) && options.len() > 1 {
             lookahead::cheapest(&table, &options, mode, ctx)
         } else {
             0
