@@ -119,7 +119,7 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
         // The plane of a member that holds a large share of the group's
         // area (`lookahead::dominant`): an option of the lookahead, and
         // tried against the greedy choice in larger groups too.
-        let wide = !look && !ctx.in_trial();
+        let wide = !look && ctx.look.wide && !ctx.in_trial();
         if look || wide {
             if wide {
                 options.truncate(1);

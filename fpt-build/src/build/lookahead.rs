@@ -51,6 +51,9 @@ pub struct Look {
     /// The best member planes by the [`ALT_WEIGHT`] score tried as well
     /// (those not already among the candidates).
     pub alternatives: usize,
+    /// Whether groups too large to look ahead try the plane of a
+    /// [`dominant`] member against the greedy choice.
+    pub wide: bool,
 }
 
 /// Auxiliary planes that cut members tried (`auxiliary::cutting_aux`).
@@ -99,6 +102,7 @@ pub const SMALL: Look = Look {
     group: 512,
     candidates: 12,
     alternatives: 2,
+    wide: true,
 };
 
 /// The lookahead of models of up to [`MEDIUM_MODEL`] polygons: groups of
@@ -119,16 +123,20 @@ pub const MEDIUM: Look = Look {
     group: 1024,
     candidates: 4,
     alternatives: 2,
+    wide: true,
 };
 
 /// The lookahead of larger models: only groups of up to 64 members.
 /// rocker-arm (20,088 triangles) has thousands of split groups, and
 /// looking ahead in those of up to 512 members took its build from 6 s to
-/// 85 s; up to 64, to about 12 s (eight candidates there: 24 s).
+/// 85 s; up to 64, to about 12 s (eight candidates there: 24 s). Nor
+/// do its larger groups try a [`dominant`] member's plane: on rocker-arm
+/// that took 8.9 to 19.2 CPU s for 9 more splittings.
 pub const LARGE: Look = Look {
     group: 64,
     candidates: 4,
     alternatives: 0,
+    wide: false,
 };
 
 /// The lookahead of a build of `n` input polygons.
@@ -158,8 +166,9 @@ pub const DOMINANT: f64 = 50.0;
 /// order avoids) and leaves every building above it separable without a
 /// cut. Its score (172 cuts) ranks that plane last, so it is only found
 /// by trying it: in groups too large to look ahead (and not inside a
-/// trial) the greedy choice and this plane are both tried
-/// ([`cheapest`]), and in the lookahead it is one more option. Every
+/// trial) of models up to [`MEDIUM_MODEL`] polygons ([`Look::wide`]) the
+/// greedy choice and this plane are both tried ([`cheapest`]), and in the
+/// lookahead it is one more option. Every
 /// member's own area counts, so a curved mesh, whose facets are all
 /// small, rarely has one.
 pub fn dominant(t: &Table, ctx: &Ctx) -> Option<usize> {
