@@ -79,12 +79,12 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
                     want = ring.peek(words);
                     continue;
                 }
-                if let Some((mut t, rgb)) = ring.pop(words) {
+                if let Some((mut t, word)) = ring.pop(words) {
                     want = ring.peek(words);
-                    let color = sink.color(&Paint { rgb, id: 0 });
+                    let color = sink.kept_color(word);
                     spans += band.run(&mut t, band.first_row(), color, sink);
                     if keep && band.continues(&t) {
-                        ring.push(words, &t, (here, band.end_row()), rgb);
+                        ring.push(words, &t, (here, band.end_row()), word);
                     }
                     continue;
                 }
@@ -159,10 +159,11 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
         }
         if let (Some(band), 3) = (&tri, n) {
             if let [a, b, c, ..] = *scratch.screen() {
-                let color = sink.color(&Paint {
+                let paint = Paint {
                     rgb: e.rgb,
                     id: e.id,
-                });
+                };
+                let color = sink.color(&paint);
                 if !(keep && e.end > y1 && ring.has_room()) {
                     // Nothing can be kept (the last band of the walk, a
                     // triangle whose rows end in this band, a full ring, or
@@ -181,7 +182,8 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
                         Start::Rows(mut t, y) => {
                             spans += band.run(&mut t, y, color, sink);
                             if keep && band.continues(&t) {
-                                ring.push(words, &t, (here, band.end_row()), e.rgb);
+                                let word = sink.keep_color(color, &paint);
+                                ring.push(words, &t, (here, band.end_row()), word);
                             }
                             continue;
                         }
