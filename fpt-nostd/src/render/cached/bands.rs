@@ -377,7 +377,10 @@ where
             tree,
             source,
             fx,
-            ids,
+            // A sink without ids reads none: the id of each walked
+            // polygon (its source field, for `FaceIds::Source`) cost the
+            // band walk 16 instructions a polygon, kept for nothing.
+            ids: needs_id.then_some(ids),
             cache: &mut cache,
             turn,
         };
