@@ -512,7 +512,11 @@ mod tests {
         let mut buf = vec![init; F::words_per_row(width)];
         let fb = Framebuffer::<F>::new(&mut buf, width, 1).unwrap();
         for k in 0..4096u32 {
-            let rgb = Rgb888::new((k * 37) as u8, (k * 101 >> 3) as u8, (k * 13 >> 4) as u8);
+            let rgb = Rgb888::new(
+                (k * 37) as u8,
+                ((k * 101) >> 3) as u8,
+                ((k * 13) >> 4) as u8,
+            );
             let paint = Paint { rgb, id: 0 };
             let color = fb.color(&paint);
             let word = fb.keep_color(color, &paint);
