@@ -92,6 +92,14 @@ impl<T: SpanSink> SpanSink for Band<'_, T> {
     fn color(&self, paint: &Paint) -> T::Color {
         self.inner.color(paint)
     }
+    #[inline(always)]
+    fn keep_color(&self, color: T::Color, paint: &Paint) -> u32 {
+        self.inner.keep_color(color, paint)
+    }
+    #[inline(always)]
+    fn kept_color(&self, word: u32) -> T::Color {
+        self.inner.kept_color(word)
+    }
     fn bounds(&self) -> SpanBounds {
         let b = self.inner.bounds();
         SpanBounds {

@@ -31,8 +31,6 @@
 //!   path and, once at most five corners are left ahead, kept as
 //!   four-sided polygons' entries: see [`poly`].
 
-use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
-
 use super::chain::{sort_by_y, TriangleBand};
 use super::edge::{all_small, Dda32, Packed};
 use super::scan::{pair_rows, Pair, SpanSink};
@@ -306,9 +304,10 @@ impl Ring {
         self.incoming -= 1;
     }
 
-    /// Takes the next incoming entry: the triangle and its colour.
+    /// Takes the next incoming entry: the triangle and its colour word
+    /// (24 bits, `SpanSink::keep_color`'s).
     #[inline(always)]
-    pub(crate) fn pop(&mut self, words: &[u32]) -> Option<(Tri, Rgb888)> {
+    pub(crate) fn pop(&mut self, words: &[u32]) -> Option<(Tri, u32)> {
         let at = self.head * WORDS;
         // By reference and word by word: a copy of the array is a `memcpy`
         // call.
@@ -334,10 +333,11 @@ impl Ring {
             ab: c & 1 << 25 != 0,
         };
         self.skip();
-        Some((tri, Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)))
+        Some((tri, c & COLOR))
     }
 
-    /// Keeps `tri` (record at `offset`, drawn in `rgb`) for the band
+    /// Keeps `tri` (record at `offset`, drawn in colour word `color`, 24
+    /// bits: `SpanSink::keep_color`'s) for the band
     /// starting at row `row`; `false`, nothing kept, when the ring is full
     /// (or `offset` is not below 2^16). Corners and rows are within
     /// ±2^14 (the corners within ±`SMALL`), so they fit 16 bits.
@@ -347,7 +347,7 @@ impl Ring {
         words: &mut [u32],
         tri: &Tri,
         (offset, row): (usize, i32),
-        rgb: Rgb888,
+        color: u32,
     ) -> bool {
         let cap = self.cap;
         if self.len >= cap || offset > usize::from(u16::MAX) {
@@ -363,11 +363,7 @@ impl Ring {
         let pack = |a: i32, b: i32| (a as u16 as u32) | (b as u32) << 16;
         let [l0, l1, l2] = tri.long.to_words();
         let [s0, s1, s2] = tri.short.to_words();
-        let c = u32::from(rgb.r())
-            | u32::from(rgb.g()) << 8
-            | u32::from(rgb.b()) << 16
-            | u32::from(tri.upper) << 24
-            | u32::from(tri.ab) << 25;
+        let c = color & COLOR | u32::from(tri.upper) << 24 | u32::from(tri.ab) << 25;
         // Word by word: a copy of an array is a `memcpy` call.
         out[0] = l0;
         out[1] = l1;
@@ -414,7 +410,7 @@ impl Ring {
         &mut self,
         words: &[u32],
         band: &TriangleBand,
-    ) -> Option<(Chains<S, N>, Rgb888)> {
+    ) -> Option<(Chains<S, N>, u32)> {
         let at = self.head * WORDS;
         let w: &[u32; WORDS] = words.get(at..at + WORDS)?.try_into().ok()?;
         let lo = |x: u32| i32::from(x as u16 as i16);
@@ -469,10 +465,11 @@ impl Ring {
             end,
         };
         self.skip();
-        Some((quad, Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8)))
+        Some((quad, c & COLOR))
     }
 
-    /// Keeps polygon state `q` (record at `offset`, drawn in `rgb`) for the
+    /// Keeps polygon state `q` (record at `offset`, drawn in colour word
+    /// `color`, as [`Ring::push`]) for the
     /// band starting at row `row` as a four-sided polygon's entry: its
     /// steppers and the corners still ahead, at most [`most_ahead`] of
     /// them; `false`, nothing kept, with more, when the ring is full (or
@@ -484,7 +481,7 @@ impl Ring {
         words: &mut [u32],
         q: &Chains<S, N>,
         (offset, row): (usize, i32),
-        rgb: Rgb888,
+        color: u32,
     ) -> bool {
         let cap = self.cap;
         if self.len >= cap || offset > usize::from(u16::MAX) {
@@ -506,8 +503,7 @@ impl Ring {
         };
         let pack = |a: i32, b: i32| (a as u16 as u32) | (b as u32) << 16;
         let pt = |p: ScreenPt| pack(p.x, p.y);
-        let rgb = u32::from(rgb.r()) | u32::from(rgb.g()) << 8 | u32::from(rgb.b()) << 16;
-        let c = rgb | (count as u32) << 24 | QUAD;
+        let c = color & COLOR | (count as u32) << 24 | QUAD;
         let (l, r) = (q.l.to_words(), q.r.to_words());
         // Word by word: a copy of an array is a `memcpy` call (a
         // slice's `copy_from_slice` too, for a length the type gives).
@@ -562,6 +558,9 @@ pub(crate) const fn most_ahead<S: Kept>() -> usize {
 }
 /// The flag of a four-sided polygon's entry (in its colour word).
 const QUAD: u32 = 1 << 27;
+/// The bits of an entry's colour word that hold the colour (the flags and
+/// counts above them).
+const COLOR: u32 = (1 << 24) - 1;
 
 #[cfg(test)]
 mod tests {
@@ -572,9 +571,10 @@ mod tests {
 
     extern crate std;
     use super::super::edge::{packs, Edge, SMALL};
-    use super::super::scan::{fill_polygon_in, FillRule, SpanBounds};
+    use super::super::scan::{fill_polygon_in, rgb_word, FillRule, SpanBounds};
     use super::*;
     use crate::raster::tests::Rng;
+    use embedded_graphics::pixelcolor::Rgb888;
     use std::vec::Vec;
 
     use super::super::chain::tests::Rec;
@@ -670,7 +670,7 @@ mod tests {
             }
             let tri = [tri[0], tri[1], tri[2]];
             let mut ring = Ring::new();
-            let rgb = Rgb888::new(k as u8, 2, 3);
+            let rgb = rgb_word(Rgb888::new(k as u8, 2, 3));
             for band in bands(&mut rng, m, sub) {
                 let (b, y0) = (band.b, band.b.y0);
                 let mut fresh = Rec(Vec::new(), b);
@@ -717,7 +717,7 @@ mod tests {
         let Start::Rows(t, _) = band.start([pt(0, 0), pt(5, 9), pt(1, 9)]) else {
             panic!("rows")
         };
-        let rgb = Rgb888::new(1, 2, 3);
+        let rgb = rgb_word(Rgb888::new(1, 2, 3));
         let mut words = [0u32; 2 * WORDS + 3];
         let mut ring = Ring::new();
         ring.begin(&words);

@@ -31,7 +31,7 @@ use embedded_graphics::pixelcolor::{
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
-use super::scan::{Paint, SpanBounds, SpanSink};
+use super::scan::{rgb_word, word_rgb, Paint, SpanBounds, SpanSink};
 use super::transform::MAX_DIM;
 
 /// How pixels of one colour type are laid out in words.
@@ -55,6 +55,36 @@ pub trait PixelFormat {
             Self::fill_row(row, 0, width as usize, c);
         }
     }
+    /// A colour as a word of at most 24 bits, when the format's colours
+    /// fit one (`None`, the default, when they do not): what a
+    /// framebuffer's [`SpanSink::keep_color`] keeps for a polygon carried
+    /// between bands, so that it is not converted from its rgb again.
+    /// [`PixelFormat::word_color`] of it is the colour again.
+    #[inline(always)]
+    fn color_word(c: Self::Color) -> Option<u32> {
+        let _ = c;
+        None
+    }
+    /// The colour of a word of [`PixelFormat::color_word`] (`None` for a
+    /// format whose colours it does not keep).
+    #[inline(always)]
+    fn word_color(w: u32) -> Option<Self::Color> {
+        let _ = w;
+        None
+    }
+}
+
+/// A `Rgb565` as a word: its 16 bits ([`PixelFormat::color_word`] of both
+/// `Rgb565` formats, whose pixels differ only in byte order).
+#[inline(always)]
+fn rgb565_word(c: Rgb565) -> u32 {
+    u32::from(c.into_storage())
+}
+
+/// The `Rgb565` of [`rgb565_word`]'s word `w`.
+#[inline(always)]
+fn word_rgb565(w: u32) -> Rgb565 {
+    Rgb565::from(RawU16::new(w as u16))
 }
 
 /// `Rgb565`, one `u16` per pixel.
@@ -107,6 +137,14 @@ impl PixelFormat for Rgb565Format {
         blocks.into_remainder().fill(w);
         tail.fill(v);
     }
+    #[inline(always)]
+    fn color_word(c: Rgb565) -> Option<u32> {
+        Some(rgb565_word(c))
+    }
+    #[inline(always)]
+    fn word_color(w: u32) -> Option<Rgb565> {
+        Some(word_rgb565(w))
+    }
     fn get(row: &[u16], x: usize) -> Rgb565 {
         Rgb565::from(RawU16::new(row.get(x).copied().unwrap_or(0)))
     }
@@ -122,6 +160,14 @@ impl PixelFormat for Rgb565BeFormat {
         if let Some(s) = row.get_mut(x0..x1) {
             s.fill(c.into_storage().to_be());
         }
+    }
+    #[inline(always)]
+    fn color_word(c: Rgb565) -> Option<u32> {
+        Some(rgb565_word(c))
+    }
+    #[inline(always)]
+    fn word_color(w: u32) -> Option<Rgb565> {
+        Some(word_rgb565(w))
     }
     fn get(row: &[u16], x: usize) -> Rgb565 {
         Rgb565::from(RawU16::new(u16::from_be(row.get(x).copied().unwrap_or(0))))
@@ -393,6 +439,14 @@ impl<F: PixelFormat> SpanSink for Framebuffer<'_, F> {
     fn color(&self, paint: &Paint) -> F::Color {
         F::Color::from(paint.rgb)
     }
+    #[inline(always)]
+    fn keep_color(&self, color: F::Color, paint: &Paint) -> u32 {
+        F::color_word(color).unwrap_or_else(|| rgb_word(paint.rgb))
+    }
+    #[inline(always)]
+    fn kept_color(&self, word: u32) -> F::Color {
+        F::word_color(word).unwrap_or_else(|| F::Color::from(word_rgb(word)))
+    }
     fn bounds(&self) -> SpanBounds {
         SpanBounds::of_size(self.width, self.height)
     }
@@ -447,6 +501,38 @@ mod tests {
     use embedded_graphics::primitives::{Primitive, PrimitiveStyle, Triangle};
     use embedded_graphics::Drawable;
     use std::vec;
+
+    /// The colour word a framebuffer keeps for a polygon carried between
+    /// bands gives back the colour its paint converts to, for every
+    /// format (its own word for `Rgb565`, the rgb for the others).
+    fn check_kept_color<F: PixelFormat>(width: u32, init: F::Word)
+    where
+        F::Color: PartialEq + core::fmt::Debug,
+    {
+        let mut buf = vec![init; F::words_per_row(width)];
+        let fb = Framebuffer::<F>::new(&mut buf, width, 1).unwrap();
+        for k in 0..4096u32 {
+            let rgb = Rgb888::new(
+                (k * 37) as u8,
+                ((k * 101) >> 3) as u8,
+                ((k * 13) >> 4) as u8,
+            );
+            let paint = Paint { rgb, id: 0 };
+            let color = fb.color(&paint);
+            let word = fb.keep_color(color, &paint);
+            assert!(word < 1 << 24);
+            assert_eq!(fb.kept_color(word), color);
+        }
+    }
+
+    #[test]
+    fn kept_colors_round_trip() {
+        check_kept_color::<Rgb565Format>(3, 0);
+        check_kept_color::<Rgb565BeFormat>(3, 0);
+        check_kept_color::<Rgb888Format>(3, 0);
+        check_kept_color::<Gray8Format>(3, 0);
+        check_kept_color::<BinaryFormat>(9, 0);
+    }
 
     /// Row fill against a per-pixel reference for every x0/x1 pair.
     fn check_format<F: PixelFormat>(width: u32, colors: [F::Color; 2], init: F::Word)

@@ -18,7 +18,7 @@
 use super::chain::{fill_monotone, fill_triangle};
 use super::edge::{build_edges_with, packs, Dda32, Edge, Stepper, SMALL};
 use super::transform::ScreenPt;
-use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 /// Which winding numbers are inside.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -90,6 +90,19 @@ pub struct Paint {
     pub id: u32,
 }
 
+/// `rgb` as a word of 24 bits (red lowest), the default colour word of a
+/// polygon kept between bands ([`SpanSink::keep_color`]).
+#[inline(always)]
+pub(crate) fn rgb_word(rgb: Rgb888) -> u32 {
+    u32::from(rgb.r()) | u32::from(rgb.g()) << 8 | u32::from(rgb.b()) << 16
+}
+
+/// The colour [`rgb_word`] made `w` from (bits 24 up ignored).
+#[inline(always)]
+pub(crate) fn word_rgb(w: u32) -> Rgb888 {
+    Rgb888::new(w as u8, (w >> 8) as u8, (w >> 16) as u8)
+}
+
 /// Receives the spans of filled polygons.
 ///
 /// The fill calls [`SpanSink::color`] once per polygon and then
@@ -106,6 +119,28 @@ pub trait SpanSink {
     const NEEDS_ID: bool = true;
     /// Converts a polygon's paint to the native colour.
     fn color(&self, paint: &Paint) -> Self::Color;
+    /// `color`, the native colour of `paint`, as a word of at most 24
+    /// bits for a polygon the band replay keeps from one band to the next
+    /// (`raster::carry`), which [`SpanSink::kept_color`] turns back into
+    /// the colour: by default the paint's rgb ([`rgb_word`]), converted
+    /// again; a sink whose colours fit the word keeps them as they are,
+    /// so that a resumed polygon paints without converting (a `Rgb565`
+    /// from its rgb took 20 instructions a resume).
+    #[inline(always)]
+    fn keep_color(&self, color: Self::Color, paint: &Paint) -> u32 {
+        let _ = color;
+        rgb_word(paint.rgb)
+    }
+    /// The colour a word of [`SpanSink::keep_color`] keeps (for a paint
+    /// without id: the band replay keeps polygons only for sinks that
+    /// paint without ids).
+    #[inline(always)]
+    fn kept_color(&self, word: u32) -> Self::Color {
+        self.color(&Paint {
+            rgb: word_rgb(word),
+            id: 0,
+        })
+    }
     /// The pixels this sink can receive, in frame coordinates.
     fn bounds(&self) -> SpanBounds;
     /// Paints pixels `x0..x1` of row `y`.
@@ -143,6 +178,14 @@ impl<K: SpanSink + ?Sized> SpanSink for &mut K {
     const NEEDS_ID: bool = K::NEEDS_ID;
     fn color(&self, paint: &Paint) -> K::Color {
         (**self).color(paint)
+    }
+    #[inline(always)]
+    fn keep_color(&self, color: K::Color, paint: &Paint) -> u32 {
+        (**self).keep_color(color, paint)
+    }
+    #[inline(always)]
+    fn kept_color(&self, word: u32) -> K::Color {
+        (**self).kept_color(word)
     }
     fn bounds(&self) -> SpanBounds {
         (**self).bounds()

@@ -189,7 +189,10 @@ struct Walk<'t, 'a, 'c> {
     tree: &'a Tree<'t>,
     source: Source,
     fx: WalkFx,
-    ids: FaceIds,
+    /// Which id a face carries; `None` when the sink paints without ids
+    /// (the band walk's framebuffers): every face then carries 0, and no
+    /// polygon's id is read from the tree.
+    ids: Option<FaceIds>,
     cache: &'a mut VertexCache<'c>,
     /// How a face toward the viewer winds on screen, when slivers are
     /// drawn ([`slivers::front_turn`]); 0: no sliver pass.
@@ -363,8 +366,9 @@ impl Walk<'_, '_, '_> {
     #[inline(always)]
     fn id_of(&self, p: &PolygonAt<'_, '_>) -> u32 {
         match self.ids {
-            FaceIds::Source => p.source(),
-            FaceIds::Polygon => p.id(),
+            Some(FaceIds::Source) => p.source(),
+            Some(FaceIds::Polygon) => p.id(),
+            None => 0,
         }
     }
 
@@ -743,7 +747,7 @@ where
         tree,
         source,
         fx,
-        ids,
+        ids: Some(ids),
         cache: &mut cache,
         turn,
     };

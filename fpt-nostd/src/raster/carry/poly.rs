@@ -154,10 +154,12 @@ impl TriangleBand {
             PolyStart::Outside => None,
             PolyStart::Empty => Some(0),
             PolyStart::Rows(mut q, y) => {
-                let color = sink.color(&Paint { rgb, id });
+                let paint = Paint { rgb, id };
+                let color = sink.color(&paint);
                 let spans = self.run_chains(&mut q, y, color, sink) as u64;
                 if q.end > self.b.y1 {
-                    ring.push_quad(words, &q, (here, self.end_row()), rgb);
+                    let word = sink.keep_color(color, &paint);
+                    ring.push_quad(words, &q, (here, self.end_row()), word);
                 }
                 Some(spans)
             }
@@ -169,6 +171,7 @@ impl TriangleBand {
 mod tests {
     extern crate std;
     use super::super::super::chain::tests::Rec;
+    use super::super::super::scan::rgb_word;
     use super::super::tests::{bands, corners, general_fill};
     use super::super::{most_ahead, WORDS};
     use super::*;
@@ -212,7 +215,7 @@ mod tests {
                 continue;
             }
             let mut ring = Ring::new();
-            let rgb = Rgb888::new(k as u8, 2, 3);
+            let rgb = rgb_word(Rgb888::new(k as u8, 2, 3));
             for band in bands(&mut rng, m, sub) {
                 let (b, y0) = (band.b, band.b.y0);
                 let mut want = Rec(Vec::new(), b);

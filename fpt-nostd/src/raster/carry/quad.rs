@@ -297,13 +297,13 @@ impl TriangleBand {
         (here, keep): (usize, bool),
         sink: &mut K,
     ) -> u64 {
-        let Some((mut q, rgb)) = ring.pop_quad::<S, N>(words, self) else {
+        let Some((mut q, word)) = ring.pop_quad::<S, N>(words, self) else {
             return 0;
         };
-        let color = sink.color(&Paint { rgb, id: 0 });
+        let color = sink.kept_color(word);
         let spans = self.run_chains(&mut q, self.first_row(), color, sink) as u64;
         if keep && self.continues_quad_at(q.end) {
-            ring.push_quad(words, &q, (here, self.end_row()), rgb);
+            ring.push_quad(words, &q, (here, self.end_row()), word);
         }
         spans
     }
@@ -341,10 +341,12 @@ impl TriangleBand {
             QuadStart::Outside => None,
             QuadStart::Empty => Some(0),
             QuadStart::Rows(mut q, y) => {
-                let color = sink.color(&Paint { rgb, id });
+                let paint = Paint { rgb, id };
+                let color = sink.color(&paint);
                 let spans = self.run_chains(&mut q, y, color, sink) as u64;
                 if self.continues_quad(&q) {
-                    ring.push_quad(words, &q, (here, self.end_row()), rgb);
+                    let word = sink.keep_color(color, &paint);
+                    ring.push_quad(words, &q, (here, self.end_row()), word);
                 }
                 Some(spans)
             }
@@ -369,6 +371,7 @@ impl TriangleBand {
 mod tests {
     extern crate std;
     use super::super::super::chain::tests::Rec;
+    use super::super::super::scan::rgb_word;
     use super::super::tests::{bands, corners, general_fill};
     use super::super::{Start, WORDS};
     use super::*;
@@ -412,7 +415,7 @@ mod tests {
             let quad = [quad[0], quad[1], quad[2], quad[3]];
             let tri = [quad[0], quad[1], quad[2]];
             let mut ring = Ring::new();
-            let rgb = Rgb888::new(k as u8, 2, 3);
+            let rgb = rgb_word(Rgb888::new(k as u8, 2, 3));
             for band in bands(&mut rng, m, sub) {
                 let (b, y0) = (band.b, band.b.y0);
                 let mut want = Rec(Vec::new(), b);

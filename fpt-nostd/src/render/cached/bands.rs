@@ -16,7 +16,7 @@ use crate::effects::{for_frame, Compiled, Effects, ForPipeline};
 use crate::order::{memo_words, Order, MEMO};
 use crate::raster::carry::{Ring, CARRY, NEED_KEPT, WORDS as CARRY_WORDS};
 use crate::raster::list::{DisplayList, Entry, Points};
-use crate::raster::renderer::vertex_indices;
+use crate::raster::renderer::{vertex_indices, Face, Ready};
 use crate::raster::transform::ScreenPt;
 use crate::raster::{
     Band, Framebuffer, PixelFormat, Precision, RenderStats, Renderer, Scratch, SpanBounds, SpanSink,
@@ -25,6 +25,42 @@ use crate::reader::Tree;
 
 mod replay;
 use replay::replay;
+
+/// The record of a polygon of rows `first..end` that does not take the
+/// list's common one (clipped, with ids or outlines, or a polygon index
+/// past 16 bits), pushed by the band walk: `ready` and `face` as prepared,
+/// `poly` its index when every vertex is cached. Out of line: inlined in
+/// the walk's callback, its set-up was computed beside the common record's
+/// for every polygon.
+#[inline(never)]
+fn push_other<P: Precision, const V: usize>(
+    list: &mut DisplayList<'_>,
+    (first, end): (i32, i32),
+    ready: &Ready,
+    face: &Face,
+    poly: Option<u32>,
+    (tree, s): (&Tree<'_>, &mut Scratch<P, V>),
+) -> bool {
+    let e = Entry {
+        first,
+        end,
+        rgb: ready.rgb,
+        id: face.id,
+        hidden: face.hidden_edges,
+        clipped: ready.clipped,
+    };
+    let pts = match poly {
+        Some(i) if i <= u32::from(u16::MAX) => Points::Polygon(i as u16),
+        Some(i) => {
+            // The band walk loads without the indices
+            // (`Renderer::load_cached_bare`): from the tree.
+            vertex_indices(tree, i, s.active_mut());
+            Points::Indices(s.active().get(..ready.n).unwrap_or(&[]))
+        }
+        None => Points::Inline(s.screen().get(..ready.n).unwrap_or(&[])),
+    };
+    list.push(&e, pts)
+}
 
 /// Band `y0` (of `rows` rows in a `size` frame) as a framebuffer over
 /// `buf`, cleared to `background`.
@@ -341,7 +377,10 @@ where
             tree,
             source,
             fx,
-            ids,
+            // A sink without ids reads none: the id of each walked
+            // polygon (its source field, for `FaceIds::Source`) cost the
+            // band walk 16 instructions a polygon, kept for nothing.
+            ids: needs_id.then_some(ids),
             cache: &mut cache,
             turn,
         };
@@ -374,26 +413,7 @@ where
                         _ => None,
                     };
                     let pushed = short.unwrap_or_else(|| {
-                        let e = Entry {
-                            first,
-                            end,
-                            rgb: ready.rgb,
-                            id: face.id,
-                            hidden: face.hidden_edges,
-                            clipped: ready.clipped,
-                        };
-                        let pts = match poly {
-                            Some(i) if i <= u32::from(u16::MAX) => Points::Polygon(i as u16),
-                            Some(i) => {
-                                // The band walk loads without the indices
-                                // (`Renderer::load_cached_bare`): from the
-                                // tree.
-                                vertex_indices(tree, i, s.active_mut());
-                                Points::Indices(s.active().get(..ready.n).unwrap_or(&[]))
-                            }
-                            None => Points::Inline(s.screen().get(..ready.n).unwrap_or(&[])),
-                        };
-                        list.push(&e, pts)
+                        push_other(&mut list, (first, end), ready, face, poly, (tree, s))
                     });
                     if pushed {
                         return Step::Next;

@@ -29,7 +29,10 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
     sink: &mut K,
     (ring, words, keep): (&mut Ring, &mut [u32], bool),
 ) -> u64 {
-    let mut spans = 0;
+    // Counted in a word: a band's spans are far below 2^32 (at most its
+    // rows a record), and a `u64` sum took two more instructions and a
+    // stack round trip for every record.
+    let mut spans: usize = 0;
     // The band's own records when the list has a band index; else every
     // record of the groups that overlap the band (whole groups that miss
     // it are skipped unread). One loop over either, so that the fill is
@@ -72,16 +75,16 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
             }
             if want.is_some_and(|(at, _)| at == here) {
                 if CARRY_QUADS && ring.next_is_quad(words) {
-                    spans += band.resume_quad(ring, words, (here, keep), sink);
+                    spans += band.resume_quad(ring, words, (here, keep), sink) as usize;
                     want = ring.peek(words);
                     continue;
                 }
-                if let Some((mut t, rgb)) = ring.pop(words) {
+                if let Some((mut t, word)) = ring.pop(words) {
                     want = ring.peek(words);
-                    let color = sink.color(&Paint { rgb, id: 0 });
-                    spans += band.run(&mut t, band.first_row(), color, sink) as u64;
+                    let color = sink.kept_color(word);
+                    spans += band.run(&mut t, band.first_row(), color, sink);
                     if keep && band.continues(&t) {
-                        ring.push(words, &t, (here, band.end_row()), rgb);
+                        ring.push(words, &t, (here, band.end_row()), word);
                     }
                     continue;
                 }
@@ -156,10 +159,11 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
         }
         if let (Some(band), 3) = (&tri, n) {
             if let [a, b, c, ..] = *scratch.screen() {
-                let color = sink.color(&Paint {
+                let paint = Paint {
                     rgb: e.rgb,
                     id: e.id,
-                });
+                };
+                let color = sink.color(&paint);
                 if !(keep && e.end > y1 && ring.has_room()) {
                     // Nothing can be kept (the last band of the walk, a
                     // triangle whose rows end in this band, a full ring, or
@@ -168,7 +172,7 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
                     // (measured: with it here, socket's bands in 3,675
                     // words cost 1 % more than before the carry).
                     if let Some(s) = band.fill([a, b, c], color, sink) {
-                        spans += s as u64;
+                        spans += s;
                         continue;
                     }
                 } else {
@@ -176,9 +180,10 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
                         Start::Outside => {}
                         Start::Empty => continue,
                         Start::Rows(mut t, y) => {
-                            spans += band.run(&mut t, y, color, sink) as u64;
+                            spans += band.run(&mut t, y, color, sink);
                             if keep && band.continues(&t) {
-                                ring.push(words, &t, (here, band.end_row()), e.rgb);
+                                let word = sink.keep_color(color, &paint);
+                                ring.push(words, &t, (here, band.end_row()), word);
                             }
                             continue;
                         }
@@ -195,7 +200,7 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
         if let (true, Some(band), 4, true) = (CARRY_QUADS, &carry, n, keep || e.end <= y1) {
             if let [a, b, c, d, ..] = *scratch.screen() {
                 if let Some(s) = band.quad([a, b, c, d], (ring, words), (here, e.rgb, e.id), sink) {
-                    spans += s;
+                    spans += s as usize;
                     continue;
                 }
             }
@@ -207,7 +212,7 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
         if let (true, Some(band), true) = (CARRY_POLYS, &carry, n > 4 && keep && e.end > y1) {
             if let Some(pts) = scratch.screen().get(..n) {
                 if let Some(s) = band.poly(pts, (ring, words), (here, e.rgb, e.id), sink) {
-                    spans += s;
+                    spans += s as usize;
                     continue;
                 }
             }
@@ -226,10 +231,10 @@ pub(super) fn replay<P: Precision, E: Compiled, X: Compiled, K: SpanSink, const 
         if let Outcome::Drawn { spans: s } =
             r.fill_ready::<X, K, V>(scratch, &ready, e.id, e.hidden, sink)
         {
-            spans += s as u64;
+            spans += s;
         }
     }
-    spans
+    spans as u64
 }
 
 /// The records a band replays, in push order: those the band index lists
