@@ -27,7 +27,7 @@ use super::camera::Mat4;
 use super::clip::{ClipNum, ClipVert, GUARD};
 use super::precision::MathFns;
 use super::proof::{prove_float, VertexBound};
-use crate::fixed::{Fx, FxWide};
+use crate::fixed::{div_floor_i64, Fx, FxWide};
 
 /// Largest supported viewport side, in pixels.
 pub const MAX_DIM: u32 = 16384;
@@ -352,7 +352,7 @@ impl<const F: u32> VertexPath for FixedPath<F> {
         let sx = ((vp.width as i64) << vp.sub) * (x + w);
         let sy = ((vp.height as i64) << vp.sub) * (w - y);
         let d = 2 * w;
-        let round = |n: i64| (2 * n + d).div_euclid(2 * d);
+        let round = |n: i64| div_floor_i64(2 * n + d, 2 * d);
         let lim = SCREEN_LIMIT as i64;
         Some(ScreenPt {
             x: round(sx).clamp(-lim, lim) as i32,
