@@ -91,32 +91,41 @@ impl<const FRAC: u32> Fx<FRAC> {
         // to rounding `v · 2^FRAC` in `f64` (tested).
         let bits = v.to_bits();
         let exp = ((bits >> 23) & 0xff) as i32;
-        let frac_bits = u64::from(bits & 0x7f_ffff);
+        let frac_bits = bits & 0x7f_ffff;
         let (m, e) = if exp == 0 {
             (frac_bits, 1) // subnormal: no implicit bit
         } else {
             (frac_bits | 1 << 23, exp)
         };
         let k = e - 150 + FRAC as i32;
-        let mag: u64 = if k >= 0 {
-            // m < 2^24: from k = 40 on the value is far beyond i32 (and
-            // infinity, exp = 255, lands here too).
-            if k >= 40 {
-                u64::MAX
+        // The magnitude in 32 bits, `2^31` standing for anything from
+        // `2^31` on (which saturates either way): the 64-bit shifts this
+        // once took were most of its cost, three times a vertex.
+        let mag: u32 = if k >= 0 {
+            // Only a normal number gets here (a subnormal's `k` is below
+            // `FRAC − 148 < 0`), so `m ≥ 2^23`: from `k = 8` on the value
+            // is at least `2^31` (infinity, exp = 255, too).
+            if k >= 8 {
+                1 << 31
             } else {
                 m << k
             }
         } else {
+            // From `s = 25` on `m < 2^24 ≤ 2^(s−1)`: it rounds to 0.
             let s = (-k) as u32;
-            if s >= 40 {
+            if s >= 25 {
                 0
             } else {
                 (m + (1 << (s - 1))) >> s
             }
         };
-        let mag = mag.min(1 << 32) as i64;
-        let signed = if bits >> 31 != 0 { -mag } else { mag };
-        Some(Self(sat_i32(signed)))
+        let neg = bits >> 31 != 0;
+        Some(Self(match (mag >= 1 << 31, neg) {
+            (true, false) => i32::MAX,
+            (true, true) => i32::MIN,
+            (false, false) => mag as i32,
+            (false, true) => -(mag as i32),
+        }))
     }
 
     /// Like [`Fx::try_from_f32`] but NaN becomes zero.

@@ -280,9 +280,16 @@ pub struct FloatPath<M>(PhantomData<M>);
 
 impl<const F: u32> FixedPath<F> {
     fn row(m: &[Fx<F>; 4], v: &[Fx<F>; 3]) -> FxWide<F> {
-        // Each product is < 2^62 before and < 2^(62-F) after the rescale,
-        // so the four-term sum cannot overflow i64.
-        m[0].mul_wide(v[0]) + m[1].mul_wide(v[1]) + m[2].mul_wide(v[2]) + FxWide::from_fx(m[3])
+        // Each product is at most 2^62 before and 2^(62-F) after the
+        // rescale, so from F = 2 on the four-term sum cannot overflow i64:
+        // plain additions, not `FxWide`'s saturating ones (whose overflow
+        // tests were a dozen instructions a vertex).
+        if F >= 2 {
+            let p = |i: usize| m[i].mul_wide(v[i]).raw();
+            FxWide::from_raw(p(0) + p(1) + p(2) + i64::from(m[3].raw()))
+        } else {
+            m[0].mul_wide(v[0]) + m[1].mul_wide(v[1]) + m[2].mul_wide(v[2]) + FxWide::from_fx(m[3])
+        }
     }
 
     fn apply(m: &[[Fx<F>; 4]; 4], v: [Fx<F>; 3]) -> ClipVert<FxWide<F>> {
