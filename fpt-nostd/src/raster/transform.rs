@@ -280,10 +280,8 @@ pub struct FloatPath<M>(PhantomData<M>);
 
 impl<const F: u32> FixedPath<F> {
     fn row(m: &[Fx<F>; 4], v: &[Fx<F>; 3]) -> FxWide<F> {
-        // Each product is at most 2^62 before and 2^(62-F) after the
-        // rescale, so from F = 2 on the four-term sum cannot overflow i64:
-        // plain additions, not `FxWide`'s saturating ones (whose overflow
-        // tests were a dozen instructions a vertex).
+        // Products ≤ 2^(62-F) after the rescale: from F = 2 on the sum fits
+        // i64, so plain adds, not `FxWide`'s saturating ones (their tests).
         if F >= 2 {
             let p = |i: usize| m[i].mul_wide(v[i]).raw();
             FxWide::from_raw(p(0) + p(1) + p(2) + i64::from(m[3].raw()))
