@@ -91,32 +91,41 @@ impl<const FRAC: u32> Fx<FRAC> {
         // to rounding `v · 2^FRAC` in `f64` (tested).
         let bits = v.to_bits();
         let exp = ((bits >> 23) & 0xff) as i32;
-        let frac_bits = u64::from(bits & 0x7f_ffff);
+        let frac_bits = bits & 0x7f_ffff;
         let (m, e) = if exp == 0 {
             (frac_bits, 1) // subnormal: no implicit bit
         } else {
             (frac_bits | 1 << 23, exp)
         };
         let k = e - 150 + FRAC as i32;
-        let mag: u64 = if k >= 0 {
-            // m < 2^24: from k = 40 on the value is far beyond i32 (and
-            // infinity, exp = 255, lands here too).
-            if k >= 40 {
-                u64::MAX
+        // The magnitude in 32 bits, `2^31` standing for anything from
+        // `2^31` on (which saturates either way): the 64-bit shifts this
+        // once took were most of its cost, three times a vertex.
+        let mag: u32 = if k >= 0 {
+            // Only a normal number gets here (a subnormal's `k` is below
+            // `FRAC − 148 < 0`), so `m ≥ 2^23`: from `k = 8` on the value
+            // is at least `2^31` (infinity, exp = 255, too).
+            if k >= 8 {
+                1 << 31
             } else {
                 m << k
             }
         } else {
+            // From `s = 25` on `m < 2^24 ≤ 2^(s−1)`: it rounds to 0.
             let s = (-k) as u32;
-            if s >= 40 {
+            if s >= 25 {
                 0
             } else {
                 (m + (1 << (s - 1))) >> s
             }
         };
-        let mag = mag.min(1 << 32) as i64;
-        let signed = if bits >> 31 != 0 { -mag } else { mag };
-        Some(Self(sat_i32(signed)))
+        let neg = bits >> 31 != 0;
+        Some(Self(match (mag >= 1 << 31, neg) {
+            (true, false) => i32::MAX,
+            (true, true) => i32::MIN,
+            (false, false) => mag as i32,
+            (false, true) => -(mag as i32),
+        }))
     }
 
     /// Like [`Fx::try_from_f32`] but NaN becomes zero.
@@ -360,6 +369,48 @@ const fn sat_i32(v: i64) -> i32 {
     }
 }
 
+/// `floor(n / d)` for `d > 0`, exact for every such pair, with one 32-bit
+/// division and a few corrections when the quotient is small (below about
+/// `2^17`, as a projection's screen coordinates are) and a 64-bit division
+/// otherwise.
+///
+/// Why: on a 32-bit core `i64::div_euclid` is a call to a 64-bit division
+/// routine (about 100 instructions), twice per vertex on the fixed path's
+/// projection. Here `d` cut to its top 16 bits, rounded up, divides `n`
+/// cut by as many bits: that estimate is never above the quotient and below
+/// it by at most `(q + 1)/2^15 + 2`, and the exact remainder (one
+/// 32×32→64 multiply) corrects it.
+#[inline]
+pub fn div_floor_i64(n: i64, d: i64) -> i64 {
+    // For `n < 0`, `floor(n/d) = !floor(!n / d)` with `!n = −n − 1 ≥ 0`:
+    // the sign mask `s` flips both sides without a branch.
+    let s = n >> 63;
+    let m = (n ^ s) as u64;
+    (div_u64_small(m, d as u64) as i64) ^ s
+}
+
+/// `floor(n / d)` for `d > 0` ([`div_floor_i64`]'s unsigned part).
+#[inline]
+fn div_u64_small(n: u64, d: u64) -> u64 {
+    let k = (64 - d.leading_zeros()).saturating_sub(16);
+    // `d`'s top bits, plus one when bits were dropped (so `top > d / 2^k`
+    // and the estimate is at most the quotient); exact when none were.
+    let top = (d >> k) as u32 + u32::from(k != 0);
+    match u32::try_from(n >> k) {
+        Ok(nk) if top != 0 => {
+            let mut q = u64::from(nk / top);
+            // `q ≤ n / d`: no underflow; a few steps at most (see above).
+            let mut r = n - q * d;
+            while r >= d {
+                q += 1;
+                r -= d;
+            }
+            q
+        }
+        _ => n / d,
+    }
+}
+
 /// Integer square root: the largest `r` with `r * r <= v` (`v >= 0`;
 /// negative inputs give 0). Bit-by-bit, no floating point, so the result is
 /// identical on every target.
@@ -538,6 +589,40 @@ mod tests {
             let r = isqrt_u64(v);
             assert!(r.checked_mul(r).is_some_and(|s| s <= v), "{v}");
             assert!((r + 1).checked_mul(r + 1).is_none_or(|s| s > v), "{v}");
+        }
+    }
+
+    #[test]
+    fn wide_floor_division_equals_div_euclid() {
+        // Edges of each regime (exact 16-bit divisor, estimate, 64-bit
+        // fallback) and a pseudo-random sweep over all magnitudes.
+        let mut cases = std::vec![
+            (0i64, 1i64),
+            (-1, 1),
+            (i64::MIN, 1),
+            (i64::MAX, 1),
+            (i64::MIN, i64::MAX),
+            (i64::MAX, i64::MAX),
+            (-5, 3),
+            (5, 3),
+            ((1 << 32) - 1, 65535),
+            (1 << 32, 65535),
+            ((1 << 47) + 12345, (1 << 31) + 1),
+            (-(1 << 47) - 1, (1 << 31) + 1),
+            (((1 << 32) - 1) << 20, (1 << 35) - 1),
+        ];
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let (a, b) = (x, x.rotate_left(29));
+            let n = (a as i64) >> (a % 60);
+            let d = ((b >> 1) >> (b % 62)).max(1) as i64;
+            cases.push((n, d));
+        }
+        for (n, d) in cases {
+            assert_eq!(div_floor_i64(n, d), n.div_euclid(d), "{n} / {d}");
         }
     }
 }

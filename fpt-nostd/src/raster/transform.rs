@@ -27,7 +27,7 @@ use super::camera::Mat4;
 use super::clip::{ClipNum, ClipVert, GUARD};
 use super::precision::MathFns;
 use super::proof::{prove_float, VertexBound};
-use crate::fixed::{Fx, FxWide};
+use crate::fixed::{div_floor_i64, Fx, FxWide};
 
 /// Largest supported viewport side, in pixels.
 pub const MAX_DIM: u32 = 16384;
@@ -280,9 +280,14 @@ pub struct FloatPath<M>(PhantomData<M>);
 
 impl<const F: u32> FixedPath<F> {
     fn row(m: &[Fx<F>; 4], v: &[Fx<F>; 3]) -> FxWide<F> {
-        // Each product is < 2^62 before and < 2^(62-F) after the rescale,
-        // so the four-term sum cannot overflow i64.
-        m[0].mul_wide(v[0]) + m[1].mul_wide(v[1]) + m[2].mul_wide(v[2]) + FxWide::from_fx(m[3])
+        // Products ≤ 2^(62-F) after the rescale: from F = 2 on the sum fits
+        // i64, so plain adds, not `FxWide`'s saturating ones (their tests).
+        if F >= 2 {
+            let p = |i: usize| m[i].mul_wide(v[i]).raw();
+            FxWide::from_raw(p(0) + p(1) + p(2) + i64::from(m[3].raw()))
+        } else {
+            m[0].mul_wide(v[0]) + m[1].mul_wide(v[1]) + m[2].mul_wide(v[2]) + FxWide::from_fx(m[3])
+        }
     }
 
     fn apply(m: &[[Fx<F>; 4]; 4], v: [Fx<F>; 3]) -> ClipVert<FxWide<F>> {
@@ -352,7 +357,7 @@ impl<const F: u32> VertexPath for FixedPath<F> {
         let sx = ((vp.width as i64) << vp.sub) * (x + w);
         let sy = ((vp.height as i64) << vp.sub) * (w - y);
         let d = 2 * w;
-        let round = |n: i64| (2 * n + d).div_euclid(2 * d);
+        let round = |n: i64| div_floor_i64(2 * n + d, 2 * d);
         let lim = SCREEN_LIMIT as i64;
         Some(ScreenPt {
             x: round(sx).clamp(-lim, lim) as i32,
