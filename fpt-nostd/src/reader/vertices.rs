@@ -48,10 +48,21 @@ impl VertexDecoder<'_> {
     /// Vertex `v`, relative to the origin, decoded to `f32`.
     #[inline]
     pub fn get(&self, v: usize) -> [f32; 3] {
-        if let Some(r) = self.f32s.get(v) {
-            let w = |k: usize| f32::from_le_bytes([r[k], r[k + 1], r[k + 2], r[k + 3]]);
-            return [w(0), w(4), w(8)];
+        match self.f32s.get(v) {
+            Some(r) => {
+                let w = |k: usize| f32::from_le_bytes([r[k], r[k + 1], r[k + 2], r[k + 3]]);
+                [w(0), w(4), w(8)]
+            }
+            None => self.get_packed(v),
         }
+    }
+
+    /// [`VertexDecoder::get`] of the formats other than `f32` (and of an
+    /// index outside the section). Out of line and cold: the walks that
+    /// inline `get` keep only the `f32` read.
+    #[cold]
+    #[inline(never)]
+    fn get_packed(&self, v: usize) -> [f32; 3] {
         let at = v.wrapping_mul(self.format.vertex_len());
         let f = |r: &[u8], k: usize| -> [u8; 4] {
             let mut o = [0; 4];
