@@ -368,9 +368,12 @@ impl IntensityMemo {
 
     /// [`shade`], with the intensity of `normal` under `light` taken from
     /// or kept in the memo (which must be [`IntensityMemo::EMPTY`] or hold
-    /// only intensities under `light`). Out of line, as `shade` was: the
-    /// walk-and-fill function calls it once a face.
-    #[inline(never)]
+    /// only intensities under `light`). A hit is found in line (the hash,
+    /// one entry's key compared, the colour scaled: most faces of a scene
+    /// hit); a miss calls out of line, as the whole shading did (the walk
+    /// paid the call, its prologue and the normal passed through memory
+    /// for every face).
+    #[inline(always)]
     pub(crate) fn shade(
         &self,
         mode: ShadeMode,
@@ -379,29 +382,57 @@ impl IntensityMemo {
         color: [u8; 3],
     ) -> Rgb888 {
         let i = match mode {
-            ShadeMode::Flat => Fx14::ONE,
-            _ => self.intensity(light, normal),
+            ShadeMode::Flat => Some(Fx14::ONE),
+            _ => self.hit(normal),
         };
-        shade_color(mode, color, i)
+        match i {
+            Some(i) => shade_color(mode, color, i),
+            None => self.shade_miss(mode, light, normal, color),
+        }
     }
 
-    /// [`Light::intensity`] through the memo.
+    /// [`IntensityMemo::shade`] of a normal the memo does not hold: the
+    /// intensity computed and kept. Out of line and cold.
+    #[cold]
+    #[inline(never)]
+    fn shade_miss(
+        &self,
+        mode: ShadeMode,
+        light: &Light,
+        normal: [f32; 3],
+        color: [u8; 3],
+    ) -> Rgb888 {
+        shade_color(mode, color, self.intensity(light, normal))
+    }
+
+    /// The entry of `normal`'s bit patterns `b` (`None`: no memo).
     #[inline(always)]
-    fn intensity(&self, light: &Light, normal: [f32; 3]) -> Fx14 {
-        let b = normal.map(f32::to_bits);
+    fn entry(&self, b: [u32; 3]) -> Option<&Cell<[u32; 4]>> {
         // A multiplicative hash of the three patterns; its top bits pick
         // the entry (the axis normals ±1, 0 land in distinct entries).
         let h = (b[0] ^ b[1].rotate_left(11) ^ b[2].rotate_left(22)).wrapping_mul(0x9E37_79B1);
-        let Some(e) = self.entries.get((h >> 29) as usize % MEMO.max(1)) else {
-            return light.intensity(normal);
-        };
-        let [k0, k1, k2, i] = e.get();
+        self.entries.get((h >> 29) as usize % MEMO.max(1))
+    }
+
+    /// The intensity the memo holds for `normal`, if any.
+    #[inline(always)]
+    fn hit(&self, normal: [f32; 3]) -> Option<Fx14> {
+        let b = normal.map(f32::to_bits);
+        let [k0, k1, k2, i] = self.entry(b)?.get();
         // Word by word (an array comparison is a `memcmp` call).
-        if k0 == b[0] && k1 == b[1] && k2 == b[2] && i != NO_INTENSITY {
-            return Fx14::from_raw(i as i32);
-        }
+        (k0 == b[0] && k1 == b[1] && k2 == b[2] && i != NO_INTENSITY)
+            .then(|| Fx14::from_raw(i as i32))
+    }
+
+    /// [`Light::intensity`] of a normal the memo does not hold, kept in
+    /// its entry (evicting the entry's normal).
+    #[inline(always)]
+    fn intensity(&self, light: &Light, normal: [f32; 3]) -> Fx14 {
         let i = light.intensity(normal);
-        e.set([b[0], b[1], b[2], i.raw() as u32]);
+        let b = normal.map(f32::to_bits);
+        if let Some(e) = self.entry(b) {
+            e.set([b[0], b[1], b[2], i.raw() as u32]);
+        }
         i
     }
 }

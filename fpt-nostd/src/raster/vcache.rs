@@ -98,12 +98,9 @@ const NO_TAG: u32 = u32::MAX;
 #[derive(Debug)]
 pub struct VertexCache<'m> {
     /// Indexed layout: the slot of vertex `v` is `slots[v]`. Tagged: the
-    /// tag and the slot of the vertices `v` with `v & mask == i` at
+    /// tag and the slot of the vertices `v` with `v & (n − 1) == i` (`n` entries) at
     /// `slots[2i]` and `slots[2i + 1]`.
     slots: &'m mut [u32],
-    /// Tagged: the number of entries less one (a power of two less one),
-    /// the layout's only per-vertex parameter.
-    mask: u32,
     /// Whether the layout is tagged.
     tagged: bool,
 }
@@ -115,7 +112,6 @@ impl<'m> VertexCache<'m> {
     pub const fn new(slots: &'m mut [u32]) -> Self {
         VertexCache {
             slots,
-            mask: 0,
             tagged: false,
         }
     }
@@ -134,7 +130,6 @@ impl<'m> VertexCache<'m> {
         let (used, _) = words.split_at_mut(2 * n);
         VertexCache {
             slots: used,
-            mask: (n - 1) as u32,
             tagged: true,
         }
     }
@@ -218,11 +213,23 @@ impl<'m> VertexCache<'m> {
         slot_of(self.slots.get(v as usize).copied())
     }
 
+    /// The tagged layout's entry of vertex `v`: entry `v & (n − 1)` of
+    /// the `n` two-word entries (a power of two; `None` when there are
+    /// none). The mask is taken from the entries' own count, so the
+    /// compiler sees that the entry is in bounds whenever `n > 0`: one
+    /// test a frame, hoisted out of the lookup loops, not one a vertex.
+    #[inline(always)]
+    fn entry_mut(&mut self, v: u32) -> Option<&mut [u32; 2]> {
+        let entries = self.slots.as_chunks_mut::<2>().0;
+        let i = (v as usize) & entries.len().wrapping_sub(1);
+        entries.get_mut(i)
+    }
+
     /// [`VertexCache::get`] of the tagged layout.
     #[inline]
     fn get_tagged(&self, v: u32) -> Slot {
-        let i = 2 * (v & self.mask) as usize;
-        match self.slots.get(i..i + 2) {
+        let entries = self.slots.as_chunks::<2>().0;
+        match entries.get((v as usize) & entries.len().wrapping_sub(1)) {
             Some(&[tag, w]) if tag == v => Slot::Point(unpack(w)),
             Some(_) => Slot::Unset,
             None => Slot::Slow,
@@ -242,10 +249,7 @@ impl<'m> VertexCache<'m> {
         v: u32,
         word: impl FnOnce(u32) -> Option<u32>,
     ) -> Option<u32> {
-        let i = 2 * (v & self.mask) as usize;
-        let [tag, slot] = self.slots.get_mut(i..i + 2)? else {
-            return None;
-        };
+        let [tag, slot] = self.entry_mut(v)?;
         if *tag == v {
             return Some(*slot);
         }
@@ -286,10 +290,7 @@ impl<'m> VertexCache<'m> {
     /// does).
     #[inline]
     fn insert_tagged(&mut self, v: u32, p: Option<ScreenPt>) -> Option<ScreenPt> {
-        let i = 2 * (v & self.mask) as usize;
-        let [tag, slot] = self.slots.get_mut(i..i + 2)? else {
-            return None;
-        };
+        let [tag, slot] = self.entry_mut(v)?;
         let w = pack_tagged(p?)?;
         *tag = v;
         *slot = w;

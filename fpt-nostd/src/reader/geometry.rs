@@ -138,8 +138,13 @@ impl<'a> Geometry<'a> {
 
     #[inline]
     pub(super) fn decoder(&self) -> VertexDecoder<'a> {
+        let section = self.bytes.get(self.vertices..).unwrap_or(&[]);
         VertexDecoder {
-            section: self.bytes.get(self.vertices..).unwrap_or(&[]),
+            section,
+            f32s: match self.format {
+                VertexFormat::F32 => section.as_chunks::<12>().0,
+                _ => &[],
+            },
             format: self.format,
             q16_scale: self.q16_scale,
             q32_scale: self.q32_scale,

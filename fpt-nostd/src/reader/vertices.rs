@@ -20,6 +20,10 @@ pub struct Vertices<'a> {
 #[derive(Clone, Copy, Debug)]
 pub struct VertexDecoder<'a> {
     pub(super) section: &'a [u8],
+    /// The section as 12-byte records when it holds `f32` vertices, else
+    /// empty: an `f32` vertex is then one bounds check, which also stands
+    /// for the test of the format (a cache miss's decode, once a vertex).
+    pub(super) f32s: &'a [[u8; 12]],
     pub(super) format: VertexFormat,
     pub(super) q16_scale: [f32; 3],
     pub(super) q32_scale: f32,
@@ -44,6 +48,21 @@ impl VertexDecoder<'_> {
     /// Vertex `v`, relative to the origin, decoded to `f32`.
     #[inline]
     pub fn get(&self, v: usize) -> [f32; 3] {
+        match self.f32s.get(v) {
+            Some(r) => {
+                let w = |k: usize| f32::from_le_bytes([r[k], r[k + 1], r[k + 2], r[k + 3]]);
+                [w(0), w(4), w(8)]
+            }
+            None => self.get_packed(v),
+        }
+    }
+
+    /// [`VertexDecoder::get`] of the formats other than `f32` (and of an
+    /// index outside the section). Out of line and cold: the walks that
+    /// inline `get` keep only the `f32` read.
+    #[cold]
+    #[inline(never)]
+    fn get_packed(&self, v: usize) -> [f32; 3] {
         let at = v.wrapping_mul(self.format.vertex_len());
         let f = |r: &[u8], k: usize| -> [u8; 4] {
             let mut o = [0; 4];
