@@ -24,8 +24,10 @@
 //! chosen. The cost is bounded: a trial builds at most [`Look::group`]
 //! members greedily (stopping as soon as it adds more than the best so
 //! far, or at once when an earlier one added nothing), each node of the
-//! tree runs at most `candidates + alternatives + CUTTING + 2 × PIVOTS + 1`
-//! trials, and larger models look ahead less ([`look_for`]).
+//! tree runs at most `candidates + alternatives + CUTTING + 2 × PIVOTS + 2`
+//! trials (the last the plane of a [`dominant`] member), and larger models
+//! look ahead less ([`look_for`]). Larger groups run two trials at most,
+//! and only when they have a dominant member ([`Look::wide`]).
 //!
 //! On two threads, two trials run at once when a thread is free
 //! ([`cheapest`]), and a trial's subgroups may be built on two threads
@@ -168,9 +170,8 @@ pub const DOMINANT: f64 = 50.0;
 /// by trying it: in groups too large to look ahead (and not inside a
 /// trial) of models up to [`MEDIUM_MODEL`] polygons ([`Look::wide`]) the
 /// greedy choice and this plane are both tried ([`cheapest`]), and in the
-/// lookahead it is one more option. Every
-/// member's own area counts, so a curved mesh, whose facets are all
-/// small, rarely has one.
+/// lookahead it is one more option. A curved mesh, whose facets are all
+/// small, rarely has a dominant member.
 pub fn dominant(t: &Table, ctx: &Ctx) -> Option<usize> {
     let mut total = 0.0;
     let mut best: Option<(f64, usize)> = None;
