@@ -720,12 +720,21 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         s.runs + runs.len() * run_len + extra_planes.len() * RUN_LEN
     );
     out.resize(s.bunches, 0);
-    bunch_offsets.iter().for_each(|&o| put_u32(&mut out, o));
+    for &o in &bunch_offsets {
+        match fpt_nostd::format::bunch_offset_len(counts.runs) {
+            // Every offset is at most the run count, which fits.
+            2 => out.extend_from_slice(&(o as u16).to_le_bytes()),
+            _ => put_u32(&mut out, o),
+        }
+    }
     out.resize(s.nodes, 0);
-    node_recs
-        .iter()
-        .flatten()
-        .for_each(|&x| put_u32(&mut out, x));
+    // First bunch and switch (the levels follow from the next node's
+    // first bunch), then the bunch count.
+    for &[first_bunch, _, switch] in &node_recs {
+        put_u32(&mut out, first_bunch);
+        put_u32(&mut out, switch);
+    }
+    put_u32(&mut out, counts.bunches);
     out.resize(s.switches, 0);
     if records.is_some_and(|r| r.narrow.is_some()) {
         switch_refs.iter().for_each(|&i| put_u32(&mut out, i));

@@ -28,7 +28,7 @@
 //! | offset | type | field | meaning |
 //! |---:|---|---|---|
 //! | 0 | `[u8; 4]` | magic | [`MAGIC`], `b"FPTR"` |
-//! | 4 | `u16` | version | [`VERSION`] (3; version 2 had no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
+//! | 4 | `u16` | version | [`VERSION`] (4; version 3 had 12-byte node records with a level count, version 2 no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (112) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
 //! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; bit 5 [`FLAG_PLANES`] (only with bit 4): a shared plane table and 4-byte runs; other bits must be 0 |
@@ -241,25 +241,31 @@
 //! the polygons and each polygon's `run` field names the one run holding it.
 //! There are no runs when there are no polygons.
 //!
-//! ## Bunches (`bunch_count + 1` entries of `u32`)
+//! ## Bunches (`bunch_count + 1` entries of [`bunch_offset_len`] bytes)
 //!
 //! Polygons are numbered so that every bunch is a contiguous range of runs:
 //! bunch `b` holds the runs `offset[b] .. offset[b + 1]` (so the polygons
 //! from the start of the first to the end of the last). The offsets start at
 //! 0, never decrease and end at `run_count`, so every run, hence every
-//! polygon, is in exactly one bunch. Bunches may be empty.
+//! polygon, is in exactly one bunch. Bunches may be empty. An offset is a
+//! `u16` when `run_count` is at most 65,535, else a `u32` (version 4; a
+//! `u32` always in version 3).
 //!
-//! ## Connecting nodes (`node_count` entries of [`NODE_LEN`] = 12 bytes)
+//! ## Connecting nodes (`node_count` entries of [`NODE_LEN`] = 8 bytes, then a `u32`)
 //!
 //! | offset | type | field |
 //! |---:|---|---|
 //! | 0 | `u32` | first_bunch |
-//! | 4 | `u32` | level_count `n` |
-//! | 8 | `u32` | switch: index of its switch node, or [`NO_SWITCH`] |
+//! | 4 | `u32` | switch: index of its switch node, or [`NO_SWITCH`] |
 //!
-//! A node's bunches are `first_bunch ..`: `F_1, B_1, F_2, B_2, …, F_n, B_n`,
-//! then `O_k` of its switch if it has one. The nodes tile the bunch section in
-//! order (node 0 starts at bunch 0, each next node where the previous ends).
+//! then one `u32`, the bunch count (where a node after the last would
+//! start). A node's bunches are `first_bunch ..`: `F_1, B_1, F_2, B_2, …,
+//! F_n, B_n`, then `O_k` of its switch if it has one. The nodes tile the
+//! bunch section in order (node 0 starts at bunch 0, each next node where
+//! the previous ends), so a node's level count `n` is not stored: it is
+//! half of its bunches (the next node's first_bunch minus its own) less
+//! its `O_k` (a node record is 8 bytes instead of the 12 of version 3,
+//! which stored `n`; session 22).
 //!
 //! **Tree layout rule.** Node 0 is the root. The nodes are stored in
 //! breadth-first order: the `k`-th node (counting from 0, in storage order)
@@ -281,15 +287,15 @@
 //! The last 4 bytes are the CRC-32 (IEEE 802.3 / zlib, [`crc32`]) of all
 //! bytes before them.
 
-use core::fmt;
-
+mod error;
 mod sections;
+pub use error::FormatError;
 pub use sections::{Counts, Narrow, Records, Sections};
 
 /// The first four bytes of every tree file.
 pub const MAGIC: [u8; 4] = *b"FPTR";
 /// The format version this crate reads and writes.
-pub const VERSION: u16 = 3;
+pub const VERSION: u16 = 4;
 /// Length of the header in bytes.
 pub const HEADER_LEN: usize = 112;
 /// Length of one polygon record.
@@ -335,12 +341,23 @@ pub mod table_run {
 }
 /// Length of one run record.
 pub const RUN_LEN: usize = 20;
-/// Length of one connecting node record.
-pub const NODE_LEN: usize = 12;
+/// Length of one connecting node record (the node section has one more
+/// `u32` after them, the bunch count).
+pub const NODE_LEN: usize = 8;
 /// Length of one switch node record.
 pub const SWITCH_LEN: usize = 16;
 /// Length of the trailing checksum.
 pub const CRC_LEN: usize = 4;
+
+/// Bytes of one bunch offset in a file of `runs` runs: 2 (`u16`) when
+/// every offset fits, else 4.
+pub const fn bunch_offset_len(runs: u32) -> usize {
+    if runs <= u16::MAX as u32 {
+        2
+    } else {
+        4
+    }
+}
 /// Header flag: the model is a closed volume.
 pub const FLAG_CLOSED: u32 = 1;
 /// Header flag: the edge section is present.
@@ -469,10 +486,8 @@ pub mod run {
 pub mod node {
     /// `u32` first bunch.
     pub const FIRST_BUNCH: usize = 0;
-    /// `u32` number of levels.
-    pub const LEVEL_COUNT: usize = 4;
     /// `u32` switch index or [`super::NO_SWITCH`].
-    pub const SWITCH: usize = 8;
+    pub const SWITCH: usize = 4;
 }
 
 /// How vertex coordinates are encoded (chosen when the file is built).
@@ -590,79 +605,6 @@ impl UpAxis {
     /// The axis called `name` (as [`UpAxis::name`] spells it).
     pub fn from_name(name: &str) -> Option<UpAxis> {
         Self::ALL.into_iter().find(|a| a.name() == name)
-    }
-}
-
-/// Why a byte string is not a valid tree file.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FormatError {
-    /// Shorter than a header and a checksum.
-    TooShort,
-    /// The first four bytes are not [`MAGIC`].
-    BadMagic,
-    /// A version this reader does not know.
-    UnsupportedVersion(u16),
-    /// The header's file length differs from the length of the bytes.
-    LengthMismatch,
-    /// The stored CRC-32 differs from the one computed over the bytes.
-    Checksum,
-    /// A header field has a value outside its range; names the field.
-    BadHeader(&'static str),
-    /// The counts in the header do not add up to the file length.
-    SectionSizes,
-    /// An edge record's kind is not one of the known kinds.
-    BadEdge(u32),
-    /// A corner normal record is zero or has a component of −128.
-    BadNormal(u32),
-    /// This polygon's colour index is not below the colour table's length
-    /// (compact records).
-    BadColour(u32),
-    /// A float that must be finite is not; names the section.
-    NonFinite(&'static str),
-    /// A vertex index is not below the vertex count.
-    IndexOutOfRange,
-    /// This polygon's index range is empty, too short or out of order.
-    BadPolygon(u32),
-    /// The run ends or the polygons' run fields do not tile the polygons.
-    BadRuns,
-    /// The bunch offsets do not tile the runs.
-    BadBunches,
-    /// This connecting node breaks the bunch tiling or the switch numbering.
-    BadNode(u32),
-    /// This switch names a plane record past the runs and extra planes
-    /// ([`FLAG_NARROW`]).
-    BadSwitch(u32),
-    /// Some connecting nodes cannot be reached from the root.
-    NotATree,
-    /// The header's maximum depth differs from the tree's depth.
-    DepthMismatch,
-}
-
-impl fmt::Display for FormatError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            FormatError::TooShort => f.write_str("file too short for a tree header"),
-            FormatError::BadMagic => f.write_str("not a tree file (bad magic)"),
-            FormatError::UnsupportedVersion(v) => write!(f, "unsupported format version {v}"),
-            FormatError::LengthMismatch => f.write_str("file length differs from the header's"),
-            FormatError::Checksum => f.write_str("CRC-32 mismatch (file corrupted)"),
-            FormatError::BadHeader(field) => write!(f, "invalid header field {field}"),
-            FormatError::SectionSizes => {
-                f.write_str("section sizes do not add up to the file length")
-            }
-            FormatError::BadEdge(j) => write!(f, "invalid kind of edge record {j}"),
-            FormatError::BadNormal(j) => write!(f, "invalid corner normal record {j}"),
-            FormatError::BadColour(p) => write!(f, "colour index of polygon {p} out of range"),
-            FormatError::NonFinite(what) => write!(f, "non-finite number in {what}"),
-            FormatError::IndexOutOfRange => f.write_str("vertex index out of range"),
-            FormatError::BadPolygon(p) => write!(f, "invalid vertex range of polygon {p}"),
-            FormatError::BadRuns => f.write_str("plane runs do not tile the polygons"),
-            FormatError::BadBunches => f.write_str("bunch offsets do not tile the runs"),
-            FormatError::BadNode(n) => write!(f, "invalid connecting node {n}"),
-            FormatError::BadSwitch(k) => write!(f, "switch {k} names no plane record"),
-            FormatError::NotATree => f.write_str("node graph is not a tree"),
-            FormatError::DepthMismatch => f.write_str("tree depth differs from the header's"),
-        }
     }
 }
 

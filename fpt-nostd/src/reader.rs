@@ -99,6 +99,7 @@ use core::fmt;
 
 use crate::raster::proof::VertexBound;
 
+use crate::format::{bunch_offset_len, FLAG_PLANES, PLANE_LEN, TABLE_RUN_LEN};
 use crate::format::{
     crc32, header as h, le_f32, rd, rd_f32, rd_f32x3, rd_f64, rd_u16, rd_u32, rd_u8, Counts,
     FormatError, Sections, UpAxis, VertexFormat, CRC_LEN, FLAG_CLOSED, HEADER_LEN, MAGIC,
@@ -106,7 +107,6 @@ use crate::format::{
 };
 use crate::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT, FLAG_NARROW, SWITCH_REF_LEN};
 use crate::format::{FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
-use crate::format::{FLAG_PLANES, PLANE_LEN, TABLE_RUN_LEN};
 
 /// A plane `normal · (x − origin) + d = 0`, relative to the tree's origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -351,8 +351,18 @@ impl<'a> Tree<'a> {
         };
         let w = WalkData {
             runs,
-            bunches: section(s.bunches, counts.bunches.saturating_add(1), 4)?,
-            nodes: section(s.nodes, counts.nodes, NODE_LEN)?,
+            bunches: section(
+                s.bunches,
+                counts.bunches.saturating_add(1),
+                bunch_offset_len(counts.runs),
+            )?,
+            wide_bunches: bunch_offset_len(counts.runs) == 4,
+            // The node records (two words each), then the bunch count.
+            nodes: section(
+                s.nodes,
+                counts.nodes.saturating_mul(2).saturating_add(1),
+                NODE_LEN / 2,
+            )?,
             switches: section(s.switches, counts.switches, switch_len)?,
             shared,
         };

@@ -175,9 +175,20 @@ impl Raw {
             u32s(&mut o, &[*end]);
         }
         o.resize(s.bunches, 0);
-        u32s(&mut o, &self.bunches);
+        for &b in &self.bunches {
+            match crate::format::bunch_offset_len(counts.runs) {
+                2 => o.extend_from_slice(&(b as u16).to_le_bytes()),
+                _ => o.extend_from_slice(&b.to_le_bytes()),
+            }
+        }
         o.resize(s.nodes, 0);
-        self.nodes.iter().for_each(|n| u32s(&mut o, n));
+        // First bunch and switch; the level count only sets where the
+        // last node ends (the walk derives it from the next node's start).
+        self.nodes.iter().for_each(|n| u32s(&mut o, &[n[0], n[2]]));
+        let end = self.nodes.last().map_or(0, |&[first, levels, switch]| {
+            first + 2 * levels + u32::from(switch != u32::MAX)
+        });
+        u32s(&mut o, &[end]);
         o.resize(s.switches, 0);
         for p in &self.switches {
             p.iter().for_each(|x| o.extend_from_slice(&x.to_le_bytes()));

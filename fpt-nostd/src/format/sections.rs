@@ -9,9 +9,9 @@
 //! padded to a multiple of 4 bytes; see the parent module for the order.
 
 use super::{
-    VertexFormat, COLOUR_LEN, COMPACT_POLYGON_LEN, CRC_LEN, EDGE_LEN, HEADER_LEN, LAYOUT_LEN,
-    NARROW_LEN, NODE_LEN, NORMAL_LEN, PLANE_LEN, POLYGON_LEN, RUN_LEN, SWITCH_LEN, SWITCH_REF_LEN,
-    TABLE_RUN_LEN,
+    bunch_offset_len, VertexFormat, COLOUR_LEN, COMPACT_POLYGON_LEN, CRC_LEN, EDGE_LEN, HEADER_LEN,
+    LAYOUT_LEN, NARROW_LEN, NODE_LEN, NORMAL_LEN, PLANE_LEN, POLYGON_LEN, RUN_LEN, SWITCH_LEN,
+    SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
 use super::{FLAG_COMPACT, FLAG_NARROW, FLAG_PLANES};
@@ -172,8 +172,13 @@ impl Sections {
         let pt = next(nm, counts.normals, NORMAL_LEN);
         let r = next(pt, table, PLANE_LEN);
         let b = next(r, plane_records, run_len);
-        let n = next(b, counts.bunches.checked_add(1)?, 4);
-        let s = next(n, counts.nodes, NODE_LEN);
+        let n = next(
+            b,
+            counts.bunches.checked_add(1)?,
+            bunch_offset_len(counts.runs),
+        );
+        // The node records, then the bunch count as one more `u32`.
+        let s = next(n, counts.nodes, NODE_LEN) + 4;
         let c = next(s, counts.switches, switch_len);
         let end = c + CRC_LEN as u64;
         if end > u64::from(u32::MAX) {

@@ -326,9 +326,17 @@ fn rejects_bad_bunches_and_nodes() {
 
     let ok = two_floors();
     assert!(Tree::from_bytes(&ok.bytes()).is_ok());
-    // Node 2 does not start where node 1 ends.
+    // Node 2 does not start where node 1's level ends: node 1 would have
+    // half a level (its levels are derived from where node 2 starts).
     let mut r = ok.clone();
     r.nodes[2][0] = 2;
+    assert_eq!(
+        Tree::from_bytes(&r.bytes()).unwrap_err(),
+        FormatError::BadNode(1)
+    );
+    // The bunch count after the last node is not the header's.
+    let mut r = ok.clone();
+    r.nodes[2][1] = 2;
     assert_eq!(
         Tree::from_bytes(&r.bytes()).unwrap_err(),
         FormatError::BadNode(2)

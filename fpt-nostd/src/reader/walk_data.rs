@@ -7,8 +7,8 @@
 
 use super::Plane;
 use crate::format::{
-    le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, PLANE_LEN, RUN_LEN,
-    SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
+    le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, NO_SWITCH, PLANE_LEN,
+    RUN_LEN, SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
 use crate::format::{FLAG_NARROW, FLAG_PLANES};
@@ -107,12 +107,28 @@ pub(crate) fn table_plane(planes: &[u8], i: u32) -> &[u8; 16] {
     plane_at(planes, (i as usize).wrapping_mul(PLANE_LEN))
 }
 
-/// One connecting node record.
+/// Offsets `b` and `b + 1` of the bunch section `s`, of `L / 2` bytes
+/// each (zeros out of range).
+#[inline(always)]
+fn pair<const L: usize>(s: &[u8], b: u32) -> [u8; L] {
+    let start = (b as usize).wrapping_mul(L / 2);
+    start
+        .checked_add(L)
+        .and_then(|end| s.get(start..end))
+        .and_then(|s| s.try_into().ok())
+        .unwrap_or([0; L])
+}
+
+/// One connecting node, decoded from its record and the next one's first
+/// bunch.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NodeRec {
     pub first_bunch: u32,
     pub level_count: u32,
     pub switch: u32,
+    /// Whether it has a bunch (a level or a switch): an empty leaf has
+    /// nothing to emit.
+    pub has_bunches: bool,
 }
 
 /// The sections the walk reads for every view, each sliced to exactly its
@@ -122,9 +138,11 @@ pub(crate) struct NodeRec {
 pub(crate) struct WalkData<'a> {
     /// `run_count` run records and the plane table ([`Runs`]).
     pub(crate) runs: Runs<'a>,
-    /// `bunch_count + 1` offsets.
+    /// `bunch_count + 1` offsets, `u16` or with `wide_bunches` `u32`.
     pub(super) bunches: &'a [u8],
-    /// `node_count` records of [`NODE_LEN`] bytes.
+    /// Whether the bunch offsets are `u32` (more than 65,535 runs).
+    pub(super) wide_bunches: bool,
+    /// `node_count` records of [`NODE_LEN`] bytes, then the bunch count.
     pub(super) nodes: &'a [u8],
     /// `switch_count` records of [`SWITCH_LEN`] bytes, or of
     /// [`SWITCH_REF_LEN`] with shared planes ([`FLAG_NARROW`]).
@@ -138,34 +156,62 @@ pub(crate) struct WalkData<'a> {
 }
 
 impl<'a> WalkData<'a> {
-    /// Connecting node `i < node_count`.
+    /// Connecting node `i < node_count`: its record and the next one's
+    /// first bunch (the bunch count after the last), one 12-byte read.
+    /// Its levels are what its bunches leave after its `O_k`, halved
+    /// (validation makes that exact; wrapping, so never a panic).
     #[inline(always)]
     pub(crate) fn node(&self, i: u32) -> NodeRec {
-        let r = rec::<NODE_LEN>(self.nodes, i as usize);
+        let start = (i as usize).wrapping_mul(NODE_LEN);
+        let r: [u8; NODE_LEN + 4] = start
+            .checked_add(NODE_LEN + 4)
+            .and_then(|end| self.nodes.get(start..end))
+            .and_then(|s| s.try_into().ok())
+            .unwrap_or([0; NODE_LEN + 4]);
+        let first_bunch = le_u32(&r, nd::FIRST_BUNCH);
+        let switch = le_u32(&r, nd::SWITCH);
+        let bunches = le_u32(&r, NODE_LEN).wrapping_sub(first_bunch);
+        let on = u32::from(switch != NO_SWITCH);
         NodeRec {
-            first_bunch: le_u32(&r, nd::FIRST_BUNCH),
-            level_count: le_u32(&r, nd::LEVEL_COUNT),
-            switch: le_u32(&r, nd::SWITCH),
+            first_bunch,
+            level_count: bunches.wrapping_sub(on) >> 1,
+            switch,
+            has_bunches: bunches != 0,
         }
+    }
+
+    /// The first bunch of node `i ≤ node_count` (the bunch count for
+    /// `i = node_count`).
+    #[inline]
+    pub(crate) fn node_first_bunch(&self, i: u32) -> u32 {
+        le_u32(&rec::<4>(self.nodes, (i as usize).wrapping_mul(2)), 0)
     }
 
     /// The runs `start..end` of bunch `b < bunch_count`.
     #[inline(always)]
     pub(crate) fn bunch(&self, b: u32) -> (u32, u32) {
-        // Offsets b and b + 1: one 8-byte read at 4 · b.
-        let start = (b as usize).wrapping_mul(4);
-        let r: [u8; 8] = start
-            .checked_add(8)
-            .and_then(|end| self.bunches.get(start..end))
-            .and_then(|s| s.try_into().ok())
-            .unwrap_or([0; 8]);
-        (le_u32(&r, 0), le_u32(&r, 4))
+        // Offsets b and b + 1: one read of two offsets.
+        if self.wide_bunches {
+            let r = pair::<8>(self.bunches, b);
+            (le_u32(&r, 0), le_u32(&r, 4))
+        } else {
+            let [a0, a1, b0, b1] = pair::<4>(self.bunches, b);
+            (
+                u32::from(u16::from_le_bytes([a0, a1])),
+                u32::from(u16::from_le_bytes([b0, b1])),
+            )
+        }
     }
 
     /// Offset `b ≤ bunch_count` of the bunch section.
     #[inline]
     pub(crate) fn bunch_offset(&self, b: u32) -> u32 {
-        le_u32(&rec::<4>(self.bunches, b as usize), 0)
+        if self.wide_bunches {
+            le_u32(&rec::<4>(self.bunches, b as usize), 0)
+        } else {
+            let [lo, hi] = rec::<2>(self.bunches, b as usize);
+            u32::from(u16::from_le_bytes([lo, hi]))
+        }
     }
 
     /// One past the last polygon of run `r < run_count`.
