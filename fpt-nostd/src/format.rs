@@ -28,10 +28,10 @@
 //! | offset | type | field | meaning |
 //! |---:|---|---|---|
 //! | 0 | `[u8; 4]` | magic | [`MAGIC`], `b"FPTR"` |
-//! | 4 | `u16` | version | [`VERSION`] (4; version 3 had 12-byte node records with a level count, version 2 no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
+//! | 4 | `u16` | version | [`VERSION`] (3; version 2 had no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (112) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
-//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; bit 5 [`FLAG_PLANES`] (only with bit 4): a shared plane table and 4-byte runs; other bits must be 0 |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; bit 5 [`FLAG_PLANES`] (only with bit 4): a shared plane table and 4-byte runs; bit 6 [`FLAG_SMALL`]: `u16` bunch offsets and 8-byte node records; other bits must be 0 |
 //! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
@@ -241,31 +241,35 @@
 //! the polygons and each polygon's `run` field names the one run holding it.
 //! There are no runs when there are no polygons.
 //!
-//! ## Bunches (`bunch_count + 1` entries of [`bunch_offset_len`] bytes)
+//! ## Bunches (`bunch_count + 1` entries of `u32`, or of `u16` with [`FLAG_SMALL`])
 //!
 //! Polygons are numbered so that every bunch is a contiguous range of runs:
 //! bunch `b` holds the runs `offset[b] .. offset[b + 1]` (so the polygons
 //! from the start of the first to the end of the last). The offsets start at
 //! 0, never decrease and end at `run_count`, so every run, hence every
-//! polygon, is in exactly one bunch. Bunches may be empty. An offset is a
-//! `u16` when `run_count` is at most 65,535, else a `u32` (version 4; a
-//! `u32` always in version 3).
+//! polygon, is in exactly one bunch. Bunches may be empty.
 //!
-//! ## Connecting nodes (`node_count` entries of [`NODE_LEN`] = 8 bytes, then a `u32`)
+//! ## Connecting nodes (`node_count` entries of [`NODE_LEN`] = 12 bytes, or of [`SMALL_NODE_LEN`] = 8 with [`FLAG_SMALL`])
 //!
 //! | offset | type | field |
 //! |---:|---|---|
 //! | 0 | `u32` | first_bunch |
-//! | 4 | `u32` | switch: index of its switch node, or [`NO_SWITCH`] |
+//! | 4 | `u32` | level_count `n` |
+//! | 8 | `u32` | switch: index of its switch node, or [`NO_SWITCH`] |
 //!
-//! then one `u32`, the bunch count (where a node after the last would
-//! start). A node's bunches are `first_bunch ..`: `F_1, B_1, F_2, B_2, …,
-//! F_n, B_n`, then `O_k` of its switch if it has one. The nodes tile the
-//! bunch section in order (node 0 starts at bunch 0, each next node where
-//! the previous ends), so a node's level count `n` is not stored: it is
-//! half of its bunches (the next node's first_bunch minus its own) less
-//! its `O_k` (a node record is 8 bytes instead of the 12 of version 3,
-//! which stored `n`; session 22).
+//! A node's bunches are `first_bunch ..`: `F_1, B_1, F_2, B_2, …, F_n, B_n`,
+//! then `O_k` of its switch if it has one. The nodes tile the bunch section in
+//! order (node 0 starts at bunch 0, each next node where the previous ends).
+//!
+//! **Small walk records** (flag [`FLAG_SMALL`], session 22; written when
+//! the file has at most 65,535 runs, 32,767 switches and 65,535 levels in
+//! a node): a bunch offset is a `u16`, and a node record is 8 bytes:
+//! `u32` first_bunch, `u16` level_count, `i16` switch (−1: none, which a
+//! sign-extending load makes [`NO_SWITCH`]), so the walk reads them with
+//! as many loads as the wide ones. A reader without fpt-nostd's
+//! `large-trees` feature reads only such files (its walk then has one
+//! layout, chosen at compile time: a choice per read cost the firmware's
+//! frames 0.5 %); the host tools read both.
 //!
 //! **Tree layout rule.** Node 0 is the root. The nodes are stored in
 //! breadth-first order: the `k`-th node (counting from 0, in storage order)
@@ -295,7 +299,7 @@ pub use sections::{Counts, Narrow, Records, Sections};
 /// The first four bytes of every tree file.
 pub const MAGIC: [u8; 4] = *b"FPTR";
 /// The format version this crate reads and writes.
-pub const VERSION: u16 = 4;
+pub const VERSION: u16 = 3;
 /// Length of the header in bytes.
 pub const HEADER_LEN: usize = 112;
 /// Length of one polygon record.
@@ -341,23 +345,22 @@ pub mod table_run {
 }
 /// Length of one run record.
 pub const RUN_LEN: usize = 20;
-/// Length of one connecting node record (the node section has one more
-/// `u32` after them, the bunch count).
-pub const NODE_LEN: usize = 8;
+/// Length of one connecting node record.
+pub const NODE_LEN: usize = 12;
+/// Length of one connecting node record with [`FLAG_SMALL`].
+pub const SMALL_NODE_LEN: usize = 8;
+/// Header flag: small walk records, `u16` bunch offsets and 8-byte node
+/// records ([`SMALL_NODE_LEN`]).
+pub const FLAG_SMALL: u32 = 1 << 6;
+/// Largest run count of a file with [`FLAG_SMALL`].
+pub const SMALL_MAX_RUNS: u32 = u16::MAX as u32;
+/// Largest switch count of a file with [`FLAG_SMALL`] (a switch index is
+/// an `i16`).
+pub const SMALL_MAX_SWITCHES: u32 = i16::MAX as u32;
 /// Length of one switch node record.
 pub const SWITCH_LEN: usize = 16;
 /// Length of the trailing checksum.
 pub const CRC_LEN: usize = 4;
-
-/// Bytes of one bunch offset in a file of `runs` runs: 2 (`u16`) when
-/// every offset fits, else 4.
-pub const fn bunch_offset_len(runs: u32) -> usize {
-    if runs <= u16::MAX as u32 {
-        2
-    } else {
-        4
-    }
-}
 /// Header flag: the model is a closed volume.
 pub const FLAG_CLOSED: u32 = 1;
 /// Header flag: the edge section is present.
@@ -486,8 +489,13 @@ pub mod run {
 pub mod node {
     /// `u32` first bunch.
     pub const FIRST_BUNCH: usize = 0;
-    /// `u32` switch index or [`super::NO_SWITCH`].
-    pub const SWITCH: usize = 4;
+    /// `u32` number of levels (`u16` with [`super::FLAG_SMALL`]).
+    pub const LEVEL_COUNT: usize = 4;
+    /// `u32` switch index or [`super::NO_SWITCH`] (`i16` at byte 6 with
+    /// [`super::FLAG_SMALL`], −1 for none).
+    pub const SWITCH: usize = 8;
+    /// `i16` switch index of a small record.
+    pub const SMALL_SWITCH: usize = 6;
 }
 
 /// How vertex coordinates are encoded (chosen when the file is built).

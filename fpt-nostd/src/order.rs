@@ -44,8 +44,7 @@
 //! - per **bunch** visited: two offsets read; an empty one (common: most
 //!   levels have only `F_j` or only `B_j`, and a closed volume looks at one
 //!   of the two per pass) costs no class;
-//! - per **connecting node**: its 8-byte record (and the next one's first
-//!   bunch, whence its level count) copied into a frame, one
+//! - per **connecting node**: its 12-byte record copied into a frame, one
 //!   facing test for its switch; empty leaves (no levels, no switch: the
 //!   children of a BSP tree's leaf switches) are never entered, whether a
 //!   child is pushed is decided without a branch, and a node without levels
@@ -443,7 +442,7 @@ impl<'a, const N: usize> Order<'a, N> {
         // Branch-free: the frame is written in any case and kept by moving
         // the length, since whether a child is empty is data the branch
         // predictor cannot guess (about half the children of a BSP tree).
-        let keep = n.has_bunches;
+        let keep = n.level_count != 0 || n.switch != NO_SWITCH;
         // Validation bounds the depth by N, so there is always room; were
         // there none, the subtree would be skipped rather than panic.
         if let Some(slot) = self.stack.get_mut(self.len) {

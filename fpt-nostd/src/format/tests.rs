@@ -31,6 +31,7 @@ fn sections_are_padded_and_ordered() {
         runs: 1,
         edges: 0,
         normals: 0,
+        small: false,
     };
     let s = Sections::new(&c, VertexFormat::Q16, 2).unwrap();
     assert_eq!(s.vertices, HEADER_LEN);
@@ -51,13 +52,12 @@ fn sections_are_padded_and_ordered() {
     assert_eq!(both.normals, with_edges.runs);
     assert_eq!(both.runs, both.normals + 12); // 9 bytes padded to 12
     assert_eq!(s.bunches, s.runs + RUN_LEN);
-    // Two u16 bunch offsets; one node record and the bunch count.
-    assert_eq!(s.nodes, s.bunches + 4);
-    assert_eq!(s.switches, s.nodes + NODE_LEN + 4);
-    // u32 bunch offsets from 65,536 runs on.
-    assert_eq!(bunch_offset_len(65_535), 2);
-    let many_runs = Sections::new(&Counts { runs: 65_536, ..c }, VertexFormat::Q16, 2).unwrap();
-    assert_eq!(many_runs.nodes, many_runs.bunches + 8);
+    assert_eq!(s.nodes, s.bunches + 8);
+    assert_eq!(s.switches, s.nodes + NODE_LEN);
+    // Small walk records: two u16 offsets, an 8-byte node.
+    let small = Sections::new(&Counts { small: true, ..c }, VertexFormat::Q16, 2).unwrap();
+    assert_eq!(small.nodes, small.bunches + 4);
+    assert_eq!(small.switches, small.nodes + SMALL_NODE_LEN);
     assert_eq!(s.crc, s.switches);
     assert_eq!(s.file_len, s.crc + CRC_LEN);
     let huge = Counts {
@@ -107,6 +107,7 @@ fn narrow_sections_follow_the_colours_and_share_planes() {
         runs: 2,
         edges: 0,
         normals: 0,
+        small: false,
     };
     let compact = Sections::with_compact(&c, VertexFormat::Q16, 2, Some(2)).unwrap();
     let records = Records {
