@@ -152,10 +152,11 @@
 //!
 //! ## Plane table (flag [`FLAG_PLANES`])
 //!
-//! Written by default since session 21 (`fpt build --records narrow`
-//! writes the 20-byte runs of sessions 17 to 20), when the file has at
-//! most 65,535 polygons and 65,536 distinct planes and the table makes
-//! the file no larger. On a curved model nearly every polygon is a run
+//! Opt-in since session 21 (`fpt build --records table`; the default
+//! `narrow` writes the 20-byte runs of sessions 17 to 20), when the file
+//! has at most 65,535 polygons and 65,536 distinct planes and the table
+//! makes the file no larger; read only with fpt-nostd's `plane-table`
+//! feature. On a curved model nearly every polygon is a run
 //! of its own and a plane is shared by the pieces of one split face in
 //! several bunches, so the 16 bytes of a plane were stored once per run;
 //! with the table they are stored once per distinct plane:
