@@ -30,6 +30,9 @@
 //!   the bytes its five fields need, and a switch's plane is the index of
 //!   a plane record: the first run with that exact plane, or one stored
 //!   after the runs ([`fpt_nostd::format::FLAG_NARROW`]);
+//! - bunch offsets are `u16` and node records 8 bytes when the tree has
+//!   at most 65,535 runs, 32,767 switches and 65,535 levels in a node
+//!   ([`fpt_nostd::format::FLAG_SMALL`]);
 //! - with [`SerializeOptions::plane_table`] too (opt-in), every
 //!   distinct run and switch plane is stored once in a table, a run is
 //!   4 bytes (`u16` end, `u16` plane index), and a polygon's run field and
@@ -53,6 +56,7 @@ use fpt_nostd::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT};
 use fpt_nostd::format::{EDGE_LEN, FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 use fpt_nostd::format::{FLAG_NARROW, NARROW_LEN, SWITCH_REF_LEN};
 use fpt_nostd::format::{FLAG_PLANES, PLANE_LEN, TABLE_RUN_LEN};
+use fpt_nostd::format::{FLAG_SMALL, SMALL_MAX_RUNS, SMALL_MAX_SWITCHES};
 use glam::DVec3;
 
 use crate::edges::{edge_kinds, hidden_edges, FaceKey, DEFAULT_CREASE_DEG};
@@ -536,6 +540,11 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         runs: count(runs.len())?,
         edges: if outline { count(indices.len())? } else { 0 },
         normals: if smooth { count(indices.len())? } else { 0 },
+        // Small walk records whenever their fields hold the tree (what
+        // a firmware reads without the `large-trees` feature).
+        small: runs.len() <= SMALL_MAX_RUNS as usize
+            && switch_planes.len() <= SMALL_MAX_SWITCHES as usize
+            && node_recs.iter().all(|n| n[1] <= u32::from(u16::MAX)),
     };
     let plan = Plan::new(&PlanInput {
         tree,
@@ -575,7 +584,8 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
             } else {
                 0
             }
-            | if table.is_some() { FLAG_PLANES } else { 0 },
+            | if table.is_some() { FLAG_PLANES } else { 0 }
+            | if counts.small { FLAG_SMALL } else { 0 },
     );
     put_u32(&mut out, effects);
     out.extend_from_slice(&[
@@ -720,12 +730,26 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         s.runs + runs.len() * run_len + extra_planes.len() * RUN_LEN
     );
     out.resize(s.bunches, 0);
-    bunch_offsets.iter().for_each(|&o| put_u32(&mut out, o));
+    for &o in &bunch_offsets {
+        if counts.small {
+            // At most the run count, which fits.
+            out.extend_from_slice(&(o as u16).to_le_bytes());
+        } else {
+            put_u32(&mut out, o);
+        }
+    }
     out.resize(s.nodes, 0);
-    node_recs
-        .iter()
-        .flatten()
-        .for_each(|&x| put_u32(&mut out, x));
+    for &[first_bunch, levels, switch] in &node_recs {
+        put_u32(&mut out, first_bunch);
+        if counts.small {
+            // Checked above; NO_SWITCH becomes −1.
+            out.extend_from_slice(&(levels as u16).to_le_bytes());
+            out.extend_from_slice(&(switch as i32 as i16).to_le_bytes());
+        } else {
+            put_u32(&mut out, levels);
+            put_u32(&mut out, switch);
+        }
+    }
     out.resize(s.switches, 0);
     if records.is_some_and(|r| r.narrow.is_some()) {
         switch_refs.iter().for_each(|&i| put_u32(&mut out, i));

@@ -31,7 +31,7 @@
 //! | 4 | `u16` | version | [`VERSION`] (3; version 2 had no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (112) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
-//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; bit 5 [`FLAG_PLANES`] (only with bit 4): a shared plane table and 4-byte runs; other bits must be 0 |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; bit 5 [`FLAG_PLANES`] (only with bit 4): a shared plane table and 4-byte runs; bit 6 [`FLAG_SMALL`]: `u16` bunch offsets and 8-byte node records; other bits must be 0 |
 //! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
@@ -152,10 +152,11 @@
 //!
 //! ## Plane table (flag [`FLAG_PLANES`])
 //!
-//! Written by default since session 21 (`fpt build --records narrow`
-//! writes the 20-byte runs of sessions 17 to 20), when the file has at
-//! most 65,535 polygons and 65,536 distinct planes and the table makes
-//! the file no larger. On a curved model nearly every polygon is a run
+//! Opt-in since session 21 (`fpt build --records table`; the default
+//! `narrow` writes the 20-byte runs of sessions 17 to 20), when the file
+//! has at most 65,535 polygons and 65,536 distinct planes and the table
+//! makes the file no larger; read only with fpt-nostd's `plane-table`
+//! feature. On a curved model nearly every polygon is a run
 //! of its own and a plane is shared by the pieces of one split face in
 //! several bunches, so the 16 bytes of a plane were stored once per run;
 //! with the table they are stored once per distinct plane:
@@ -241,7 +242,7 @@
 //! the polygons and each polygon's `run` field names the one run holding it.
 //! There are no runs when there are no polygons.
 //!
-//! ## Bunches (`bunch_count + 1` entries of `u32`)
+//! ## Bunches (`bunch_count + 1` entries of `u32`, or of `u16` with [`FLAG_SMALL`])
 //!
 //! Polygons are numbered so that every bunch is a contiguous range of runs:
 //! bunch `b` holds the runs `offset[b] .. offset[b + 1]` (so the polygons
@@ -249,7 +250,7 @@
 //! 0, never decrease and end at `run_count`, so every run, hence every
 //! polygon, is in exactly one bunch. Bunches may be empty.
 //!
-//! ## Connecting nodes (`node_count` entries of [`NODE_LEN`] = 12 bytes)
+//! ## Connecting nodes (`node_count` entries of [`NODE_LEN`] = 12 bytes, or of [`SMALL_NODE_LEN`] = 8 with [`FLAG_SMALL`])
 //!
 //! | offset | type | field |
 //! |---:|---|---|
@@ -260,6 +261,16 @@
 //! A node's bunches are `first_bunch ..`: `F_1, B_1, F_2, B_2, …, F_n, B_n`,
 //! then `O_k` of its switch if it has one. The nodes tile the bunch section in
 //! order (node 0 starts at bunch 0, each next node where the previous ends).
+//!
+//! **Small walk records** (flag [`FLAG_SMALL`], session 22; written when
+//! the file has at most 65,535 runs, 32,767 switches and 65,535 levels in
+//! a node): a bunch offset is a `u16`, and a node record is 8 bytes:
+//! `u32` first_bunch, `u16` level_count, `i16` switch (−1: none, which a
+//! sign-extending load makes [`NO_SWITCH`]), so the walk reads them with
+//! as many loads as the wide ones. A reader without fpt-nostd's
+//! `large-trees` feature reads only such files (its walk then has one
+//! layout, chosen at compile time: a choice per read cost the firmware's
+//! frames 0.5 %); the host tools read both.
 //!
 //! **Tree layout rule.** Node 0 is the root. The nodes are stored in
 //! breadth-first order: the `k`-th node (counting from 0, in storage order)
@@ -281,9 +292,9 @@
 //! The last 4 bytes are the CRC-32 (IEEE 802.3 / zlib, [`crc32`]) of all
 //! bytes before them.
 
-use core::fmt;
-
+mod error;
 mod sections;
+pub use error::FormatError;
 pub use sections::{Counts, Narrow, Records, Sections};
 
 /// The first four bytes of every tree file.
@@ -337,6 +348,16 @@ pub mod table_run {
 pub const RUN_LEN: usize = 20;
 /// Length of one connecting node record.
 pub const NODE_LEN: usize = 12;
+/// Length of one connecting node record with [`FLAG_SMALL`].
+pub const SMALL_NODE_LEN: usize = 8;
+/// Header flag: small walk records, `u16` bunch offsets and 8-byte node
+/// records ([`SMALL_NODE_LEN`]).
+pub const FLAG_SMALL: u32 = 1 << 6;
+/// Largest run count of a file with [`FLAG_SMALL`].
+pub const SMALL_MAX_RUNS: u32 = u16::MAX as u32;
+/// Largest switch count of a file with [`FLAG_SMALL`] (a switch index is
+/// an `i16`).
+pub const SMALL_MAX_SWITCHES: u32 = i16::MAX as u32;
 /// Length of one switch node record.
 pub const SWITCH_LEN: usize = 16;
 /// Length of the trailing checksum.
@@ -469,10 +490,13 @@ pub mod run {
 pub mod node {
     /// `u32` first bunch.
     pub const FIRST_BUNCH: usize = 0;
-    /// `u32` number of levels.
+    /// `u32` number of levels (`u16` with [`super::FLAG_SMALL`]).
     pub const LEVEL_COUNT: usize = 4;
-    /// `u32` switch index or [`super::NO_SWITCH`].
+    /// `u32` switch index or [`super::NO_SWITCH`] (`i16` at byte 6 with
+    /// [`super::FLAG_SMALL`], −1 for none).
     pub const SWITCH: usize = 8;
+    /// `i16` switch index of a small record.
+    pub const SMALL_SWITCH: usize = 6;
 }
 
 /// How vertex coordinates are encoded (chosen when the file is built).
@@ -590,79 +614,6 @@ impl UpAxis {
     /// The axis called `name` (as [`UpAxis::name`] spells it).
     pub fn from_name(name: &str) -> Option<UpAxis> {
         Self::ALL.into_iter().find(|a| a.name() == name)
-    }
-}
-
-/// Why a byte string is not a valid tree file.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FormatError {
-    /// Shorter than a header and a checksum.
-    TooShort,
-    /// The first four bytes are not [`MAGIC`].
-    BadMagic,
-    /// A version this reader does not know.
-    UnsupportedVersion(u16),
-    /// The header's file length differs from the length of the bytes.
-    LengthMismatch,
-    /// The stored CRC-32 differs from the one computed over the bytes.
-    Checksum,
-    /// A header field has a value outside its range; names the field.
-    BadHeader(&'static str),
-    /// The counts in the header do not add up to the file length.
-    SectionSizes,
-    /// An edge record's kind is not one of the known kinds.
-    BadEdge(u32),
-    /// A corner normal record is zero or has a component of −128.
-    BadNormal(u32),
-    /// This polygon's colour index is not below the colour table's length
-    /// (compact records).
-    BadColour(u32),
-    /// A float that must be finite is not; names the section.
-    NonFinite(&'static str),
-    /// A vertex index is not below the vertex count.
-    IndexOutOfRange,
-    /// This polygon's index range is empty, too short or out of order.
-    BadPolygon(u32),
-    /// The run ends or the polygons' run fields do not tile the polygons.
-    BadRuns,
-    /// The bunch offsets do not tile the runs.
-    BadBunches,
-    /// This connecting node breaks the bunch tiling or the switch numbering.
-    BadNode(u32),
-    /// This switch names a plane record past the runs and extra planes
-    /// ([`FLAG_NARROW`]).
-    BadSwitch(u32),
-    /// Some connecting nodes cannot be reached from the root.
-    NotATree,
-    /// The header's maximum depth differs from the tree's depth.
-    DepthMismatch,
-}
-
-impl fmt::Display for FormatError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            FormatError::TooShort => f.write_str("file too short for a tree header"),
-            FormatError::BadMagic => f.write_str("not a tree file (bad magic)"),
-            FormatError::UnsupportedVersion(v) => write!(f, "unsupported format version {v}"),
-            FormatError::LengthMismatch => f.write_str("file length differs from the header's"),
-            FormatError::Checksum => f.write_str("CRC-32 mismatch (file corrupted)"),
-            FormatError::BadHeader(field) => write!(f, "invalid header field {field}"),
-            FormatError::SectionSizes => {
-                f.write_str("section sizes do not add up to the file length")
-            }
-            FormatError::BadEdge(j) => write!(f, "invalid kind of edge record {j}"),
-            FormatError::BadNormal(j) => write!(f, "invalid corner normal record {j}"),
-            FormatError::BadColour(p) => write!(f, "colour index of polygon {p} out of range"),
-            FormatError::NonFinite(what) => write!(f, "non-finite number in {what}"),
-            FormatError::IndexOutOfRange => f.write_str("vertex index out of range"),
-            FormatError::BadPolygon(p) => write!(f, "invalid vertex range of polygon {p}"),
-            FormatError::BadRuns => f.write_str("plane runs do not tile the polygons"),
-            FormatError::BadBunches => f.write_str("bunch offsets do not tile the runs"),
-            FormatError::BadNode(n) => write!(f, "invalid connecting node {n}"),
-            FormatError::BadSwitch(k) => write!(f, "switch {k} names no plane record"),
-            FormatError::NotATree => f.write_str("node graph is not a tree"),
-            FormatError::DepthMismatch => f.write_str("tree depth differs from the header's"),
-        }
     }
 }
 

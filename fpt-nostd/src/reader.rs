@@ -25,6 +25,9 @@
 //!   the `plane-table` feature): every entry finite, every run's and
 //!   switch's plane index below the table's length, and each polygon's
 //!   run field its run's plane index;
+//! - small walk records ([`crate::format::FLAG_SMALL`]; only these
+//!   without the `large-trees` feature): at most 65,535 runs and 32,767
+//!   switches, and a switch field of −1 or an index;
 //! - every vertex index is below the vertex count, every polygon has at least
 //!   3 vertices and the polygons tile the index list; every edge record
 //!   (optional section) has a known kind; every corner normal (optional
@@ -107,6 +110,7 @@ use crate::format::{
 use crate::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT, FLAG_NARROW, SWITCH_REF_LEN};
 use crate::format::{FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 use crate::format::{FLAG_PLANES, PLANE_LEN, TABLE_RUN_LEN};
+use crate::format::{FLAG_SMALL, SMALL_MAX_RUNS, SMALL_MAX_SWITCHES, SMALL_NODE_LEN};
 
 /// A plane `normal · (x − origin) + d = 0`, relative to the tree's origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -257,8 +261,18 @@ impl<'a> Tree<'a> {
         } else {
             0
         };
-        let known = FLAG_CLOSED | FLAG_EDGES | FLAG_NORMALS | FLAG_COMPACT | FLAG_NARROW | planes;
+        let known = FLAG_CLOSED
+            | FLAG_EDGES
+            | FLAG_NORMALS
+            | FLAG_COMPACT
+            | FLAG_NARROW
+            | planes
+            | FLAG_SMALL;
+        // Without the `large-trees` feature, only small walk records: the
+        // walk then reads one layout.
+        let large = cfg!(feature = "large-trees");
         if flags & !known != 0
+            || (!large && flags & FLAG_SMALL == 0)
             || (flags & FLAG_NARROW != 0 && flags & FLAG_COMPACT == 0)
             || (flags & FLAG_PLANES != 0 && flags & FLAG_NARROW == 0)
         {
@@ -290,6 +304,7 @@ impl<'a> Tree<'a> {
             runs: rd_u32(bytes, h::RUN_COUNT),
             edges: 0,
             normals: 0,
+            small: flags & FLAG_SMALL != 0,
         };
         let optional = |flag: u32| if flags & flag != 0 { counts.indices } else { 0 };
         let counts = Counts {
@@ -311,6 +326,11 @@ impl<'a> Tree<'a> {
         }
         if u64::from(counts.nodes) != 2 * u64::from(counts.switches) + 1 {
             return Err(FormatError::NotATree);
+        }
+        // What small records can number (a node's levels are checked
+        // against the bunches they tile).
+        if counts.small && (counts.runs > SMALL_MAX_RUNS || counts.switches > SMALL_MAX_SWITCHES) {
+            return Err(FormatError::BadHeader("flags"));
         }
 
         let origin = [0, 8, 16].map(|o| rd_f64(bytes, h::ORIGIN + o));
@@ -351,8 +371,22 @@ impl<'a> Tree<'a> {
         };
         let w = WalkData {
             runs,
-            bunches: section(s.bunches, counts.bunches.saturating_add(1), 4)?,
-            nodes: section(s.nodes, counts.nodes, NODE_LEN)?,
+            bunches: section(
+                s.bunches,
+                counts.bunches.saturating_add(1),
+                if counts.small { 2 } else { 4 },
+            )?,
+            nodes: section(
+                s.nodes,
+                counts.nodes,
+                if counts.small {
+                    SMALL_NODE_LEN
+                } else {
+                    NODE_LEN
+                },
+            )?,
+            #[cfg(feature = "large-trees")]
+            small: counts.small,
             switches: section(s.switches, counts.switches, switch_len)?,
             shared,
         };
@@ -456,6 +490,12 @@ impl<'a> Tree<'a> {
     /// ([`FLAG_NARROW`]).
     pub fn has_shared_planes(&self) -> bool {
         self.w.shared
+    }
+
+    /// Whether the bunch offsets and node records are small ones
+    /// ([`FLAG_SMALL`]).
+    pub fn has_small_records(&self) -> bool {
+        self.w.small()
     }
 
     /// Whether the run and switch planes are in a shared plane table

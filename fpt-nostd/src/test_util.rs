@@ -6,7 +6,9 @@ extern crate std;
 
 use std::vec::Vec;
 
-use crate::format::{crc32, Counts, Sections, VertexFormat, HEADER_LEN, MAGIC, VERSION};
+use crate::format::{
+    crc32, Counts, Sections, VertexFormat, FLAG_SMALL, HEADER_LEN, MAGIC, VERSION,
+};
 
 /// Every field of a file, unchecked.
 #[derive(Clone, Debug)]
@@ -31,6 +33,11 @@ pub struct Raw {
     pub bunches: Vec<u32>,
     pub nodes: Vec<[u32; 3]>,
     pub switches: Vec<[f32; 4]>,
+    /// Small walk records ([`crate::format::FLAG_SMALL`], set in
+    /// `flags` when the file is written): `u16` bunch offsets, 8-byte
+    /// nodes. On by default: a reader without the `large-trees` feature
+    /// reads only these.
+    pub small: bool,
 }
 
 impl Raw {
@@ -53,6 +60,7 @@ impl Raw {
             bunches: std::vec![0],
             nodes: std::vec![[0, 0, u32::MAX]],
             switches: Vec::new(),
+            small: true,
         }
     }
 
@@ -106,6 +114,7 @@ impl Raw {
             runs: self.runs.len() as u32,
             edges: 0,
             normals: 0,
+            small: self.small,
         };
         let isz = usize::from(self.index_size).max(2);
         let s = Sections::new(&counts, self.format, isz).unwrap();
@@ -120,7 +129,8 @@ impl Raw {
         let effects = self.effects.unwrap_or(
             crate::effects::Effects::defaults(self.flags & crate::format::FLAG_CLOSED != 0).bits(),
         );
-        u32s(&mut o, &[s.file_len as u32, self.flags, effects]);
+        let small = if self.small { FLAG_SMALL } else { 0 };
+        u32s(&mut o, &[s.file_len as u32, self.flags | small, effects]);
         o.extend_from_slice(&[self.format.code(), self.shift, self.index_size, 0]);
         u32s(
             &mut o,
@@ -175,9 +185,23 @@ impl Raw {
             u32s(&mut o, &[*end]);
         }
         o.resize(s.bunches, 0);
-        u32s(&mut o, &self.bunches);
+        for &b in &self.bunches {
+            if self.small {
+                o.extend_from_slice(&(b as u16).to_le_bytes());
+            } else {
+                o.extend_from_slice(&b.to_le_bytes());
+            }
+        }
         o.resize(s.nodes, 0);
-        self.nodes.iter().for_each(|n| u32s(&mut o, n));
+        for &[first, levels, switch] in &self.nodes {
+            if self.small {
+                u32s(&mut o, &[first]);
+                o.extend_from_slice(&(levels as u16).to_le_bytes());
+                o.extend_from_slice(&(switch as i32 as i16).to_le_bytes());
+            } else {
+                u32s(&mut o, &[first, levels, switch]);
+            }
+        }
         o.resize(s.switches, 0);
         for p in &self.switches {
             p.iter().for_each(|x| o.extend_from_slice(&x.to_le_bytes()));

@@ -199,6 +199,7 @@ fn the_edge_section_is_written_with_outlines_only_and_validated() {
             runs: b.run_count(),
             edges: b.index_count(),
             normals: 0,
+            small: b.has_small_records(),
         },
         b.vertex_format(),
         usize::from(b.index_size()),

@@ -10,11 +10,11 @@
 
 use super::{
     VertexFormat, COLOUR_LEN, COMPACT_POLYGON_LEN, CRC_LEN, EDGE_LEN, HEADER_LEN, LAYOUT_LEN,
-    NARROW_LEN, NODE_LEN, NORMAL_LEN, PLANE_LEN, POLYGON_LEN, RUN_LEN, SWITCH_LEN, SWITCH_REF_LEN,
-    TABLE_RUN_LEN,
+    NARROW_LEN, NODE_LEN, NORMAL_LEN, PLANE_LEN, POLYGON_LEN, RUN_LEN, SMALL_NODE_LEN, SWITCH_LEN,
+    SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
-use super::{FLAG_COMPACT, FLAG_NARROW, FLAG_PLANES};
+use super::{FLAG_COMPACT, FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
 
 /// Entry counts of the sections, as stored in the header.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -38,6 +38,9 @@ pub struct Counts {
     /// Corner normal records: 0 without the normal section, else the
     /// index count.
     pub normals: u32,
+    /// Small walk records ([`FLAG_SMALL`]): `u16` bunch offsets and
+    /// 8-byte node records.
+    pub small: bool,
 }
 
 /// What compact polygon records add to a file's sections (see
@@ -172,8 +175,13 @@ impl Sections {
         let pt = next(nm, counts.normals, NORMAL_LEN);
         let r = next(pt, table, PLANE_LEN);
         let b = next(r, plane_records, run_len);
-        let n = next(b, counts.bunches.checked_add(1)?, 4);
-        let s = next(n, counts.nodes, NODE_LEN);
+        let (bunch_len, node_len) = if counts.small {
+            (2, SMALL_NODE_LEN)
+        } else {
+            (4, NODE_LEN)
+        };
+        let n = next(b, counts.bunches.checked_add(1)?, bunch_len);
+        let s = next(n, counts.nodes, node_len);
         let c = next(s, counts.switches, switch_len);
         let end = c + CRC_LEN as u64;
         if end > u64::from(u32::MAX) {

@@ -31,6 +31,7 @@ fn sections_are_padded_and_ordered() {
         runs: 1,
         edges: 0,
         normals: 0,
+        small: false,
     };
     let s = Sections::new(&c, VertexFormat::Q16, 2).unwrap();
     assert_eq!(s.vertices, HEADER_LEN);
@@ -53,6 +54,10 @@ fn sections_are_padded_and_ordered() {
     assert_eq!(s.bunches, s.runs + RUN_LEN);
     assert_eq!(s.nodes, s.bunches + 8);
     assert_eq!(s.switches, s.nodes + NODE_LEN);
+    // Small walk records: two u16 offsets, an 8-byte node.
+    let small = Sections::new(&Counts { small: true, ..c }, VertexFormat::Q16, 2).unwrap();
+    assert_eq!(small.nodes, small.bunches + 4);
+    assert_eq!(small.switches, small.nodes + SMALL_NODE_LEN);
     assert_eq!(s.crc, s.switches);
     assert_eq!(s.file_len, s.crc + CRC_LEN);
     let huge = Counts {
@@ -102,6 +107,7 @@ fn narrow_sections_follow_the_colours_and_share_planes() {
         runs: 2,
         edges: 0,
         normals: 0,
+        small: false,
     };
     let compact = Sections::with_compact(&c, VertexFormat::Q16, 2, Some(2)).unwrap();
     let records = Records {

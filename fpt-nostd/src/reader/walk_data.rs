@@ -8,10 +8,10 @@
 use super::Plane;
 use crate::format::{
     le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, PLANE_LEN, RUN_LEN,
-    SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
+    SMALL_NODE_LEN, SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
-use crate::format::{FLAG_NARROW, FLAG_PLANES};
+use crate::format::{FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
 
 /// The run section as the walk reads it: [`RUN_LEN`]-byte records (plane,
 /// `u32` end), or with a plane table ([`FLAG_PLANES`]) [`TABLE_RUN_LEN`]-byte
@@ -107,6 +107,18 @@ pub(crate) fn table_plane(planes: &[u8], i: u32) -> &[u8; 16] {
     plane_at(planes, (i as usize).wrapping_mul(PLANE_LEN))
 }
 
+/// Offsets `b` and `b + 1` of the bunch section `s`, of `L / 2` bytes
+/// each (zeros out of range).
+#[inline(always)]
+fn pair<const L: usize>(s: &[u8], b: u32) -> [u8; L] {
+    let start = (b as usize).wrapping_mul(L / 2);
+    start
+        .checked_add(L)
+        .and_then(|end| s.get(start..end))
+        .and_then(|s| s.try_into().ok())
+        .unwrap_or([0; L])
+}
+
 /// One connecting node record.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NodeRec {
@@ -122,10 +134,16 @@ pub(crate) struct NodeRec {
 pub(crate) struct WalkData<'a> {
     /// `run_count` run records and the plane table ([`Runs`]).
     pub(crate) runs: Runs<'a>,
-    /// `bunch_count + 1` offsets.
+    /// `bunch_count + 1` offsets (`u32`, or `u16` with small records).
     pub(super) bunches: &'a [u8],
-    /// `node_count` records of [`NODE_LEN`] bytes.
+    /// `node_count` records of [`NODE_LEN`] bytes, or of
+    /// [`SMALL_NODE_LEN`] with `small`.
     pub(super) nodes: &'a [u8],
+    /// Small walk records ([`FLAG_SMALL`]): `u16` bunch offsets, 8-byte
+    /// nodes. Only with the `large-trees` feature: without it every file
+    /// has them, and the walk reads one layout.
+    #[cfg(feature = "large-trees")]
+    pub(super) small: bool,
     /// `switch_count` records of [`SWITCH_LEN`] bytes, or of
     /// [`SWITCH_REF_LEN`] with shared planes ([`FLAG_NARROW`]).
     pub(super) switches: &'a [u8],
@@ -138,34 +156,65 @@ pub(crate) struct WalkData<'a> {
 }
 
 impl<'a> WalkData<'a> {
+    /// Whether the bunch offsets and nodes are small records: always
+    /// without the `large-trees` feature (the reader refuses other files),
+    /// so that the walk's choice of layout is compiled out.
+    #[inline(always)]
+    pub(crate) fn small(&self) -> bool {
+        #[cfg(feature = "large-trees")]
+        return self.small;
+        #[cfg(not(feature = "large-trees"))]
+        true
+    }
+
     /// Connecting node `i < node_count`.
     #[inline(always)]
     pub(crate) fn node(&self, i: u32) -> NodeRec {
-        let r = rec::<NODE_LEN>(self.nodes, i as usize);
-        NodeRec {
-            first_bunch: le_u32(&r, nd::FIRST_BUNCH),
-            level_count: le_u32(&r, nd::LEVEL_COUNT),
-            switch: le_u32(&r, nd::SWITCH),
+        if self.small() {
+            let r = rec::<SMALL_NODE_LEN>(self.nodes, i as usize);
+            let levels = u16::from_le_bytes([r[nd::LEVEL_COUNT], r[nd::LEVEL_COUNT + 1]]);
+            let switch = i16::from_le_bytes([r[nd::SMALL_SWITCH], r[nd::SMALL_SWITCH + 1]]);
+            NodeRec {
+                first_bunch: le_u32(&r, nd::FIRST_BUNCH),
+                level_count: u32::from(levels),
+                // Sign-extended: −1 is NO_SWITCH, as one load makes it.
+                switch: i32::from(switch) as u32,
+            }
+        } else {
+            let r = rec::<NODE_LEN>(self.nodes, i as usize);
+            NodeRec {
+                first_bunch: le_u32(&r, nd::FIRST_BUNCH),
+                level_count: le_u32(&r, nd::LEVEL_COUNT),
+                switch: le_u32(&r, nd::SWITCH),
+            }
         }
     }
 
     /// The runs `start..end` of bunch `b < bunch_count`.
     #[inline(always)]
     pub(crate) fn bunch(&self, b: u32) -> (u32, u32) {
-        // Offsets b and b + 1: one 8-byte read at 4 · b.
-        let start = (b as usize).wrapping_mul(4);
-        let r: [u8; 8] = start
-            .checked_add(8)
-            .and_then(|end| self.bunches.get(start..end))
-            .and_then(|s| s.try_into().ok())
-            .unwrap_or([0; 8]);
-        (le_u32(&r, 0), le_u32(&r, 4))
+        // Offsets b and b + 1: one read of both.
+        if self.small() {
+            let [a0, a1, b0, b1] = pair::<4>(self.bunches, b);
+            (
+                u32::from(u16::from_le_bytes([a0, a1])),
+                u32::from(u16::from_le_bytes([b0, b1])),
+            )
+        } else {
+            let r = pair::<8>(self.bunches, b);
+            (le_u32(&r, 0), le_u32(&r, 4))
+        }
     }
 
     /// Offset `b ≤ bunch_count` of the bunch section.
     #[inline]
     pub(crate) fn bunch_offset(&self, b: u32) -> u32 {
-        le_u32(&rec::<4>(self.bunches, b as usize), 0)
+        if self.small() {
+            let [lo, hi] = rec::<2>(self.bunches, b as usize);
+            u32::from(u16::from_le_bytes([lo, hi]))
+        } else {
+            le_u32(&rec::<4>(self.bunches, b as usize), 0)
+        }
     }
 
     /// One past the last polygon of run `r < run_count`.

@@ -137,6 +137,7 @@ fn a_corrupt_or_truncated_section_is_rejected() {
             nodes: t.node_count(),
             switches: t.switch_count(),
             runs: t.run_count(),
+            small: t.has_small_records(),
             edges: 0,
             normals: t.index_count(),
         },

@@ -160,13 +160,23 @@ pub fn link_overflows(stderr: &str) -> Vec<(String, u64)> {
 pub(super) const MEASURE_RAM_KIB: u32 = 1024;
 
 /// The firmware features a tree needs: `plane-table` for a tree with a
-/// shared plane table (the firmware reads none by default: the feature
-/// costs every walk).
-fn plane_table_feature(tree: &std::path::Path) -> Vec<&'static str> {
+/// shared plane table, `large-trees` for one without small walk records
+/// (the firmware reads neither by default: each feature costs every
+/// walk).
+fn tree_features(tree: &std::path::Path) -> Vec<&'static str> {
     let bytes = std::fs::read(tree).unwrap_or_default();
-    match fpt_nostd::reader::Tree::from_bytes(&bytes) {
-        Ok(t) if t.has_plane_table() => vec!["--features", "plane-table"],
-        _ => vec![],
+    let Ok(t) = fpt_nostd::reader::Tree::from_bytes(&bytes) else {
+        return vec![];
+    };
+    let features = [
+        (t.has_plane_table(), "plane-table"),
+        (!t.has_small_records(), "large-trees"),
+    ];
+    let wanted: Vec<&str> = features.iter().filter(|f| f.0).map(|f| f.1).collect();
+    match wanted.as_slice() {
+        [] => vec![],
+        [one] => vec!["--features", one],
+        _ => vec!["--features", "plane-table large-trees"],
     }
 }
 
@@ -197,7 +207,7 @@ pub(super) fn build_firmware(
             "--target",
         ])
         .arg(b.cpu.target())
-        .args(plane_table_feature(&tree))
+        .args(tree_features(&tree))
         .env("CARGO_TARGET_DIR", &target_dir)
         .env("FPT_BENCH_TREE", &tree)
         .env("FPT_BENCH_WIDTH", b.size.0.to_string())
