@@ -122,7 +122,7 @@ pub trait SpanSink {
     /// `color`, the native colour of `paint`, as a word of at most 24
     /// bits for a polygon the band replay keeps from one band to the next
     /// (`raster::carry`), which [`SpanSink::kept_color`] turns back into
-    /// the colour: by default the paint's rgb ([`rgb_word`]), converted
+    /// the colour: by default the paint's rgb packed in a word, converted
     /// again; a sink whose colours fit the word keeps them as they are,
     /// so that a resumed polygon paints without converting (a `Rgb565`
     /// from its rgb took 20 instructions a resume).
