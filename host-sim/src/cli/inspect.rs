@@ -193,6 +193,16 @@ pub fn info(a: &InfoArgs) -> CliResult {
         );
     }
     println!("max depth:         {}", t.max_depth());
+    // Small records are what a firmware built without `large-trees`
+    // reads: say which the file has, so a user knows before flashing.
+    println!(
+        "walk records:      {}",
+        if t.has_small_records() {
+            "small (16-bit bunch offsets, 8-byte nodes)"
+        } else {
+            "large (32-bit bunch offsets, 12-byte nodes; the firmware needs fpt-nostd's `large-trees` feature)"
+        }
+    );
     println!("bytes per polygon: {per_polygon}");
     if t.is_compact() {
         println!(
