@@ -84,6 +84,7 @@
 //! | `tree_walk` with effects (format v2; both culling choices and a frame drawn with every effect, fixed and f32), session 2 | same, moved to v2 | 9 350 942 | 2 053 | 9 543 | 902 | nothing |
 //! | the same after the vertex iterator and clip-test changes, 300 s, from that corpus | same | 5 093 905 | 2 061 | 9 461 | 539 | nothing |
 //! | session 3: the walk's ranges (`Order::next_range`) checked against its class ids, short-form projection; 420 s from that corpus | same | 7 017 705 | 2 118 | 9 505 | 569 | nothing |
+//! | session 23: small walk records (16-bit bunch offsets, 8-byte nodes) and the plane table, 300 s from the seeds alone, `large-trees` and `plane-table` on | 19 trees (the four `small_*` new) | 1 640 663 | 3 837 | 17 863 | 1 339 | nothing |
 //!
 //! (The target now also draws, so its edge and feature counts cover the
 //! rasterizer and are not comparable with the first rows.)
@@ -92,8 +93,11 @@
 //! static, dynamic and BSP trees, open and closed, in all three vertex
 //! formats, some with runs of several polygons, three (`compact_*`, session
 //! 10) with compact polygon records, one of them with two colours and the
-//! edge and normal sections, three (`narrow_*`, session 17, not yet fuzzed)
-//! with narrow records and shared switch planes; the seed meshes one OBJ,
+//! edge and normal sections, three (`narrow_*`, session 17, first fuzzed in session 23)
+//! with narrow records and shared switch planes, four (`small_*`, session
+//! 23) with small walk records, one of them with the plane table
+//! (`small_table_twocubes_static`), one dynamic with `q16` vertices and the
+//! depth cue, dither and outline effects; the seed meshes one OBJ,
 //! OFF, ASCII STL and ASCII PLY each. Of the `tree_walk` corpus after the
 //! first run, 99 inputs are valid trees (walked) and the other 107 are
 //! rejected with every one of the 15 kinds of [`FormatError`] between them.
