@@ -225,6 +225,24 @@ enum Source {
     Q16(u32),
 }
 
+impl Source {
+    /// Which arm a walk of path `P` takes: `Ok(frac)` for raw q16 values,
+    /// `Err(scale)` for decoded ones. `Q16` is only ever made for a path
+    /// that takes raw values (`VertexPath::RAW_Q16_FRAC`, [`begin_frame`]),
+    /// so for the others (the float path) the raw arm is dead code the
+    /// compiler drops: the walk-and-fill function then holds one copy of
+    /// the load, prepare and per-polygon pipeline, not two.
+    #[inline(always)]
+    fn arm<P: Precision>(self) -> Result<u32, f32> {
+        match self {
+            Source::Q16(frac) if <P::Path as VertexPath>::RAW_Q16_FRAC.is_some() => Ok(frac),
+            // Never made for such a path; any scale would do.
+            Source::Q16(_) => Err(1.0),
+            Source::Scaled(s) => Err(s),
+        }
+    }
+}
+
 /// Starts a frame of the code compiled for pipeline `X` (`active`: the
 /// effects [`Renderer::begin_tree`] settled, see [`frame_effects`]): zeroes
 /// the counters, says what the walk needs of the effects
@@ -465,8 +483,8 @@ impl Walk<'_, '_, '_> {
     ) -> Option<usize> {
         let dec = self.tree.vertex_decoder();
         let (cache, indices) = (&mut *self.cache, p.vertex_indices());
-        let loaded = match self.source {
-            Source::Scaled(s) => {
+        let loaded = match self.source.arm::<P>() {
+            Err(s) => {
                 let decode = |v: u32| {
                     let x = dec.get(v as usize);
                     [x[0] * s, x[1] * s, x[2] * s]
@@ -479,7 +497,7 @@ impl Walk<'_, '_, '_> {
                     r.load_cached_bare(scratch, cache, indices, (decode, point))
                 }
             }
-            Source::Q16(frac) => {
+            Ok(frac) => {
                 let decode = |v: u32| dec.raw_q16(v as usize);
                 if BOX {
                     let xform =
@@ -507,8 +525,8 @@ impl Walk<'_, '_, '_> {
         reach: &SpanBounds,
     ) -> (Result<Ready, Outcome>, bool) {
         let dec = self.tree.vertex_decoder();
-        match self.source {
-            Source::Scaled(s) => {
+        match self.source.arm::<P>() {
+            Err(s) => {
                 let decode = move |v: u32| {
                     let x = dec.get(v as usize);
                     [x[0] * s, x[1] * s, x[2] * s]
@@ -518,7 +536,7 @@ impl Walk<'_, '_, '_> {
                 let how = (decode, xf, pt);
                 self.prepare_from::<P, E, X, _, V, BOX>(r, scratch, p, how, face, reach)
             }
-            Source::Q16(frac) => {
+            Ok(frac) => {
                 let decode = move |v: u32| dec.raw_q16(v as usize);
                 let xf = move |m: &_, x| <P::Path as VertexPath>::transform_q(m, x, frac);
                 let pt = move |r: &Renderer<P, E>, x| r.raw_point(x, frac);
