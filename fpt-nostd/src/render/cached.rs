@@ -64,7 +64,7 @@ use crate::raster::vcache::VertexCache;
 use crate::raster::{
     Face, Outcome, Precision, RenderStats, Renderer, Scratch, SpanBounds, SpanSink,
 };
-use crate::reader::{PolygonAt, Tree};
+use crate::reader::{PolygonAt, Tree, VertexDecoder};
 
 /// The clip-space scalar of `P`'s vertex path.
 type PathScalar<P> = <<P as Precision>::Path as VertexPath>::Scalar;
@@ -187,6 +187,10 @@ enum Step {
 /// Everything a walk needs besides the renderer.
 struct Walk<'t, 'a, 'c> {
     tree: &'a Tree<'t>,
+    /// The tree's vertex decoder, made once a frame: the loads' closures
+    /// capture a reference to it (with the scale, two words handed over
+    /// in registers), not a copy of it made for every polygon.
+    dec: &'a VertexDecoder<'t>,
     source: Source,
     fx: WalkFx,
     /// Which id a face carries; `None` when the sink paints without ids
@@ -481,7 +485,7 @@ impl Walk<'_, '_, '_> {
         scratch: &mut Scratch<P, V>,
         p: &PolygonAt<'_, '_>,
     ) -> Option<usize> {
-        let dec = self.tree.vertex_decoder();
+        let dec = self.dec;
         let (cache, indices) = (&mut *self.cache, p.vertex_indices());
         let loaded = match self.source.arm::<P>() {
             Err(s) => {
@@ -524,7 +528,7 @@ impl Walk<'_, '_, '_> {
         face: &Face,
         reach: &SpanBounds,
     ) -> (Result<Ready, Outcome>, bool) {
-        let dec = self.tree.vertex_decoder();
+        let dec = self.dec;
         match self.source.arm::<P>() {
             Err(s) => {
                 let decode = move |v: u32| {
@@ -556,9 +560,9 @@ impl Walk<'_, '_, '_> {
         scratch: &mut Scratch<P, V>,
         p: &PolygonAt<'_, '_>,
         (decode, xf, pt): (
-            impl Fn(u32) -> T,
+            impl Fn(u32) -> T + Copy,
             impl Fn(&<P::Path as VertexPath>::Matrix, T) -> Option<ClipVert<PathScalar<P>>>,
-            impl Fn(&Renderer<P, E>, T) -> Option<ScreenPt>,
+            impl Fn(&Renderer<P, E>, T) -> Option<ScreenPt> + Copy,
         ),
         face: &Face,
         reach: &SpanBounds,
@@ -581,7 +585,8 @@ impl Walk<'_, '_, '_> {
                 );
             }
         } else if self.cache.is_tagged() {
-            let how = (&decode, &pt);
+            // By value: the closures' few words reach the miss in registers.
+            let how = (decode, pt);
             if let Some(n) = r.load_tagged(scratch, self.cache, p.vertex_indices(), how) {
                 return (
                     r.prepare_screen::<X, V, BOX>(scratch, n, face, reach),
@@ -761,8 +766,10 @@ where
     let mut spans = 0;
     Order::<N>::check_depth(tree)?;
     let mut order = Order::<N>::unchecked(tree, frame.view, fx.cull, &[]);
+    let dec = tree.vertex_decoder();
     let mut walk = Walk {
         tree,
+        dec: &dec,
         source,
         fx,
         ids: Some(ids),

@@ -353,6 +353,7 @@ where
     // Triangles cut by a band's end, kept for the next band of the same
     // walk in the words the list leaves ([`crate::raster::carry`]).
     let mut ring = Ring::new();
+    let dec = tree.vertex_decoder();
     while y < h {
         walks += 1;
         list.clear();
@@ -375,6 +376,7 @@ where
         let mut fb = open_band::<F>(buf, (w, h), rows, y, background)?;
         let mut walk = Walk {
             tree,
+            dec: &dec,
             source,
             fx,
             // A sink without ids reads none: the id of each walked
