@@ -440,10 +440,13 @@ impl Walk<'_, '_, '_> {
                 if pass != Pass::Walk {
                     r.stats_mut().slivers += 1;
                 } else {
-                    r.count(match ready {
-                        Ok(_) => Outcome::Drawn { spans: 0 },
-                        Err(o) => o,
-                    });
+                    match ready {
+                        // `count` of `Drawn { spans: 0 }` without the
+                        // 64-bit addition of nothing (a polygon's spans
+                        // are added as the fill returns them).
+                        Ok(_) => r.stats_mut().drawn += 1,
+                        Err(o) => r.count(o),
+                    }
                 }
             }
             first = false;
