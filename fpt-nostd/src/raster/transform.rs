@@ -168,6 +168,14 @@ pub trait VertexPath {
     /// for cores without an FPU. The tree walks of [`crate::render`] then
     /// draw q16 trees that way.
     const RAW_Q16_FRAC: Option<u32> = None;
+    /// Whether the path's transform is `f32` products and sums of the
+    /// matrix entries and the vertex (the float path): then a
+    /// power-of-two vertex scale `s ≥ 1` may be moved into the matrix's
+    /// first three columns where every scaled entry and coordinate stays
+    /// finite, since `(m·s)·x` and `m·(x·s)` are then the same exact
+    /// product, rounded once (`render::cached`, a multiplication less a
+    /// coordinate on every transform).
+    const FOLDS_SCALE: bool = false;
     /// The matrix of a renderer whose camera is not set yet
     /// ([`super::Renderer::sized`]): the zero matrix, which puts every
     /// vertex at `w = 0`, behind [`VertexPath::NEAR_MIN`], so nothing is
@@ -369,6 +377,7 @@ impl<const F: u32> VertexPath for FixedPath<F> {
 impl<M: MathFns> VertexPath for FloatPath<M> {
     type Scalar = f32;
     type Matrix = Mat4;
+    const FOLDS_SCALE: bool = true;
     const UNSET: Mat4 = Mat4([[0.0; 4]; 4]);
     const NEAR_MIN: f32 = 1e-30;
 
