@@ -218,3 +218,49 @@ fn folded_camera<P: Precision>(tree: &Tree<'_>, frame: &Frame) -> Option<Camera>
         .all(|c| c.is_finite())
         .then_some(cam)
 }
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+
+    use super::*;
+    use crate::raster::precision::{FloatLibm, Libm};
+    use crate::raster::transform::FloatPath;
+    use crate::raster::Orbit;
+    use crate::test_util::two_floors;
+
+    /// Where the fold is taken, an unscaled vertex through the folded
+    /// matrix is the very clip point of the scaled vertex through the
+    /// frame's (both scalings exact), and a frame whose scale is below 1
+    /// keeps its matrix (its decoder scales instead).
+    #[test]
+    fn folded_matrix_transforms_as_the_scaled_vertices() {
+        let bytes = two_floors().bytes();
+        let t = Tree::from_bytes(&bytes).unwrap_or_else(|e| panic!("{e:?}"));
+        let dec = t.vertex_decoder();
+        for (yaw, pitch) in [(0.3f32, 0.2f32), (2.5, -1.1), (-1.0, 0.7)] {
+            let o = Orbit::new([0.0; 3], yaw, pitch, 5.0, 0.9);
+            let frame = Frame::relative(&t, &o.camera::<Libm>(1.2));
+            let s = frame.vertex_scale;
+            assert!(s >= 1.0, "{s}");
+            let cam = folded_camera::<FloatLibm<4>>(&t, &frame)
+                .unwrap_or_else(|| panic!("no fold at scale {s}"));
+            for v in 0..t.vertex_count() as usize {
+                let x = dec.get(v);
+                let a = FloatPath::<Libm>::transform(&cam.matrix, x);
+                let b = FloatPath::<Libm>::transform(&frame.camera.matrix, x.map(|c| c * s));
+                assert_eq!(a, b, "vertex {v}");
+            }
+            let half = Frame {
+                vertex_scale: 0.5,
+                ..frame
+            };
+            assert!(folded_camera::<FloatLibm<4>>(&t, &half).is_none());
+            let odd = Frame {
+                vertex_scale: 3.0,
+                ..frame
+            };
+            assert!(folded_camera::<FloatLibm<4>>(&t, &odd).is_none());
+        }
+    }
+}
