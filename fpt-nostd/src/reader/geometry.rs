@@ -148,6 +148,7 @@ impl<'a> Geometry<'a> {
             format: self.format,
             q16_scale: self.q16_scale,
             q32_scale: self.q32_scale,
+            scale: 1.0,
         }
     }
 

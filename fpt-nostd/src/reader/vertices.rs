@@ -27,9 +27,25 @@ pub struct VertexDecoder<'a> {
     pub(super) format: VertexFormat,
     pub(super) q16_scale: [f32; 3],
     pub(super) q32_scale: f32,
+    /// What every decoded vertex is multiplied by (1 but in
+    /// [`VertexDecoder::scaled`]'s).
+    pub(super) scale: f32,
 }
 
 impl VertexDecoder<'_> {
+    /// This decoder with every vertex multiplied by `s` as it is decoded
+    /// (`x · s` rounded once, as a caller multiplying would): for a walk
+    /// whose matrix does not take the scale and whose code multiplies
+    /// nothing. Every vertex then takes the cold decode.
+    #[must_use]
+    pub(crate) fn scaled(self, s: f32) -> Self {
+        VertexDecoder {
+            f32s: &[],
+            scale: s,
+            ..self
+        }
+    }
+
     /// Vertex `v` of a q16 tree as stored (`i16` per axis, widened);
     /// zero for another format or an index outside the section.
     #[inline]
@@ -63,6 +79,12 @@ impl VertexDecoder<'_> {
     #[cold]
     #[inline(never)]
     fn get_packed(&self, v: usize) -> [f32; 3] {
+        self.get_unscaled(v).map(|c| c * self.scale)
+    }
+
+    /// [`VertexDecoder::get_packed`] before the decoder's scale.
+    #[inline(always)]
+    fn get_unscaled(&self, v: usize) -> [f32; 3] {
         let at = v.wrapping_mul(self.format.vertex_len());
         let f = |r: &[u8], k: usize| -> [u8; 4] {
             let mut o = [0; 4];

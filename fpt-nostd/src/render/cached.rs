@@ -51,20 +51,18 @@
 //! first walk) and every span filled.
 
 use super::probe::{Phase, Probe};
-use super::slivers::{self, turns_toward};
-use super::{face_of, walk_effects, FaceIds, Frame, WalkFx};
+use super::slivers::turns_toward;
+use super::{face_of, FaceIds, Frame, WalkFx};
 use crate::effects::{for_frame, Compiled, Effects, ForPipeline};
-use crate::format::VertexFormat;
 use crate::order::{memo_words, Class, Order, OrderError};
 use crate::raster::clip::ClipVert;
-use crate::raster::int_path::q16_camera;
 use crate::raster::renderer::Ready;
 use crate::raster::transform::{ScreenPt, VertexPath};
 use crate::raster::vcache::VertexCache;
 use crate::raster::{
     Face, Outcome, Precision, RenderStats, Renderer, Scratch, SpanBounds, SpanSink,
 };
-use crate::reader::{PolygonAt, Tree};
+use crate::reader::{PolygonAt, Tree, VertexDecoder, VertexIndices};
 
 /// The clip-space scalar of `P`'s vertex path.
 type PathScalar<P> = <<P as Precision>::Path as VertexPath>::Scalar;
@@ -72,62 +70,6 @@ type PathScalar<P> = <<P as Precision>::Path as VertexPath>::Scalar;
 /// Most vertices the cache holds: the display list stores their indices
 /// as `u16`.
 const MAX_CACHED: usize = 1 << 16;
-
-/// The vertex cache over the first words of `memory`, cleared: one slot
-/// per vertex of `tree`, at most [`MAX_CACHED`] and `limit`; none when
-/// `cache` is false. When `tagged` and those words cannot hold every
-/// vertex, a tagged cache over them instead ([`VertexCache::tagged`]: a
-/// vertex shared by polygons drawn close together is still transformed
-/// once; for a full frame, which records nothing for later). Returns it
-/// and the words left.
-fn take_cache<'m>(
-    memory: &'m mut [u32],
-    tree: &Tree<'_>,
-    (cache, tagged): (bool, bool),
-    limit: usize,
-) -> (VertexCache<'m>, &'m mut [u32]) {
-    let want = if cache {
-        tree.vertex_count() as usize
-    } else {
-        0
-    };
-    let slots = want.min(MAX_CACHED).min(limit).min(memory.len());
-    let (c, rest) = memory.split_at_mut(slots);
-    let mut c = if tagged && slots < want {
-        VertexCache::tagged(c)
-    } else {
-        VertexCache::new(c)
-    };
-    c.clear();
-    (c, rest)
-}
-
-/// In a frame whose camera is proven to keep every vertex of `tree`
-/// inside the clip planes and the viewport ([`crate::raster::proof`]),
-/// fills the cleared `cache` before the walk ([`Renderer::prefill`]): each
-/// cached vertex is transformed without the per-vertex checks, in a loop
-/// of its own; the walk then finds them all cached (the same points). Not
-/// with q16 vertices (paths for cores without an FPU, which prove
-/// nothing) nor depth cueing (no cache).
-fn prefill<P: Precision, E: Compiled>(
-    r: &Renderer<P, E>,
-    tree: &Tree<'_>,
-    source: Source,
-    cache: &mut VertexCache<'_>,
-) {
-    let Source::Scaled(s) = source else {
-        return;
-    };
-    // A tagged cache holds only some vertices: nothing to fill ahead.
-    if cache.capacity() == 0 || cache.is_tagged() || !r.prove(&tree.vertex_bound().scaled(s)) {
-        return;
-    }
-    let dec = tree.vertex_decoder();
-    r.prefill(cache, tree.vertex_count() as usize, |v| {
-        let x = dec.get(v as usize);
-        [x[0] * s, x[1] * s, x[2] * s]
-    });
-}
 
 /// Words of memory with which a frame of `tree` needs one walk and
 /// transforms each vertex once, whatever the view, with the effects the
@@ -187,6 +129,10 @@ enum Step {
 /// Everything a walk needs besides the renderer.
 struct Walk<'t, 'a, 'c> {
     tree: &'a Tree<'t>,
+    /// The tree's vertex decoder, made once a frame: the loads' closures
+    /// capture a reference to it (with the scale, two words handed over
+    /// in registers), not a copy of it made for every polygon.
+    dec: &'a VertexDecoder<'t>,
     source: Source,
     fx: WalkFx,
     /// Which id a face carries; `None` when the sink paints without ids
@@ -211,54 +157,6 @@ enum Pass {
     /// when its clipped points turn toward the viewer, wound as this
     /// [`slivers::front_turn`] says.
     Unsure(i32),
-}
-
-/// How vertices reach the transform.
-#[derive(Clone, Copy, Debug)]
-enum Source {
-    /// Decoded to `f32` and multiplied by the frame's vertex scale (the
-    /// renderer has the frame's camera).
-    Scaled(f32),
-    /// A q16 tree's `i16` values as stored, with this many fraction bits
-    /// (the renderer has the frame's camera with the per-axis scale
-    /// folded in: `VertexPath::RAW_Q16_FRAC`).
-    Q16(u32),
-}
-
-/// Starts a frame of the code compiled for pipeline `X` (`active`: the
-/// effects [`Renderer::begin_tree`] settled, see [`frame_effects`]): zeroes
-/// the counters, says what the walk needs of the effects
-/// ([`walk_effects`], once a frame for every walk of it), sets the
-/// renderer's camera for `frame` and says how vertices reach it: raw q16
-/// values when the tree stores them and the path prefers them; and how a
-/// face toward the viewer winds when the culling walk of a closed tree
-/// draws slivers first (asked for with `Renderer::set_slivers`; 0: no
-/// sliver pass, [`slivers`]).
-fn begin_frame<P: Precision, E: Compiled, X: Compiled>(
-    r: &mut Renderer<P, E>,
-    tree: &Tree<'_>,
-    frame: &Frame,
-    active: Effects,
-) -> (Source, WalkFx, i32) {
-    r.reset_stats();
-    let fx = walk_effects::<X>(tree, active);
-    let turn = if r.slivers() && fx.cull && tree.is_closed() {
-        slivers::front_turn(frame)
-    } else {
-        0
-    };
-    let source = match <P::Path as VertexPath>::RAW_Q16_FRAC {
-        Some(frac) if tree.vertex_format() == VertexFormat::Q16 => {
-            let cam = q16_camera(&frame.camera, frame.vertex_scale, tree.half_extent(), frac);
-            r.set_camera(&cam);
-            Source::Q16(frac)
-        }
-        _ => {
-            r.set_camera(&frame.camera);
-            Source::Scaled(frame.vertex_scale)
-        }
-    };
-    (source, fx, turn)
 }
 
 impl Walk<'_, '_, '_> {
@@ -418,10 +316,13 @@ impl Walk<'_, '_, '_> {
                 if pass != Pass::Walk {
                     r.stats_mut().slivers += 1;
                 } else {
-                    r.count(match ready {
-                        Ok(_) => Outcome::Drawn { spans: 0 },
-                        Err(o) => o,
-                    });
+                    match ready {
+                        // `count` of `Drawn { spans: 0 }` without the
+                        // 64-bit addition of nothing (a polygon's spans
+                        // are added as the fill returns them).
+                        Ok(_) => r.stats_mut().drawn += 1,
+                        Err(o) => r.count(o),
+                    }
                 }
             }
             first = false;
@@ -463,23 +364,18 @@ impl Walk<'_, '_, '_> {
         scratch: &mut Scratch<P, V>,
         p: &PolygonAt<'_, '_>,
     ) -> Option<usize> {
-        let dec = self.tree.vertex_decoder();
+        let dec = self.dec;
         let (cache, indices) = (&mut *self.cache, p.vertex_indices());
-        let loaded = match self.source {
-            Source::Scaled(s) => {
-                let decode = |v: u32| {
-                    let x = dec.get(v as usize);
-                    [x[0] * s, x[1] * s, x[2] * s]
-                };
-                if BOX {
-                    let xform = |v: u32| <P::Path as VertexPath>::transform(r.matrix(), decode(v));
-                    r.load_cached(scratch, cache, indices, xform)
-                } else {
-                    let point = |r: &Renderer<P, E>, x| r.model_point(x);
-                    r.load_cached_bare(scratch, cache, indices, (decode, point))
-                }
+        let loaded = match self.source.arm::<P>() {
+            Arm::Decoded(Some(s)) => {
+                let scale = move |x: [f32; 3]| x.map(|c| c * s);
+                Self::load_decoded::<P, E, V, BOX>(r, scratch, (cache, indices), dec, scale)
             }
-            Source::Q16(frac) => {
+            Arm::Decoded(None) => {
+                let scale = |x: [f32; 3]| x;
+                Self::load_decoded::<P, E, V, BOX>(r, scratch, (cache, indices), dec, scale)
+            }
+            Arm::Raw(frac) => {
                 let decode = |v: u32| dec.raw_q16(v as usize);
                 if BOX {
                     let xform =
@@ -494,6 +390,27 @@ impl Walk<'_, '_, '_> {
         loaded.map(|(n, _)| n)
     }
 
+    /// [`Walk::screen_points`]' load of vertices decoded to `f32` and
+    /// multiplied by the frame's scale with `scale` (the identity when
+    /// the scale is folded into the matrix).
+    #[inline(always)]
+    fn load_decoded<P: Precision, E: Compiled, const V: usize, const BOX: bool>(
+        r: &Renderer<P, E>,
+        scratch: &mut Scratch<P, V>,
+        (cache, indices): (&mut VertexCache<'_>, VertexIndices<'_>),
+        dec: &VertexDecoder<'_>,
+        scale: impl Fn([f32; 3]) -> [f32; 3] + Copy,
+    ) -> Option<(usize, bool)> {
+        let decode = move |v: u32| scale(dec.get(v as usize));
+        if BOX {
+            let xform = |v: u32| <P::Path as VertexPath>::transform(r.matrix(), decode(v));
+            r.load_cached(scratch, cache, indices, xform)
+        } else {
+            let point = |r: &Renderer<P, E>, x| r.model_point(x);
+            r.load_cached_bare(scratch, cache, indices, (decode, point))
+        }
+    }
+
     /// Prepares `p` through the cache when every vertex is inside the clip
     /// planes (`true`: every vertex is cached, and its indices are in
     /// `scratch.active`), else per polygon.
@@ -506,19 +423,21 @@ impl Walk<'_, '_, '_> {
         face: &Face,
         reach: &SpanBounds,
     ) -> (Result<Ready, Outcome>, bool) {
-        let dec = self.tree.vertex_decoder();
-        match self.source {
-            Source::Scaled(s) => {
-                let decode = move |v: u32| {
-                    let x = dec.get(v as usize);
-                    [x[0] * s, x[1] * s, x[2] * s]
-                };
-                let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
-                let pt = |r: &Renderer<P, E>, x| r.model_point(x);
+        let dec = self.dec;
+        let xf = |m: &_, x| <P::Path as VertexPath>::transform(m, x);
+        let pt = |r: &Renderer<P, E>, x| r.model_point(x);
+        match self.source.arm::<P>() {
+            Arm::Decoded(Some(s)) => {
+                let decode = move |v: u32| dec.get(v as usize).map(|c| c * s);
                 let how = (decode, xf, pt);
                 self.prepare_from::<P, E, X, _, V, BOX>(r, scratch, p, how, face, reach)
             }
-            Source::Q16(frac) => {
+            Arm::Decoded(None) => {
+                let decode = move |v: u32| dec.get(v as usize);
+                let how = (decode, xf, pt);
+                self.prepare_from::<P, E, X, _, V, BOX>(r, scratch, p, how, face, reach)
+            }
+            Arm::Raw(frac) => {
                 let decode = move |v: u32| dec.raw_q16(v as usize);
                 let xf = move |m: &_, x| <P::Path as VertexPath>::transform_q(m, x, frac);
                 let pt = move |r: &Renderer<P, E>, x| r.raw_point(x, frac);
@@ -538,9 +457,9 @@ impl Walk<'_, '_, '_> {
         scratch: &mut Scratch<P, V>,
         p: &PolygonAt<'_, '_>,
         (decode, xf, pt): (
-            impl Fn(u32) -> T,
+            impl Fn(u32) -> T + Copy,
             impl Fn(&<P::Path as VertexPath>::Matrix, T) -> Option<ClipVert<PathScalar<P>>>,
-            impl Fn(&Renderer<P, E>, T) -> Option<ScreenPt>,
+            impl Fn(&Renderer<P, E>, T) -> Option<ScreenPt> + Copy,
         ),
         face: &Face,
         reach: &SpanBounds,
@@ -563,7 +482,8 @@ impl Walk<'_, '_, '_> {
                 );
             }
         } else if self.cache.is_tagged() {
-            let how = (&decode, &pt);
+            // By value: the closures' few words reach the miss in registers.
+            let how = (decode, pt);
             if let Some(n) = r.load_tagged(scratch, self.cache, p.vertex_indices(), how) {
                 return (
                     r.prepare_screen::<X, V, BOX>(scratch, n, face, reach),
@@ -743,8 +663,10 @@ where
     let mut spans = 0;
     Order::<N>::check_depth(tree)?;
     let mut order = Order::<N>::unchecked(tree, frame.view, fx.cull, &[]);
+    let dec = walk_decoder::<P>(tree, source);
     let mut walk = Walk {
         tree,
+        dec: &dec,
         source,
         fx,
         ids: Some(ids),
@@ -771,4 +693,6 @@ where
 }
 
 mod bands;
+mod setup;
 pub(crate) use bands::{bands_into, draw_bands, BandStore};
+use setup::{begin_frame, prefill, take_cache, walk_decoder, Arm, Source};

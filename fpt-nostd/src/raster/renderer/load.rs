@@ -145,9 +145,11 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
         scratch: &mut Scratch<P, N>,
         cache: &mut VertexCache<'_>,
         indices: VertexIndices<'_>,
-        (decode, point): (impl Fn(u32) -> T, impl Fn(&Self, T) -> Option<ScreenPt>),
+        how: (
+            impl Fn(u32) -> T + Copy,
+            impl Fn(&Self, T) -> Option<ScreenPt> + Copy,
+        ),
     ) -> Option<usize> {
-        let how = (&decode, &point);
         let mut get = |v: u32| {
             cache
                 .tagged_word(v, |v| self.tagged_miss(v, how))
@@ -182,7 +184,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
     fn tagged_miss<T>(
         &self,
         v: u32,
-        (decode, point): (&impl Fn(u32) -> T, &impl Fn(&Self, T) -> Option<ScreenPt>),
+        (decode, point): (impl Fn(u32) -> T, impl Fn(&Self, T) -> Option<ScreenPt>),
     ) -> Option<u32> {
         let p = point(self, decode(v))?;
         // Proven once per viewport where the path allows (the float path

@@ -11,7 +11,9 @@ use core::marker::PhantomData;
 
 use super::super::probe::{Phase, Probe};
 use super::super::{BandBuffer, FaceIds, Frame, RenderError};
-use super::{begin_frame, cacheable, fill, frame_effects, prefill, take_cache, Step, Walk};
+use super::{
+    begin_frame, cacheable, fill, frame_effects, prefill, take_cache, walk_decoder, Step, Walk,
+};
 use crate::effects::{for_frame, Compiled, Effects, ForPipeline};
 use crate::order::{memo_words, Order, MEMO};
 use crate::raster::carry::{Ring, CARRY, NEED_KEPT, WORDS as CARRY_WORDS};
@@ -353,6 +355,7 @@ where
     // Triangles cut by a band's end, kept for the next band of the same
     // walk in the words the list leaves ([`crate::raster::carry`]).
     let mut ring = Ring::new();
+    let dec = walk_decoder::<P>(tree, source);
     while y < h {
         walks += 1;
         list.clear();
@@ -375,6 +378,7 @@ where
         let mut fb = open_band::<F>(buf, (w, h), rows, y, background)?;
         let mut walk = Walk {
             tree,
+            dec: &dec,
             source,
             fx,
             // A sink without ids reads none: the id of each walked
