@@ -133,12 +133,17 @@ pub(crate) fn fill_monotone<K: SpanSink>(
     if ty == by {
         return Some(0); // all on one row line: no active row
     }
-    if !is_y_monotone(pts, top) {
-        return None;
-    }
     let (first, end) = Dda32::rows(ScreenPt { x: 0, y: ty }, ScreenPt { x: 0, y: by }, sub);
     let mut y = first.max(b.y0);
     let stop = end.min(b.y1);
+    if let [p0, p1, p2, p3] = *pts {
+        if let Some(spans) = fill_quad([p0, p1, p2, p3], bbox, sub, [y, stop], b, color, sink) {
+            return Some(spans);
+        }
+    }
+    if !is_y_monotone(pts, top) {
+        return None;
+    }
     if y >= stop {
         return Some(0);
     }
@@ -155,16 +160,7 @@ pub(crate) fn fill_monotone<K: SpanSink>(
         y1: y,
         dda: blank,
     };
-    // A polygon within the columns (most of a full frame's) has every
-    // crossing within them too (they lie in `[col(lo), col(hi) + 1]`, as
-    // in `fill_polygon_in`'s reject): its rows need no clamp, which also
-    // frees two registers of the row loop.
-    let col = |x: i32| (2 * x - (1 << sub)) >> (sub + 1);
-    let pair = if col(bbox.lo) >= b.x0 && col(bbox.hi) < b.x1 {
-        Pair::Within
-    } else {
-        Pair::Span
-    };
+    let pair = pair_of(bbox, sub, b);
     let mut spans = 0usize;
     while y < stop {
         if l.y1 <= y && !l.seek(pts, sub, y, stop) {
@@ -178,6 +174,112 @@ pub(crate) fn fill_monotone<K: SpanSink>(
         y = run;
     }
     Some(spans)
+}
+
+/// A quad's pair of columns' test, as [`fill_monotone`]'s: `Pair::Within`
+/// when its box lies within `b`'s columns, else `Pair::Span`.
+#[inline(always)]
+fn pair_of(bbox: &Bbox, sub: u32, b: &SpanBounds) -> Pair {
+    // Every crossing lies in `[col(lo), col(hi) + 1]` (as in
+    // `fill_polygon_in`'s reject): within the columns, its rows need no
+    // clamp, which also frees two registers of the row loop.
+    let col = |x: i32| (2 * x - (1 << sub)) >> (sub + 1);
+    if col(bbox.lo) >= b.x0 && col(bbox.hi) < b.x1 {
+        Pair::Within
+    } else {
+        Pair::Span
+    }
+}
+
+/// [`fill_monotone`] for a quad whose corner opposite the top one (`bbox`'s
+/// `top_at`) is a lowest corner: then its chains are the two pairs of
+/// edges from the top corner `t` through a side corner to the opposite one
+/// `o`, so no monotonicity pass or chain seek is needed (the same edges,
+/// started at the same or later rows, are active on every row, so the
+/// spans are the chain walk's). `None` for the other quads (the chain walk
+/// then). Rows `[y, stop)`.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn fill_quad<K: SpanSink>(
+    pts: [ScreenPt; 4],
+    bbox: &Bbox,
+    sub: u32,
+    [y, stop]: [i32; 2],
+    b: &SpanBounds,
+    color: K::Color,
+    sink: &mut K,
+) -> Option<usize> {
+    let top = bbox.top_at;
+    let at = |k: usize| pts[(top + k) & 3];
+    let (t, l, o, r) = (at(0), at(1), at(2), at(3));
+    if o.y < l.y || o.y < r.y {
+        return None;
+    }
+    if y >= stop {
+        return Some(0);
+    }
+    let pair = pair_of(bbox, sub, b);
+    Some(quad_rows(
+        [t, l, o, r],
+        sub,
+        [y, stop],
+        pair,
+        b,
+        color,
+        sink,
+    ))
+}
+
+/// The rows `[y, stop)` of a quad `t, l, o, r` whose chains are
+/// `t → l → o` and `t → r → o` (`t` a top corner, `o` a bottom one):
+/// [`fill_quad`]'s second half, not inlined for the reason
+/// [`triangle_rows`] is not (the steppers stay in registers). Each side
+/// starts on the edge active on row `y` and changes to its second edge on
+/// the first row of its middle corner; `y` is at least the first row of
+/// `t` and `stop` at most the first row of `o`, so every start is on one
+/// of its edge's active rows.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn quad_rows<K: SpanSink>(
+    [t, l, o, r]: [ScreenPt; 4],
+    sub: u32,
+    [mut y, stop]: [i32; 2],
+    pair: Pair,
+    b: &SpanBounds,
+    color: K::Color,
+    sink: &mut K,
+) -> usize {
+    // The first row of a corner: where the edge above it ends and the one
+    // below it starts.
+    let row = |p: ScreenPt| Dda32::rows(p, p, sub).0;
+    let (ly, ry) = (row(l), row(r));
+    // Each side's edge on row `y`, and the row where it changes to its
+    // second edge (`stop`: it does not change within the rows).
+    let (mut le, mut l_at) = if y < ly {
+        (Packed::start_inline(t, l, sub, y), ly.min(stop))
+    } else {
+        (Packed::start_inline(l, o, sub, y), stop)
+    };
+    let (mut re, mut r_at) = if y < ry {
+        (Packed::start_inline(t, r, sub, y), ry.min(stop))
+    } else {
+        (Packed::start_inline(r, o, sub, y), stop)
+    };
+    let mut spans = 0;
+    while y < stop {
+        let run = l_at.min(r_at);
+        spans += pair_rows(&mut le, &mut re, pair, b, y, run, color, sink);
+        y = run;
+        if y == l_at && y < stop {
+            le = Packed::start_inline(l, o, sub, y);
+            l_at = stop;
+        }
+        if y == r_at && y < stop {
+            re = Packed::start_inline(r, o, sub, y);
+            r_at = stop;
+        }
+    }
+    spans
 }
 
 /// Fills the triangle `pts` within `b` (already intersected with the
