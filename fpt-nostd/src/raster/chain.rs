@@ -24,6 +24,7 @@
 
 use super::edge::{all_small, packs, Dda32, Packed};
 use super::scan::{pair_rows, Bbox, Pair, SpanBounds, SpanSink};
+use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
 
 /// One boundary chain: the vertex its current edge ends at, the direction
@@ -136,7 +137,7 @@ pub(crate) fn fill_monotone<K: SpanSink>(
     let (first, end) = Dda32::rows(ScreenPt { x: 0, y: ty }, ScreenPt { x: 0, y: by }, sub);
     let mut y = first.max(b.y0);
     let stop = end.min(b.y1);
-    if let [p0, p1, p2, p3] = *pts {
+    if let (true, &[p0, p1, p2, p3]) = (QUADS, pts) {
         if let Some(spans) = fill_quad([p0, p1, p2, p3], bbox, sub, [y, stop], b, color, sink) {
             return Some(spans);
         }
@@ -175,6 +176,13 @@ pub(crate) fn fill_monotone<K: SpanSink>(
     }
     Some(spans)
 }
+
+/// Whether quads take [`fill_quad`]: on cores with an FPU (the
+/// Cortex-M4F). On a Cortex-M0 the frame of its row function
+/// (`quad_rows`, beside the fill's) took the socket's 8-row band frames
+/// 192 B more stack, over its 16 KiB (`fpt mcu-bench --cpu m0`). This
+/// crate's tests use it on every target.
+const QUADS: bool = HAS_FPU || cfg!(test);
 
 /// The row loop of a polygon with box `bbox` ([`fill_monotone`]'s and
 /// [`fill_quad`]'s): `Pair::Within` when the box lies within `b`'s
