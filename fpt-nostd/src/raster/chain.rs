@@ -24,6 +24,7 @@
 
 use super::edge::{all_small, packs, Dda32, Packed};
 use super::scan::{pair_rows, Bbox, Pair, SpanBounds, SpanSink};
+use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
 
 /// One boundary chain: the vertex its current edge ends at, the direction
@@ -133,12 +134,17 @@ pub(crate) fn fill_monotone<K: SpanSink>(
     if ty == by {
         return Some(0); // all on one row line: no active row
     }
-    if !is_y_monotone(pts, top) {
-        return None;
-    }
     let (first, end) = Dda32::rows(ScreenPt { x: 0, y: ty }, ScreenPt { x: 0, y: by }, sub);
     let mut y = first.max(b.y0);
     let stop = end.min(b.y1);
+    if let (true, &[p0, p1, p2, p3]) = (QUADS, pts) {
+        if let Some(spans) = fill_quad([p0, p1, p2, p3], bbox, sub, [y, stop], b, color, sink) {
+            return Some(spans);
+        }
+    }
+    if !is_y_monotone(pts, top) {
+        return None;
+    }
     if y >= stop {
         return Some(0);
     }
@@ -155,16 +161,7 @@ pub(crate) fn fill_monotone<K: SpanSink>(
         y1: y,
         dda: blank,
     };
-    // A polygon within the columns (most of a full frame's) has every
-    // crossing within them too (they lie in `[col(lo), col(hi) + 1]`, as
-    // in `fill_polygon_in`'s reject): its rows need no clamp, which also
-    // frees two registers of the row loop.
-    let col = |x: i32| (2 * x - (1 << sub)) >> (sub + 1);
-    let pair = if col(bbox.lo) >= b.x0 && col(bbox.hi) < b.x1 {
-        Pair::Within
-    } else {
-        Pair::Span
-    };
+    let pair = pair_of(bbox, sub, b);
     let mut spans = 0usize;
     while y < stop {
         if l.y1 <= y && !l.seek(pts, sub, y, stop) {
@@ -178,6 +175,133 @@ pub(crate) fn fill_monotone<K: SpanSink>(
         y = run;
     }
     Some(spans)
+}
+
+/// Whether quads take [`fill_quad`]: on cores with an FPU (the
+/// Cortex-M4F). On a Cortex-M0 the frame of its row function
+/// (`quad_rows`, beside the fill's) took the socket's 8-row band frames
+/// 192 B more stack, over its 16 KiB (`fpt mcu-bench --cpu m0`). This
+/// crate's tests use it on every target.
+const QUADS: bool = HAS_FPU || cfg!(test);
+
+/// The row loop of a polygon with box `bbox` ([`fill_monotone`]'s and
+/// [`fill_quad`]'s): `Pair::Within` when the box lies within `b`'s
+/// columns, else `Pair::Span`.
+#[inline(always)]
+fn pair_of(bbox: &Bbox, sub: u32, b: &SpanBounds) -> Pair {
+    // Every crossing lies in `[col(lo), col(hi) + 1]` (as in
+    // `fill_polygon_in`'s reject): within the columns, its rows need no
+    // clamp, which also frees two registers of the row loop.
+    let col = |x: i32| (2 * x - (1 << sub)) >> (sub + 1);
+    if col(bbox.lo) >= b.x0 && col(bbox.hi) < b.x1 {
+        Pair::Within
+    } else {
+        Pair::Span
+    }
+}
+
+/// Whether the quad `pts`' corner opposite its top one `top` (a corner
+/// with the least y) is a lowest corner: then the y coordinates read from
+/// `top` go down to it and back up, so the quad is y-monotone (what
+/// [`is_y_monotone`] would answer in a pass) and its two chains meet there.
+#[inline(always)]
+pub(crate) fn opposite_lowest(pts: &[ScreenPt; 4], top: usize) -> bool {
+    let y = |k: usize| pts[(top + k) & 3].y;
+    y(2) >= y(1) && y(2) >= y(3)
+}
+
+/// [`fill_monotone`] for a quad whose corner opposite the top one (`bbox`'s
+/// `top_at`) is a lowest corner: then its chains are the two pairs of
+/// edges from the top corner `t` through a side corner to the opposite one
+/// `o`, so no monotonicity pass or chain seek is needed (the same edges,
+/// started at the same or later rows, are active on every row, so the
+/// spans are the chain walk's). `None` for the other quads (the chain walk
+/// then). Rows `[y, stop)`.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn fill_quad<K: SpanSink>(
+    pts: [ScreenPt; 4],
+    bbox: &Bbox,
+    sub: u32,
+    [y, stop]: [i32; 2],
+    b: &SpanBounds,
+    color: K::Color,
+    sink: &mut K,
+) -> Option<usize> {
+    let top = bbox.top_at;
+    if !opposite_lowest(&pts, top) {
+        return None;
+    }
+    let at = |k: usize| pts[(top + k) & 3];
+    let (t, l, o, r) = (at(0), at(1), at(2), at(3));
+    if y >= stop {
+        return Some(0);
+    }
+    let within = pair_of(bbox, sub, b) == Pair::Within;
+    Some(quad_rows(
+        [t, l, o, r],
+        sub,
+        [y, stop],
+        within,
+        b,
+        color,
+        sink,
+    ))
+}
+
+/// The rows `[y, stop)` of a quad `t, l, o, r` whose chains are
+/// `t → l → o` and `t → r → o` (`t` a top corner, `o` a bottom one):
+/// [`fill_quad`]'s second half, not inlined for the reason
+/// [`triangle_rows`] is not (the steppers stay in registers). Each side
+/// starts on the edge active on row `y` and changes to its second edge on
+/// the first row of its middle corner; `y` is at least the first row of
+/// `t` and `stop` at most the first row of `o`, so every start is on one
+/// of its edge's active rows. `within`: [`pair_of`] is `Pair::Within`
+/// (a flag rather than the pair, so that only those two row loops are
+/// compiled here: measured 6 to 16 k cheaper a `bench_city` full frame).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn quad_rows<K: SpanSink>(
+    [t, l, o, r]: [ScreenPt; 4],
+    sub: u32,
+    [mut y, stop]: [i32; 2],
+    within: bool,
+    b: &SpanBounds,
+    color: K::Color,
+    sink: &mut K,
+) -> usize {
+    // The first row of a corner: where the edge above it ends and the one
+    // below it starts.
+    let row = |p: ScreenPt| Dda32::rows(p, p, sub).0;
+    let (ly, ry) = (row(l), row(r));
+    // Each side's edge on row `y`, and the row where it changes to its
+    // second edge (`stop`: it does not change within the rows).
+    let (mut le, mut l_at) = if y < ly {
+        (Packed::start_inline(t, l, sub, y), ly.min(stop))
+    } else {
+        (Packed::start_inline(l, o, sub, y), stop)
+    };
+    let (mut re, mut r_at) = if y < ry {
+        (Packed::start_inline(t, r, sub, y), ry.min(stop))
+    } else {
+        (Packed::start_inline(r, o, sub, y), stop)
+    };
+    let pair = if within { Pair::Within } else { Pair::Span };
+    let mut spans = 0;
+    while y < stop {
+        let run = l_at.min(r_at);
+        spans += pair_rows(&mut le, &mut re, pair, b, y, run, color, sink);
+        y = run;
+        if y == l_at && y < stop {
+            le = Packed::start_inline(l, o, sub, y);
+            l_at = stop;
+        }
+        if y == r_at && y < stop {
+            re = Packed::start_inline(r, o, sub, y);
+            r_at = stop;
+        }
+    }
+    spans
 }
 
 /// Fills the triangle `pts` within `b` (already intersected with the
@@ -556,6 +680,55 @@ pub(super) mod tests {
         assert!(TriangleBand::new(4, &b, &b, 2, 3).is_none());
         assert!(TriangleBand::new(4, &b, &b, 3, 2).is_none());
         assert!(TriangleBand::new(4, &b, &b, 3, 3).is_some());
+    }
+
+    /// Random quads (convex and not, many with corners on one row line:
+    /// horizontal edges, several top or bottom corners), small and at the
+    /// limit, cut by random bands: a quad whose corner opposite its top
+    /// one is a lowest corner is y-monotone, and the quad path
+    /// (`fill_quad`, which `fill_monotone` takes for it) emits exactly the
+    /// general active-edge fill's spans.
+    #[test]
+    fn quads_equal_the_general_fill() {
+        let mut rng = crate::raster::tests::Rng(23);
+        let mut rnd = |m: i32| rng.range(-m, m);
+        let mut quads = 0;
+        for k in 0..6000 {
+            let sub = 3 + (k % 2) as u32;
+            let m = match k % 3 {
+                0 => SMALL - 1,
+                1 => 40 << sub,
+                _ => 3 << sub, // few distinct rows: ties
+            };
+            let pts = [0; 4].map(|_| {
+                let y = rnd(m);
+                pt(rnd(m), if k % 3 == 2 { y & !((1 << sub) - 1) } else { y })
+            });
+            let bbox = Bbox::of(&pts);
+            if !opposite_lowest(&pts, bbox.top_at) {
+                continue;
+            }
+            assert!(is_y_monotone(&pts, bbox.top_at), "{pts:?}");
+            quads += 1;
+            let b = random_band(&mut rnd, m, sub);
+            let mut fast = Rec(Vec::new(), b);
+            let Some(n) = fill_monotone(&pts, &bbox, sub, &b, (), &mut fast) else {
+                panic!("declined {pts:?}")
+            };
+            assert_eq!(n, fast.0.len());
+            let mut edges = [Edge::ZERO; 4];
+            let mut active = [0u16; 4];
+            let Some(ne) = build_edges(&pts, sub, b.y0, b.y1, &mut edges) else {
+                panic!("capacity")
+            };
+            for rule in [FillRule::NonZero, FillRule::EvenOdd] {
+                let mut slow = Rec(Vec::new(), b);
+                let mut e2 = edges;
+                scan(&mut e2[..ne], &mut active, rule, &b, (), &mut slow);
+                assert_eq!(fast.0, slow.0, "{pts:?} {sub} {b:?}");
+            }
+        }
+        assert!(quads > 2000, "{quads}");
     }
 
     fn pt(x: i32, y: i32) -> ScreenPt {

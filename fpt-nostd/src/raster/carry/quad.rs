@@ -15,7 +15,7 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 
-use super::super::chain::{is_y_monotone, last_above, TriangleBand};
+use super::super::chain::{is_y_monotone, last_above, opposite_lowest, TriangleBand};
 use super::super::edge::{packs, Dda32, Packed, Stepper, SMALL};
 use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
 use super::super::transform::ScreenPt;
@@ -177,7 +177,9 @@ impl TriangleBand {
             return QuadStart::Empty;
         }
         let t = bbox.top_at;
-        if !is_y_monotone(&pts, t) {
+        // Most quads are monotone with their chains meeting opposite the
+        // top corner: two comparisons instead of the monotonicity pass.
+        if !opposite_lowest(&pts, t) && !is_y_monotone(&pts, t) {
             return QuadStart::Outside;
         }
         let y = first.max(b.y0);
