@@ -311,9 +311,24 @@ pub fn pivot_aux(
     let Some(alive) = alive_members(t, n) else {
         return Vec::new();
     };
-    let c = pivot::candidates(t, &alive, ctx, &score);
+    let c = pivot::candidates(t, &alive, ctx, &score, true);
     ctx.relations += (c.edges * alive.len()) as u64;
     let mut out = verified(t, ctx, &alive, c.uncut, &score, true, n);
     out.extend(verified(t, ctx, &alive, c.cutting, &score, false, n));
     out
+}
+
+/// The best plane through an edge of the group that cuts nothing, by
+/// `score(f, b, c)` (`pivot.rs`): what a lookahead trial takes when no
+/// sweep of [`best_aux`] finds a plane that cuts nothing
+/// (`lookahead::Look::trial_edges`).
+pub fn pivot_uncut(
+    t: &Table,
+    ctx: &mut Ctx,
+    score: impl Fn(u32, u32, u32) -> (u32, u32),
+) -> Option<AuxPlane> {
+    let alive = alive_members(t, 1)?;
+    let c = pivot::candidates(t, &alive, ctx, &score, false);
+    ctx.relations += (c.edges * alive.len()) as u64;
+    verified(t, ctx, &alive, c.uncut, &score, true, 1).pop()
 }
