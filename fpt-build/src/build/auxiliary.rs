@@ -235,6 +235,14 @@ fn best_cutting(
     best
 }
 
+/// The alive members of the group, when it is worth proposing `n > 0`
+/// lookahead options in it ([`cutting_aux`], [`pivot_aux`]): at least
+/// three (with two, each member's plane is already an option).
+fn alive_members(t: &Table, n: usize) -> Option<Vec<usize>> {
+    let alive: Vec<usize> = (0..t.len()).filter(|&q| t.is_alive(q)).collect();
+    (alive.len() >= 3 && n > 0).then_some(alive)
+}
+
 /// Up to `n` auxiliary planes that cut members, the best by `score(f, b,
 /// c)` first: candidates for the lookahead (`lookahead.rs`), which judges
 /// them by the pieces their subtrees create rather than by their cuts.
@@ -244,10 +252,9 @@ pub fn cutting_aux(
     score: impl Fn(u32, u32, u32) -> (u32, u32),
     n: usize,
 ) -> Vec<AuxPlane> {
-    let alive: Vec<usize> = (0..t.len()).filter(|&q| t.is_alive(q)).collect();
-    if alive.len() < 3 || n == 0 {
+    let Some(alive) = alive_members(t, n) else {
         return Vec::new();
-    }
+    };
     let candidates: Vec<((u32, u32), Plane)> = directions(t, &alive, ctx)
         .into_iter()
         .filter_map(|u| {
@@ -301,13 +308,27 @@ pub fn pivot_aux(
     score: impl Fn(u32, u32, u32) -> (u32, u32),
     n: usize,
 ) -> Vec<AuxPlane> {
-    let alive: Vec<usize> = (0..t.len()).filter(|&q| t.is_alive(q)).collect();
-    if alive.len() < 3 || n == 0 {
+    let Some(alive) = alive_members(t, n) else {
         return Vec::new();
-    }
-    let c = pivot::candidates(t, &alive, ctx, &score);
+    };
+    let c = pivot::candidates(t, &alive, ctx, &score, true);
     ctx.relations += (c.edges * alive.len()) as u64;
     let mut out = verified(t, ctx, &alive, c.uncut, &score, true, n);
     out.extend(verified(t, ctx, &alive, c.cutting, &score, false, n));
     out
+}
+
+/// The best plane through an edge of the group that cuts nothing, by
+/// `score(f, b, c)` (`pivot.rs`): what a lookahead trial takes when no
+/// sweep of [`best_aux`] finds a plane that cuts nothing
+/// (`lookahead::Look::trial_edges`).
+pub fn pivot_uncut(
+    t: &Table,
+    ctx: &mut Ctx,
+    score: impl Fn(u32, u32, u32) -> (u32, u32),
+) -> Option<AuxPlane> {
+    let alive = alive_members(t, 1)?;
+    let c = pivot::candidates(t, &alive, ctx, &score, false);
+    ctx.relations += (c.edges * alive.len()) as u64;
+    verified(t, ctx, &alive, c.uncut, &score, true, 1).pop()
 }

@@ -6,7 +6,7 @@
 //! a random order and acts on each as soon as it shows an absolute priority
 //! polygon or a separating plane, then finishes what is left statically.
 
-use super::auxiliary::{best_aux, cutting_aux, pivot_aux, AuxPlane};
+use super::auxiliary::{best_aux, cutting_aux, pivot_aux, pivot_uncut, AuxPlane};
 use super::lookahead;
 use super::pivot;
 use super::table::{Rel, Table, Watch};
@@ -60,7 +60,12 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
     } else {
         let look = lookahead::applies(&table, ctx);
         let k = if look { ctx.look.candidates } else { 1 };
-        let aux = best_aux(&table, ctx, split_score);
+        let mut aux = best_aux(&table, ctx, split_score);
+        if aux.is_none() && ctx.in_trial() && table.alive_count() <= ctx.look.trial_edges {
+            // The trial's stand-in for the lookahead's edge planes
+            // (`lookahead::TRIAL_EDGES`).
+            aux = pivot_uncut(&table, ctx, split_score);
+        }
         // Without a lookahead only the better of the best member plane and
         // the best auxiliary plane is used: members that cannot beat the
         // auxiliary plane need not be counted.

@@ -15,7 +15,10 @@
 //! nothing, of the best [`CUTTING`] that cut some and of the best
 //! [`PIVOTS`] through an edge of the group of each kind, with
 //! the greedy rule below it, counts the output polygons each one adds, and
-//! keeps the cheapest (the greedy choice on a tie). The trial subtrees are
+//! keeps the cheapest (the greedy choice on a tie). Below a trial's
+//! option, small groups that the greedy rule cannot separate also try a
+//! plane through an edge that cuts nothing ([`TRIAL_EDGES`]), as the
+//! lookahead would. The trial subtrees are
 //! thrown away: the polygons they split are truncated off the working set
 //! and the counters and random state restored, so the chosen subtree is
 //! built again, with the lookahead in its own subgroups.
@@ -56,7 +59,32 @@ pub struct Look {
     /// Whether groups too large to look ahead try the plane of a
     /// [`dominant`] member against the greedy choice.
     pub wide: bool,
+    /// Inside a trial, groups of up to this many alive members that no
+    /// member plane and no sweep of `auxiliary::best_aux` separates take
+    /// the best plane through an edge that cuts nothing, if there is one
+    /// ([`TRIAL_EDGES`]).
+    pub trial_edges: usize,
 }
+
+/// The largest group inside a lookahead trial that looks for a plane
+/// through an edge that cuts nothing (`auxiliary::pivot_uncut`) when the
+/// greedy rule's sweeps find none ([`Look::trial_edges`]).
+///
+/// A trial stands for the subtree the option will get, but the subtree
+/// is built with the lookahead, whose edge planes ([`PIVOTS`]) separate
+/// many small groups that the trial's greedy rule cuts: the trial
+/// overcounts those options whose subgroups the edge planes would
+/// separate, and picks others. With the edge plane in the trials' small
+/// groups the estimate is closer (`fpt build`, the nine shared models
+/// without rocker-arm, splittings and CPU s of the nine builds against
+/// 2,475 in 25.4 s): up to 16 members 2,467 in 32.3 s; 24, 2,418 in
+/// 32.6 s; 32, 2,408 in 36.1 s (2,418 in 33.1 s only when the sweeps
+/// find nothing); **48, when they find nothing, 2,351 in 38.2 s**; 64
+/// whenever it beats them, 2,339 in 75.2 s; 48 in models of more than
+/// [`TRIAL_EDGES_MODEL`] polygons (kept), 2,348 in 36.3 s; rocker-arm
+/// 8,919 → 8,520 in 9.2 → 13.1 s. Taken greedily outside the
+/// trials, such planes made the tree worse (see [`PIVOTS`]).
+pub const TRIAL_EDGES: usize = 48;
 
 /// Auxiliary planes that cut members tried (`auxiliary::cutting_aux`).
 pub const CUTTING: usize = 2;
@@ -105,6 +133,7 @@ pub const SMALL: Look = Look {
     candidates: 12,
     alternatives: 2,
     wide: true,
+    trial_edges: TRIAL_EDGES,
 };
 
 /// The lookahead of models of up to [`MEDIUM_MODEL`] polygons: groups of
@@ -126,6 +155,7 @@ pub const MEDIUM: Look = Look {
     candidates: 4,
     alternatives: 2,
     wide: true,
+    trial_edges: TRIAL_EDGES,
 };
 
 /// The lookahead of larger models: only groups of up to 64 members.
@@ -139,16 +169,33 @@ pub const LARGE: Look = Look {
     candidates: 4,
     alternatives: 0,
     wide: false,
+    trial_edges: TRIAL_EDGES,
 };
+
+/// Models of up to this many input polygons do not try edge planes in
+/// their trials ([`Look::trial_edges`]): the small inputs gained nothing
+/// from them and some lost (`fpt build`, splittings: the scene vise, 321
+/// polygons, 267 → 304; rabbit, 678, 187 → 192; shuttle, 449, 67 → 65;
+/// the scene house, 723, 642 → 642 in a different tree), where every
+/// larger shared model gained (see [`TRIAL_EDGES`]).
+pub const TRIAL_EDGES_MODEL: usize = 768;
 
 /// The lookahead of a build of `n` input polygons.
 pub fn look_for(n: usize) -> Look {
-    if n <= SMALL_MODEL {
+    let look = if n <= SMALL_MODEL {
         SMALL
     } else if n <= MEDIUM_MODEL {
         MEDIUM
     } else {
         LARGE
+    };
+    if n <= TRIAL_EDGES_MODEL {
+        Look {
+            trial_edges: 0,
+            ..look
+        }
+    } else {
+        look
     }
 }
 

@@ -270,14 +270,15 @@ fn best_angle(
 /// For each distinct edge of the members `alive`, the best plane through
 /// it by `score(f, b, c)` (by the arcs) with members on both sides, of
 /// each kind: among the planes that cut nothing (none when a member lies
-/// across the edge's line), and among the [`GAPS`] angles that cut
-/// fewest. One pass: the edges are found, and each edge's arcs built and
-/// swept, once for both kinds.
+/// across the edge's line), and, if `cutting`, among the [`GAPS`] angles
+/// that cut fewest. One pass: the edges are found, and each edge's arcs
+/// built and swept, once for both kinds.
 pub fn candidates(
     t: &Table,
     alive: &[usize],
     ctx: &Ctx,
     score: &impl Fn(u32, u32, u32) -> (u32, u32),
+    cutting: bool,
 ) -> Candidates {
     let mut arcs = Vec::with_capacity(alive.len());
     let edges = edges(t, alive, ctx);
@@ -293,6 +294,9 @@ pub fn candidates(
         if p.always == 0 {
             let gaps = st.iter().filter(|s| s.1 == 0).take(GAPS).map(|s| s.0);
             out.uncut.extend(best_angle(&arcs, &p, gaps, true, score));
+        }
+        if !cutting {
+            continue;
         }
         st.sort_by(|x, y| x.1.cmp(&y.1).then(x.0.total_cmp(&y.0)));
         let fewest = st.iter().take(GAPS).map(|s| s.0);
