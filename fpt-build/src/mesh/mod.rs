@@ -26,6 +26,7 @@
 //!   its plane's side; see [`from_faces_normals`]); faces without them get
 //!   `None`.
 
+mod coplanar;
 mod obj;
 mod off;
 mod parts;
@@ -98,6 +99,9 @@ pub struct ImportReport {
     pub dropped_degenerate: usize,
     /// Faces that were not planar and were split into planar pieces.
     pub nonplanar_split: usize,
+    /// Polygons merged away into their coplanar neighbours (the `coplanar`
+    /// module): the kept faces and pieces minus the polygons of the model.
+    pub coplanar_merged: usize,
     /// Referenced vertices merged into another vertex by welding.
     pub welded_vertices: usize,
     /// Connected parts whose every edge is shared by two faces in opposite
@@ -135,6 +139,13 @@ pub struct ImportOptions {
     /// Leave closed parts that wind inward as they are instead of turning
     /// them outward (they are then drawn inside out: their inner walls).
     pub keep_orientation: bool,
+    /// Keep one polygon per file face (or planar piece of one) instead of
+    /// merging neighbouring coplanar faces of one colour into convex
+    /// polygons (see the `coplanar` module). Merging never changes the
+    /// picture of a flat-shaded tree, but a tree declaring `smooth`
+    /// interpolates vertex normals across a polygon, so `fpt build` turns
+    /// it off there.
+    pub no_merge: bool,
 }
 
 /// A number as a person writes it: plain when moderate, else `1e30`.
@@ -513,7 +524,11 @@ pub(crate) struct RawMesh {
 }
 
 impl RawMesh {
-    fn into_model(self, format: MeshFormat, options: &ImportOptions) -> Result<Model, MeshError> {
+    pub(crate) fn into_model(
+        self,
+        format: MeshFormat,
+        options: &ImportOptions,
+    ) -> Result<Model, MeshError> {
         if self.faces.is_empty() {
             return Err(MeshError::NoFaces {
                 format: format.name(),

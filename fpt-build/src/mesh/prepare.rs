@@ -201,6 +201,12 @@ pub fn from_faces_normals(
             }
         }
     }
+    if !options.no_merge {
+        let before = polygons.len();
+        polygons =
+            super::coplanar::merge_coplanar(polygons, tols, super::coplanar::MAX_MERGED_VERTS);
+        report.coplanar_merged = before - polygons.len();
+    }
     polygons.iter_mut().for_each(orient_normals);
     Ok(Model {
         polygons,
@@ -507,6 +513,7 @@ mod tests {
         assert!(outward(&m));
         let opts = ImportOptions {
             keep_orientation: true,
+            ..ImportOptions::default()
         };
         let kept = from_faces_with(&v, &f, None, &opts).unwrap();
         assert!(kept.closed && kept.report.orientation_kept);
