@@ -32,7 +32,7 @@
 //! - the pieces of a region take the place of its first polygon, in the
 //!   order of the input otherwise.
 
-use super::planar::{self, loop_edges, Tols};
+use super::planar::{self, find, loop_edges, Tols};
 use crate::geom::{Plane, Polygon};
 use glam::DVec3;
 use std::collections::HashMap;
@@ -100,14 +100,6 @@ pub(crate) fn merge_coplanar(polys: Vec<Polygon>, tols: Tols, max_verts: usize) 
         out.extend(merge_region(group, &group_loops, tols, max_verts));
     }
     out
-}
-
-fn find(parent: &mut [usize], mut x: usize) -> usize {
-    while parent[x] != x {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    x
 }
 
 /// Whether `p` and `q`, which share the edge `a→b` (`p`'s vertices `ka`,

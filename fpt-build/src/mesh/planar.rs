@@ -223,13 +223,6 @@ pub(crate) fn merge(
 ) -> Vec<Vec<usize>> {
     let mut pieces: Vec<Option<Vec<usize>>> = loops.iter().cloned().map(Some).collect();
     let mut parent: Vec<usize> = (0..loops.len()).collect();
-    fn find(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
     let mut edge_tri: HashMap<(usize, usize), usize> = HashMap::new();
     for (t, l) in loops.iter().enumerate() {
         for e in loop_edges(l) {
@@ -264,6 +257,16 @@ pub(crate) fn merge(
         }
     }
     pieces.into_iter().flatten().collect()
+}
+
+/// The root of `x`'s set in the union-find forest `parent` (halving the
+/// path on the way).
+pub(crate) fn find(parent: &mut [usize], mut x: usize) -> usize {
+    while parent[x] != x {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    x
 }
 
 /// The directed edges of a loop, edge `k` from vertex `k` to `k + 1`.
