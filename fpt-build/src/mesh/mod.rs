@@ -8,10 +8,13 @@
 //! - Every parser only turns bytes into a vertex list and a face list (indices
 //!   into the vertex list, in file order); [`from_faces`] then does the common
 //!   work: weld vertices within `1e-6 × bounding-box diagonal`, drop
-//!   degenerate faces, split non-planar faces into planar pieces and decide
-//!   whether the mesh is a closed volume.
+//!   degenerate faces, split non-planar faces into planar pieces, merge
+//!   coplanar neighbours of one colour into convex polygons (unless
+//!   [`ImportOptions::no_merge`]; see `coplanar`) and decide whether the
+//!   mesh is a closed volume.
 //! - Each output polygon's `source` is the index of its face among the faces
-//!   of the input (from 0, in file order), also for pieces of a split face.
+//!   of the input (from 0, in file order), also for pieces of a split face;
+//!   a polygon of a merged coplanar region has the region's first face's.
 //! - Windings are kept: a face counter-clockwise seen from outside gets an
 //!   outward plane normal. The exception: a closed connected part whose
 //!   faces all wind inward (negative volume; not a cavity inside another

@@ -1,5 +1,6 @@
 //! The common pipeline after parsing: weld, clean, drop degenerate faces,
-//! planarize, decide closedness.
+//! planarize, merge coplanar neighbours (`super::coplanar`), decide
+//! closedness.
 //!
 //! Tolerances, all relative to the bounding-box diagonal `D` of the vertices
 //! that faces use:
