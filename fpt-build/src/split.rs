@@ -53,6 +53,9 @@ struct Node {
     /// `true` for an original vertex on the front side, `false` for an
     /// original vertex behind (or on) the plane; crossings are neither.
     front: bool,
+    /// An original vertex beyond the tolerance from the plane (crossings
+    /// and vertices on the plane are not).
+    off: bool,
     /// For a crossing: index into the crossing list.
     crossing: Option<usize>,
 }
@@ -186,6 +189,7 @@ impl Boundary {
             nodes.push(Node {
                 pos: a,
                 front: fa,
+                off: da != 0.0,
                 crossing: None,
             });
             if fa != fb {
@@ -218,6 +222,7 @@ impl Boundary {
                 nodes.push(Node {
                     pos,
                     front: false,
+                    off: false,
                     crossing: Some(crossings.len() - 1),
                 });
             }
@@ -255,12 +260,14 @@ impl Boundary {
                 continue;
             }
             let mut verts: Vec<DVec3> = Vec::new();
+            let mut off = false;
             let mut i = start;
             // Each step either moves along the boundary or jumps across an inside
             // segment; 2m steps bound any trace of a well-formed boundary.
             for _ in 0..2 * m + 2 {
                 used[i] = true;
                 verts.push(nodes[i].pos);
+                off |= nodes[i].off;
                 if let Some(c) = nodes[i].crossing {
                     // Leaving this side here? Then jump to the segment's other end.
                     if crossings[c].leaving_front == front {
@@ -278,7 +285,7 @@ impl Boundary {
                     break;
                 }
             }
-            if let Some(p) = finish_piece(verts, parent, tol) {
+            if let Some(p) = finish_piece(verts, off, parent, tol) {
                 pieces.push(p);
             }
         }
@@ -287,7 +294,13 @@ impl Boundary {
 }
 
 /// Removes repeated points and collinear spikes; drops zero-area fragments.
-fn finish_piece(mut verts: Vec<DVec3>, parent: &Polygon, tol: Tolerance) -> Option<Polygon> {
+/// `off`: the piece has a vertex beyond the tolerance from the plane.
+fn finish_piece(
+    mut verts: Vec<DVec3>,
+    off: bool,
+    parent: &Polygon,
+    tol: Tolerance,
+) -> Option<Polygon> {
     verts.dedup();
     while verts.len() > 1 && verts.first() == verts.last() {
         verts.pop();
@@ -296,7 +309,21 @@ fn finish_piece(mut verts: Vec<DVec3>, parent: &Polygon, tol: Tolerance) -> Opti
         return None;
     }
     // A piece narrower than the tolerance is a sliver of rounding noise.
-    if crate::geom::area(&verts) <= tol.0 * tol.0 {
+    // Not one with a vertex beyond the tolerance from the cut and three
+    // sides longer than the tolerance, however small its area: the seam
+    // repair's weld (the same distance) cannot collapse it, and its
+    // neighbours keep those sides (the face across its source edge keeps
+    // the vertex and the crossings around it), so dropping it left a hole.
+    // In `shuttle.obj`'s BSP tree: a vertex 1.12 tolerances in front of a
+    // cut, a triangle of 0.92 tolerance² with sides of 1.3 to 1.6
+    // tolerances, three open edges. (A needle whose base is shorter than
+    // the tolerance still goes: the weld would make it a segment.)
+    let n = verts.len();
+    let long = (0..n)
+        .filter(|&k| (verts[(k + 1) % n] - verts[k]).length() > tol.0)
+        .count();
+    let real = off && long >= 3;
+    if !real && crate::geom::area(&verts) <= tol.0 * tol.0 {
         return None;
     }
     Some(Polygon {
@@ -330,6 +357,30 @@ mod tests {
 
     fn total(ps: &[Polygon]) -> f64 {
         ps.iter().map(|p| area(&p.verts)).sum()
+    }
+
+    #[test]
+    fn a_tip_just_beyond_the_tolerance_is_kept_however_small() {
+        // A spike whose tip is 1.2 tolerances in front of the cut: the
+        // front piece is a triangle of 0.72 tolerance², but its sides (1.2
+        // and 1.34 tolerances) are longer than the tolerance, so the seam
+        // repair cannot weld it away and the face across the spike's edges
+        // keeps the tip. Dropped, it was a hole (shuttle.obj's BSP tree,
+        // three open edges).
+        let tip = 0.5 + 1.2 * TOL.0;
+        let spike = poly(&[(0.0, 0.25), (tip, 0.5), (0.0, 0.75)]);
+        let p = split(&spike, &vertical(0.5), TOL);
+        assert_eq!((p.front.len(), p.back.len()), (1, 1));
+        assert!(p.front[0].verts.contains(&DVec3::new(tip, 0.5, 0.0)));
+        // The tip's triangle: height 1.2 tolerances, base as long.
+        let want = 0.5 * (1.2 * TOL.0).powi(2);
+        let got = area(&p.front[0].verts);
+        assert!((got - want).abs() < 1e-3 * want, "{got:e} {want:e}");
+        // A needle, its base shorter than the tolerance, is still dropped:
+        // the weld would make it a segment.
+        let needle = poly(&[(0.0, 0.4), (tip, 0.5), (0.0, 0.6)]);
+        let p = split(&needle, &vertical(0.5), TOL);
+        assert_eq!((p.front.len(), p.back.len()), (0, 1));
     }
 
     #[test]

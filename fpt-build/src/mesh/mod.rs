@@ -8,10 +8,13 @@
 //! - Every parser only turns bytes into a vertex list and a face list (indices
 //!   into the vertex list, in file order); [`from_faces`] then does the common
 //!   work: weld vertices within `1e-6 × bounding-box diagonal`, drop
-//!   degenerate faces, split non-planar faces into planar pieces and decide
-//!   whether the mesh is a closed volume.
+//!   degenerate faces, split non-planar faces into planar pieces, merge
+//!   coplanar neighbours of one colour into convex polygons (unless
+//!   [`ImportOptions::no_merge`]; see `coplanar`) and decide whether the
+//!   mesh is a closed volume.
 //! - Each output polygon's `source` is the index of its face among the faces
-//!   of the input (from 0, in file order), also for pieces of a split face.
+//!   of the input (from 0, in file order), also for pieces of a split face;
+//!   a polygon of a merged coplanar region has the region's first face's.
 //! - Windings are kept: a face counter-clockwise seen from outside gets an
 //!   outward plane normal. The exception: a closed connected part whose
 //!   faces all wind inward (negative volume; not a cavity inside another
@@ -26,6 +29,7 @@
 //!   its plane's side; see [`from_faces_normals`]); faces without them get
 //!   `None`.
 
+mod coplanar;
 mod obj;
 mod off;
 mod parts;
@@ -98,6 +102,9 @@ pub struct ImportReport {
     pub dropped_degenerate: usize,
     /// Faces that were not planar and were split into planar pieces.
     pub nonplanar_split: usize,
+    /// Polygons merged away into their coplanar neighbours (the `coplanar`
+    /// module): the kept faces and pieces minus the polygons of the model.
+    pub coplanar_merged: usize,
     /// Referenced vertices merged into another vertex by welding.
     pub welded_vertices: usize,
     /// Connected parts whose every edge is shared by two faces in opposite
@@ -135,6 +142,13 @@ pub struct ImportOptions {
     /// Leave closed parts that wind inward as they are instead of turning
     /// them outward (they are then drawn inside out: their inner walls).
     pub keep_orientation: bool,
+    /// Keep one polygon per file face (or planar piece of one) instead of
+    /// merging neighbouring coplanar faces of one colour into convex
+    /// polygons (see the `coplanar` module). Merging never changes the
+    /// picture of a flat-shaded tree, but a tree declaring `smooth`
+    /// interpolates vertex normals across a polygon, so `fpt build` turns
+    /// it off there.
+    pub no_merge: bool,
 }
 
 /// A number as a person writes it: plain when moderate, else `1e30`.
@@ -513,7 +527,11 @@ pub(crate) struct RawMesh {
 }
 
 impl RawMesh {
-    fn into_model(self, format: MeshFormat, options: &ImportOptions) -> Result<Model, MeshError> {
+    pub(crate) fn into_model(
+        self,
+        format: MeshFormat,
+        options: &ImportOptions,
+    ) -> Result<Model, MeshError> {
         if self.faces.is_empty() {
             return Err(MeshError::NoFaces {
                 format: format.name(),

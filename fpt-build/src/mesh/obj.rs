@@ -532,11 +532,26 @@ mod tests {
     fn ngons_stay_whole_and_faces_keep_file_order_across_groups() {
         let text = "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\n\
                     g a\nf 1 2 3 4 5 6\ng b\nf 1 2 3\no c\nf 1 3 4\n";
-        let m = load_bytes(MeshFormat::Obj, text.as_bytes()).unwrap();
+        let whole = crate::mesh::ImportOptions {
+            no_merge: true,
+            ..Default::default()
+        };
+        let m = parse(text.as_bytes())
+            .unwrap()
+            .into_model(MeshFormat::Obj, &whole)
+            .unwrap();
         assert_eq!(m.report.faces_read, 3);
         let sources: Vec<u32> = m.polygons.iter().map(|p| p.source).collect();
         assert_eq!(sources, vec![0, 1, 2]);
         assert_eq!(m.polygons[0].verts.len(), 6, "concave hexagon kept whole");
+        // Merged by default: the two triangles are coplanar neighbours of
+        // one colour across their edge 1-3 (the hexagon overlaps them, its
+        // edges 1-2, 2-3 and 3-4 running the same way as theirs: no
+        // manifold edge joins it to them).
+        let m = load_bytes(MeshFormat::Obj, text.as_bytes()).unwrap();
+        let sources: Vec<u32> = m.polygons.iter().map(|p| p.source).collect();
+        assert_eq!(sources, vec![0, 1]);
+        assert_eq!(m.polygons[1].verts.len(), 4);
     }
 
     #[test]

@@ -59,11 +59,14 @@ pub(crate) fn planarize(pts: &[DVec3], source: u32, color: Rgb, tols: Tols) -> P
             None => Planarized::Degenerate,
         };
     }
-    let tris = triangulate(pts, plane.normal);
+    let tris: Vec<Vec<usize>> = triangulate(pts, plane.normal)
+        .iter()
+        .map(|t| t.to_vec())
+        .collect();
     let pieces = if pts.len() <= MAX_EAR_VERTS {
-        merge(pts, &tris, plane.normal, tols)
+        merge(pts, &tris, plane.normal, tols, usize::MAX)
     } else {
-        tris.iter().map(|t| t.to_vec()).collect()
+        tris
     };
     let polys: Vec<Polygon> = pieces
         .iter()
@@ -204,30 +207,33 @@ fn is_ear(p2: &[DVec2], idx: &[usize], a: usize, b: usize, c: usize) -> bool {
     })
 }
 
-/// Greedily merges adjacent triangles into larger pieces while the union is
-/// planar within `tols.planar` and convex. Returns the pieces as loops of
-/// indices into `pts`.
-fn merge(pts: &[DVec3], tris: &[[usize; 3]], normal: DVec3, tols: Tols) -> Vec<Vec<usize>> {
-    let mut pieces: Vec<Option<Vec<usize>>> = tris.iter().map(|t| Some(t.to_vec())).collect();
-    let mut parent: Vec<usize> = (0..tris.len()).collect();
-    fn find(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
+/// Greedily merges adjacent loops (triangles of one face here, the faces
+/// of a coplanar region in `super::coplanar`) into larger pieces while the
+/// union is planar within `tols.planar`, convex and has at most
+/// `max_verts` vertices. Loops index `pts`; two loops are adjacent when one
+/// has the edge `a→b` and the other `b→a`, and an edge is taken for at most
+/// one loop in each direction. Returns the pieces as loops of indices into
+/// `pts`, every vertex kept (a merge drops only the shared edge).
+pub(crate) fn merge(
+    pts: &[DVec3],
+    loops: &[Vec<usize>],
+    normal: DVec3,
+    tols: Tols,
+    max_verts: usize,
+) -> Vec<Vec<usize>> {
+    let mut pieces: Vec<Option<Vec<usize>>> = loops.iter().cloned().map(Some).collect();
+    let mut parent: Vec<usize> = (0..loops.len()).collect();
     let mut edge_tri: HashMap<(usize, usize), usize> = HashMap::new();
-    for (t, tri) in tris.iter().enumerate() {
-        for k in 0..3 {
-            edge_tri.insert((tri[k], tri[(k + 1) % 3]), t);
+    for (t, l) in loops.iter().enumerate() {
+        for e in loop_edges(l) {
+            edge_tri.insert(e, t);
         }
     }
-    // Diagonals in triangle order, so the result does not depend on the
+    // Shared edges in loop order, so the result does not depend on the
     // hash map's iteration order.
-    let diagonals: Vec<(usize, usize)> = tris
+    let diagonals: Vec<(usize, usize)> = loops
         .iter()
-        .flat_map(|tri| (0..3).map(move |k| (tri[k], tri[(k + 1) % 3])))
+        .flat_map(|l| loop_edges(l))
         .filter(|&(a, b)| a < b && edge_tri.contains_key(&(b, a)))
         .collect();
     for (a, b) in diagonals {
@@ -244,13 +250,28 @@ fn merge(pts: &[DVec3], tris: &[[usize; 3]], normal: DVec3, tols: Tols) -> Vec<V
         let Some(merged) = splice(lp, lq, a, b) else {
             continue;
         };
-        if planar_and_convex(pts, &merged, normal, tols) {
+        if merged.len() <= max_verts && planar_and_convex(pts, &merged, normal, tols) {
             pieces[p] = Some(merged);
             pieces[q] = None;
             parent[q] = p;
         }
     }
     pieces.into_iter().flatten().collect()
+}
+
+/// The root of `x`'s set in the union-find forest `parent` (halving the
+/// path on the way).
+pub(crate) fn find(parent: &mut [usize], mut x: usize) -> usize {
+    while parent[x] != x {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    x
+}
+
+/// The directed edges of a loop, edge `k` from vertex `k` to `k + 1`.
+pub(crate) fn loop_edges(l: &[usize]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    (0..l.len()).map(move |k| (l[k], l[(k + 1) % l.len()]))
 }
 
 /// Joins loop `p` (which has the edge `a→b`) and loop `q` (which has `b→a`)

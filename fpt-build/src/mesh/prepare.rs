@@ -1,5 +1,6 @@
 //! The common pipeline after parsing: weld, clean, drop degenerate faces,
-//! planarize, decide closedness.
+//! planarize, merge coplanar neighbours (`super::coplanar`), decide
+//! closedness.
 //!
 //! Tolerances, all relative to the bounding-box diagonal `D` of the vertices
 //! that faces use:
@@ -200,6 +201,12 @@ pub fn from_faces_normals(
                 polygons[start..end].iter_mut().for_each(flip);
             }
         }
+    }
+    if !options.no_merge {
+        let before = polygons.len();
+        polygons =
+            super::coplanar::merge_coplanar(polygons, tols, super::coplanar::MAX_MERGED_VERTS);
+        report.coplanar_merged = before - polygons.len();
     }
     polygons.iter_mut().for_each(orient_normals);
     Ok(Model {
@@ -507,6 +514,7 @@ mod tests {
         assert!(outward(&m));
         let opts = ImportOptions {
             keep_orientation: true,
+            ..ImportOptions::default()
         };
         let kept = from_faces_with(&v, &f, None, &opts).unwrap();
         assert!(kept.closed && kept.report.orientation_kept);

@@ -2,7 +2,7 @@
 //! checks the facts its README states: faces read, closed or open, and the
 //! non-planar faces it counts.
 
-use super::{is_closed, is_closed_faces, load, Model};
+use super::{is_closed, is_closed_faces, load, load_with, ImportOptions, Model};
 use std::path::PathBuf;
 
 fn models_dir() -> Option<PathBuf> {
@@ -35,6 +35,16 @@ fn load_model(name: &str) -> Option<Model> {
     Some(load(&dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}")))
 }
 
+/// The model with one polygon per face (or planar piece of one).
+fn load_whole(name: &str) -> Option<Model> {
+    let dir = models_dir()?;
+    let whole = ImportOptions {
+        no_merge: true,
+        ..ImportOptions::default()
+    };
+    Some(load_with(&dir.join(name), &whole).unwrap_or_else(|e| panic!("{name}: {e}")))
+}
+
 #[test]
 fn every_shared_model_loads_with_the_readme_facts() {
     if models_dir().is_none() {
@@ -63,13 +73,25 @@ fn every_shared_model_loads_with_the_readme_facts() {
             closed,
             "{name}: polygons closed"
         );
-        let mut sources: Vec<u32> = m.polygons.iter().map(|p| p.source).collect();
+        let whole = load_whole(name).unwrap();
+        let mut sources: Vec<u32> = whole.polygons.iter().map(|p| p.source).collect();
         sources.dedup();
         assert_eq!(sources.len(), faces, "{name}: every face present, in order");
         assert!(
             sources.windows(2).all(|w| w[0] < w[1]),
             "{name}: sources in order"
         );
+        // Merged coplanar regions take the place and the source of their
+        // first face, and tile what they replace.
+        assert!(m.polygons.windows(2).all(|w| w[0].source <= w[1].source));
+        assert_eq!(
+            m.polygons.len() + m.report.coplanar_merged,
+            whole.polygons.len()
+        );
+        let area =
+            |m: &Model| -> f64 { m.polygons.iter().map(|p| crate::geom::area(&p.verts)).sum() };
+        let (a, b) = (area(&m), area(&whole));
+        assert!((a - b).abs() <= 1e-9 * b, "{name}: area {a} vs {b}");
         // Within the planarity tolerance of their planes, and never moved:
         // every vertex is one of the file's.
         let tol = super::prepare::PLANAR_REL * diag * (1.0 + 1e-9);
@@ -104,7 +126,7 @@ fn nonplanar_faces_are_split() {
         ("rabbit.obj", 0),
         ("wallhole.obj", 0),
     ] {
-        let Some(m) = load_model(name) else { return };
+        let Some(m) = load_whole(name) else { return };
         let Some(dir) = models_dir() else { return };
         let raw = super::parse_raw(
             super::MeshFormat::Obj,

@@ -275,8 +275,17 @@ pub fn run(a: &BuildArgs) -> CliResult {
         Some(c) => Some(super::render::parse_rgb("--color", c)?),
         None => None,
     };
+    // Smooth shading interpolates vertex normals across a polygon: a
+    // merged flat face would be shaded differently from its triangles.
+    let smooth = match &a.effects {
+        Some(list) => Effects::parse(list)
+            .map_err(|e| cli_err!("--effects: {e}"))?
+            .contains(Effects::SMOOTH),
+        None => false,
+    };
     let options = crate::mesh::ImportOptions {
         keep_orientation: a.keep_orientation,
+        no_merge: a.no_merge || smooth,
     };
     // Reading the mesh is part of building it: running out of memory there
     // gets the same message (with what was in use when it ran out).

@@ -113,6 +113,11 @@ pub struct BuildArgs {
     /// they are turned outward, with a warning).
     #[arg(long = "keep-orientation")]
     pub keep_orientation: bool,
+    /// Keep one polygon per face of the file: do not merge neighbouring
+    /// coplanar faces of one colour into convex polygons (merged by
+    /// default, except for trees declaring `smooth`).
+    #[arg(long = "no-merge")]
+    pub no_merge: bool,
     /// Write the build statistics to this JSON file.
     #[arg(long)]
     pub stats: Option<PathBuf>,

@@ -45,8 +45,9 @@ fn check_size(mesh: &Path, triangles: usize, levels: u32) -> CliResult {
 }
 
 /// `name` and `model` at subdivision levels 0 to `levels`: level 0 is
-/// the model as loaded (its polygons untouched), level `k` the
-/// triangulated model after `k` steps, named `NAME Loop k`.
+/// the model as loaded (its polygons untouched), level `k` the file's
+/// faces ([`file_faces`]) triangulated and after `k` steps, named
+/// `NAME Loop k`.
 pub fn levels(
     name: &str,
     path: &Path,
@@ -57,7 +58,7 @@ pub fn levels(
         // `--scaling` without `--subdivide`: nothing to triangulate.
         return Ok(vec![(name.to_string(), model)]);
     }
-    let mut tri = TriMesh::from_polygons(&model.polygons);
+    let mut tri = TriMesh::from_polygons(&file_faces(path)?.polygons);
     check_size(path, tri.triangles.len(), levels)?;
     let mut out = vec![(name.to_string(), model)];
     for k in 1..=levels {
@@ -68,6 +69,19 @@ pub fn levels(
         out.push((format!("{name} Loop {k}"), m));
     }
     Ok(out)
+}
+
+/// The mesh at `path` with one polygon per face of the file
+/// (`ImportOptions::no_merge`): subdivision cuts every polygon into
+/// triangles anyway, and a merged coplanar polygon keeps the vertices its
+/// edges pass straight through (so that its seams have no T-junction),
+/// where ear clipping can cut triangles of no area.
+fn file_faces(path: &Path) -> Result<Model, CliError> {
+    let whole = crate::mesh::ImportOptions {
+        no_merge: true,
+        ..Default::default()
+    };
+    crate::mesh::load_with(path, &whole).map_err(|e| cli_err!("{}: {e}", path.display()))
 }
 
 /// The mesh as OBJ text: `v` lines with each coordinate in the shortest
@@ -88,8 +102,7 @@ pub fn obj_text(m: &TriMesh) -> String {
 
 /// `fpt subdivide`.
 pub fn run(a: &SubdivideArgs) -> CliResult {
-    let model = crate::mesh::load(&a.mesh).map_err(|e| cli_err!("{}: {e}", a.mesh.display()))?;
-    let mut tri = TriMesh::from_polygons(&model.polygons);
+    let mut tri = TriMesh::from_polygons(&file_faces(&a.mesh)?.polygons);
     check_size(&a.mesh, tri.triangles.len(), a.levels)?;
     let before = tri.triangles.len();
     for _ in 0..a.levels {

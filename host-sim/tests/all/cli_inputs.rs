@@ -165,6 +165,7 @@ fn a_whole_mesh_inside_out_is_flipped_too() {
     }
     let opts = ImportOptions {
         keep_orientation: true,
+        ..ImportOptions::default()
     };
     let m = host_sim::mesh::from_faces_with(
         &[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
