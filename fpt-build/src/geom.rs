@@ -141,6 +141,13 @@ impl Plane {
     }
 }
 
+/// A vertex's identity by bit pattern (−0 taken as +0): the key with which
+/// vertices at the very same position are one vertex (the serializer's
+/// encoding merges exactly such vertices, so seams and merges use it too).
+pub(crate) fn vertex_key(v: DVec3) -> [u64; 3] {
+    v.to_array().map(|c| (c + 0.0).to_bits())
+}
+
 /// Mean of the vertices.
 pub fn centroid(verts: &[DVec3]) -> DVec3 {
     let sum: DVec3 = verts.iter().copied().sum();

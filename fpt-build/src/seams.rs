@@ -8,7 +8,7 @@
 //! that share a vertex in the mesh file can carry copies of it a rounding
 //! error apart (each face is snapped onto its own plane at import).
 
-use crate::geom::{bounds, Polygon};
+use crate::geom::{bounds, vertex_key, Polygon};
 use glam::{DVec3, IVec3};
 use std::collections::HashMap;
 
@@ -34,7 +34,7 @@ pub fn repair_seams(polys: &mut [Polygon]) -> usize {
     if polys.is_empty() {
         return 0;
     }
-    let key = |v: DVec3| [v.x, v.y, v.z].map(|c| (c + 0.0).to_bits());
+    let key = vertex_key;
     let (lo, hi) = bounds(polys);
     let eps = 1e-7 * (hi - lo).length().max(f64::MIN_POSITIVE);
     // A grid over the vertices keeps every search local.

@@ -33,7 +33,7 @@
 //!   order of the input otherwise.
 
 use super::planar::{self, find, loop_edges, Tols};
-use crate::geom::{Plane, Polygon};
+use crate::geom::{vertex_key, Plane, Polygon};
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -48,7 +48,7 @@ pub const MAX_MERGED_VERTS: usize = 8;
 /// Merges the coplanar regions of `polys` (see the module docs) and returns
 /// the polygons that result.
 pub(crate) fn merge_coplanar(polys: Vec<Polygon>, tols: Tols, max_verts: usize) -> Vec<Polygon> {
-    let key = |v: DVec3| v.to_array().map(|c| (c + 0.0).to_bits());
+    let key = vertex_key;
     let mut id_of: HashMap<[u64; 3], usize> = HashMap::new();
     let loops: Vec<Vec<usize>> = polys
         .iter()

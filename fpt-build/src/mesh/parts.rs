@@ -20,6 +20,7 @@
 //! an outward closed part: it is then a cavity (the inner wall of a hollow
 //! solid), which must wind inward.
 
+use super::planar::find;
 use super::{OpenEdgeKind, OpenEdges, OPEN_EDGE_EXAMPLES};
 use glam::DVec3;
 use std::collections::HashMap;
@@ -57,16 +58,6 @@ impl Parts {
     }
 }
 
-/// Union-find root of `i`, halving paths on the way.
-fn find(parent: &mut [u32], mut i: u32) -> u32 {
-    while parent[i as usize] != i {
-        let up = parent[parent[i as usize] as usize];
-        parent[i as usize] = up;
-        i = up;
-    }
-    i
-}
-
 /// Directed uses of an undirected edge `(a, b)` with `a < b`.
 #[derive(Clone, Copy, Default)]
 struct Uses {
@@ -82,9 +73,7 @@ struct Uses {
 /// (hash maps aside).
 pub(crate) fn analyse(loops: &[Vec<u32>], positions: &[DVec3]) -> Parts {
     let n = loops.len();
-    let mut parent: Vec<u32> = (0..n)
-        .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
-        .collect();
+    let mut parent: Vec<usize> = (0..n).collect();
     let mut edges: HashMap<(u32, u32), Uses> = HashMap::new();
     for (fi, l) in loops.iter().enumerate() {
         let fi = u32::try_from(fi).unwrap_or(u32::MAX);
@@ -102,17 +91,20 @@ pub(crate) fn analyse(loops: &[Vec<u32>], positions: &[DVec3]) -> Parts {
             } else {
                 e.backward += 1;
             }
-            let (ra, rb) = (find(&mut parent, e.face), find(&mut parent, fi));
+            let (ra, rb) = (
+                find(&mut parent, e.face as usize),
+                find(&mut parent, fi as usize),
+            );
             if ra != rb {
-                parent[ra.max(rb) as usize] = ra.min(rb);
+                parent[ra.max(rb)] = ra.min(rb);
             }
         }
     }
     // Dense part numbers, in order of each part's first loop.
-    let mut number: HashMap<u32, u32> = HashMap::new();
+    let mut number: HashMap<usize, u32> = HashMap::new();
     let part_of: Vec<u32> = (0..n)
         .map(|i| {
-            let root = find(&mut parent, u32::try_from(i).unwrap_or(u32::MAX));
+            let root = find(&mut parent, i);
             let next = u32::try_from(number.len()).unwrap_or(u32::MAX);
             *number.entry(root).or_insert(next)
         })

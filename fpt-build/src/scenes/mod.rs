@@ -32,7 +32,7 @@ pub use robot::robot;
 pub use torus::torus;
 pub use vise::vise;
 
-use crate::geom::Polygon;
+use crate::geom::{vertex_key, Polygon};
 use glam::DVec3;
 use parts::Part;
 use std::collections::HashMap;
@@ -139,7 +139,7 @@ pub fn scaled(scene: &Scene, scale: f64, offset: DVec3) -> Scene {
 /// its reverse exactly once. Lists at most `limit` problems.
 pub fn closed_defects(polys: &[Polygon], limit: usize) -> Vec<String> {
     type Key = [u64; 3];
-    let k = |v: DVec3| [v.x, v.y, v.z].map(|c| (c + 0.0).to_bits());
+    let k = vertex_key;
     let mut count: HashMap<(Key, Key), (usize, usize)> = HashMap::new();
     for (pi, p) in polys.iter().enumerate() {
         let n = p.verts.len();
