@@ -188,7 +188,7 @@ const QUADS: bool = HAS_FPU || cfg!(test);
 /// [`fill_quad`]'s): `Pair::Within` when the box lies within `b`'s
 /// columns, else `Pair::Span`.
 #[inline(always)]
-fn pair_of(bbox: &Bbox, sub: u32, b: &SpanBounds) -> Pair {
+pub(crate) fn pair_of(bbox: &Bbox, sub: u32, b: &SpanBounds) -> Pair {
     // Every crossing lies in `[col(lo), col(hi) + 1]` (as in
     // `fill_polygon_in`'s reject): within the columns, its rows need no
     // clamp, which also frees two registers of the row loop.
@@ -261,7 +261,7 @@ fn fill_quad<K: SpanSink>(
 /// compiled here: measured 6 to 16 k cheaper a `bench_city` full frame).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
-fn quad_rows<K: SpanSink>(
+pub(crate) fn quad_rows<K: SpanSink>(
     [t, l, o, r]: [ScreenPt; 4],
     sub: u32,
     [mut y, stop]: [i32; 2],

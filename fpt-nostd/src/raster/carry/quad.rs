@@ -6,16 +6,20 @@
 //!
 //! # Contract
 //!
-//! [`TriangleBand::start_quad`] then [`TriangleBand::run_chains`] emit
-//! exactly the spans of `fill_polygon_in` for the same polygon and band
-//! (or decline, [`QuadStart::Outside`], before emitting anything, where
-//! that one takes its general path); [`TriangleBand::run_chains`] of the
-//! state it left, resumed in the next band (through the ring's words,
-//! [`Ring::pop_quad`]), emits exactly what `fill_polygon_in` would there.
+//! [`TriangleBand::start_quad`] then [`TriangleBand::run_chains`] (or,
+//! for a quad ending in the band, [`QuadStart::Whole`], the full frame's
+//! `chain::quad_rows`) emit exactly the spans of `fill_polygon_in` for
+//! the same polygon and band (or decline, [`QuadStart::Outside`], before
+//! emitting anything, where that one takes its general path);
+//! [`TriangleBand::run_chains`] of the state it left, resumed in the next
+//! band (through the ring's words, [`Ring::pop_quad`]), emits exactly
+//! what `fill_polygon_in` would there.
 
 use embedded_graphics::pixelcolor::Rgb888;
 
-use super::super::chain::{is_y_monotone, last_above, opposite_lowest, TriangleBand};
+use super::super::chain::{
+    is_y_monotone, last_above, opposite_lowest, pair_of, quad_rows, TriangleBand,
+};
 use super::super::edge::{packs, Dda32, Packed, Stepper, SMALL};
 use super::super::scan::{pair_rows, Bbox, Paint, Pair, SpanSink};
 use super::super::transform::ScreenPt;
@@ -116,6 +120,12 @@ pub(crate) enum QuadStart<S> {
     Empty,
     /// The state to run from row `.1` (its chains not yet sought).
     Rows(Quad<S>, i32),
+    /// A quad whose rows end in this band and whose corner opposite the
+    /// top one is a lowest one: its corners from the top (`t, l, o, r`),
+    /// its rows `[y, stop)` here and whether its box lies within the
+    /// band's columns, for the full frame's `chain::quad_rows` (no
+    /// chain seeks, nothing to keep).
+    Whole([ScreenPt; 4], [i32; 2], bool),
 }
 
 /// The chain of `arc` from vertex `*at` one vertex on (`fwd`: forward)
@@ -179,7 +189,8 @@ impl TriangleBand {
         let t = bbox.top_at;
         // Most quads are monotone with their chains meeting opposite the
         // top corner: two comparisons instead of the monotonicity pass.
-        if !opposite_lowest(&pts, t) && !is_y_monotone(&pts, t) {
+        let opposite = opposite_lowest(&pts, t);
+        if !opposite && !is_y_monotone(&pts, t) {
             return QuadStart::Outside;
         }
         let y = first.max(b.y0);
@@ -187,6 +198,14 @@ impl TriangleBand {
             return QuadStart::Empty;
         }
         let at = |k: usize| pts[(t + k) % 4];
+        // A quad ending in this band has nothing to keep: the full frame's
+        // row function fills it, its chains known from the corners (no
+        // state to build, no seeks; packed steppers only). Session 24:
+        // the firmware band set 0.4 to 8.5 k lower a frame.
+        if opposite && end <= b.y1 && packs(sub) {
+            let within = pair_of(&bbox, sub, b) == Pair::Within;
+            return QuadStart::Whole([at(0), at(1), at(2), at(3)], [y, end], within);
+        }
         let quad = Quad {
             l: S::default(),
             ly1: y,
@@ -342,6 +361,11 @@ impl TriangleBand {
         match self.start_quad::<S>(pts) {
             QuadStart::Outside => None,
             QuadStart::Empty => Some(0),
+            QuadStart::Whole(corners, rows, within) => {
+                let color = sink.color(&Paint { rgb, id });
+                let (sub, b) = (self.sub, &self.b);
+                Some(quad_rows(corners, sub, rows, within, b, color, sink) as u64)
+            }
             QuadStart::Rows(mut q, y) => {
                 let paint = Paint { rgb, id };
                 let color = sink.color(&paint);
@@ -460,6 +484,11 @@ mod tests {
                             general_fill(&quad, &band, &mut got);
                         }
                         QuadStart::Empty => assert_eq!(n, 0),
+                        QuadStart::Whole(c, rows, within) => {
+                            fresh_runs += 1;
+                            let (sub, b) = (band.sub, &band.b);
+                            assert_eq!(quad_rows(c, sub, rows, within, b, (), &mut got), n);
+                        }
                         QuadStart::Rows(mut q, y) => {
                             fresh_runs += 1;
                             assert_eq!(band.run_chains(&mut q, y, (), &mut got), n);
