@@ -123,11 +123,13 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
         }
         // The plane of a member that holds a large share of the group's
         // area (`lookahead::dominant`): an option of the lookahead, and
-        // tried against the greedy choice in larger groups too.
+        // tried in larger groups too, with the greedy choice and the
+        // runner-up of the best member and auxiliary planes
+        // (`lookahead::WIDE_OPTIONS`).
         let wide = !look && ctx.look.wide && !ctx.in_trial();
         if look || wide {
             if wide {
-                options.truncate(1);
+                options.truncate(lookahead::WIDE_OPTIONS);
             }
             if let Some(m) = lookahead::dominant(&table, ctx) {
                 if !options
