@@ -123,13 +123,11 @@ pub fn build_group(mut table: Table, mode: Mode, ctx: &mut Ctx) -> Connecting {
         }
         // The plane of a member that holds a large share of the group's
         // area (`lookahead::dominant`): an option of the lookahead, and
-        // tried in larger groups too, with the greedy choice and the
-        // runner-up of the best member and auxiliary planes
-        // (`lookahead::WIDE_OPTIONS`).
+        // tried against the greedy choice in larger groups too.
         let wide = !look && ctx.look.wide && !ctx.in_trial();
         if look || wide {
             if wide {
-                options.truncate(lookahead::WIDE_OPTIONS);
+                options.truncate(1);
             }
             if let Some(m) = lookahead::dominant(&table, ctx) {
                 if !options

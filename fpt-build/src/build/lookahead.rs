@@ -29,8 +29,8 @@
 //! far, or at once when an earlier one added nothing), each node of the
 //! tree runs at most `candidates + alternatives + CUTTING + 2 × PIVOTS + 2`
 //! trials (the last the plane of a [`dominant`] member), and larger models
-//! look ahead less ([`look_for`]). Larger groups run three trials at
-//! most ([`Look::wide`], [`WIDE_OPTIONS`]).
+//! look ahead less ([`look_for`]). Larger groups run two trials at most,
+//! and only when they have a dominant member ([`Look::wide`]).
 //!
 //! On two threads, two trials run at once when a thread is free
 //! ([`cheapest`]), and a trial's subgroups may be built on two threads
@@ -57,8 +57,7 @@ pub struct Look {
     /// (those not already among the candidates).
     pub alternatives: usize,
     /// Whether groups too large to look ahead try the plane of a
-    /// [`dominant`] member and the runner-up of the best member and
-    /// auxiliary planes against the greedy choice ([`WIDE_OPTIONS`]).
+    /// [`dominant`] member against the greedy choice.
     pub wide: bool,
     /// Inside a trial, groups of up to this many alive members that no
     /// member plane and no sweep of `auxiliary::best_aux` separates take
@@ -86,24 +85,6 @@ pub struct Look {
 /// 8,919 → 8,520 in 9.2 → 13.1 s. Taken greedily outside the
 /// trials, such planes made the tree worse (see [`PIVOTS`]).
 pub const TRIAL_EDGES: usize = 48;
-
-/// The greedy options a group too large to look ahead tries
-/// ([`Look::wide`], with the plane of a [`dominant`] member): the better
-/// by the greedy score of the best member plane and the best auxiliary
-/// plane, and the other one when it scores no better than that member
-/// (the member rows that cannot beat the auxiliary plane are not counted,
-/// so when the auxiliary plane wins by score no member is tried).
-///
-/// Session 24: the greedy choice alone before (1). `fpt build` of the
-/// nine shared models without rocker-arm (which does not try, `LARGE`):
-/// only violin_case changes, 2,208 → 2,196 output polygons (540 → 528
-/// splittings), every other model and the project scenes byte-identical.
-/// Counting every member row (no cap) gave the same tree, as did more
-/// options besides: three member planes, one [`ALT_WEIGHT`] plane, one
-/// cutting auxiliary plane, two edge planes (each 2,196, at up to 1.3×
-/// violin_case's CPU time); the full lookahead in groups of up to 1,024
-/// members instead was worse (2,231).
-pub const WIDE_OPTIONS: usize = 2;
 
 /// Auxiliary planes that cut members tried (`auxiliary::cutting_aux`).
 pub const CUTTING: usize = 2;
