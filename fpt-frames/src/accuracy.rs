@@ -35,15 +35,17 @@ use fpt_nostd::render::{BandBuffer, FaceIds, Frame, TreeRenderer};
 /// The scene of the measurement.
 pub const ACCURACY_SCENE: &str = "bench_city";
 
-/// The study's vertex capacity: what [`ACCURACY_SCENE`]'s trees need (38,
-/// from their headers; `fpt info`), not the frame set's
-/// [`super::MAX_VERTS`]. Why smaller: the Cortex-M4 firmware keeps the
-/// whole 115 KiB frame in its 128 KiB of RAM, and the renderer's scratch
-/// of `MAX_VERTS` vertices took its stack to within a kilobyte of the
-/// frame (14,808 of 15,856 bytes), past it once the renderer grew. A tree
-/// that needs more is refused (`FrameError::Capacity`), never drawn
-/// wrong.
-pub const ACCURACY_VERTS: usize = 40;
+/// The study's vertex capacity: what [`ACCURACY_SCENE`]'s trees need (16
+/// since the builder's coplanar merge and splitting fixes of sessions
+/// 21–23; 38 before: their headers, `fpt info`), not the frame set's
+/// [`super::MAX_VERTS`]. Why no more: each configuration's renderer and
+/// scratch (up to 106 bytes a vertex) are on the stack, beside the
+/// Cortex-M4's whole 115 KiB frame in its 128 KiB of RAM, and beside the
+/// working memory in the Cortex-M0's 16 KiB, where every byte of scratch
+/// is a byte less of memory (40 vertices left it 512 words, 16 leave it
+/// 1,100). A tree that needs more is refused (`FrameError::Capacity`),
+/// never drawn wrong.
+pub const ACCURACY_VERTS: usize = 16;
 
 /// The configurations, in `fpt bench-accuracy`'s row order.
 pub const CONFIGS: [&str; 15] = [
