@@ -1,6 +1,7 @@
 //! The accuracy study's configurations on the MCU: the cost half of
-//! `fpt bench-accuracy`'s rows (its `mcu_instr` column), measured by the
-//! firmware's feature `accuracy` and checked against the host bit for bit.
+//! `fpt bench-accuracy`'s rows (its `mcu_instr` and `m0_instr` columns),
+//! measured by the firmware's `accuracy` binary and checked against the
+//! host bit for bit.
 //!
 //! * **Configurations**: [`CONFIGS`], the rows of `fpt bench-accuracy`,
 //!   each one arithmetic ([`fpt_nostd::raster::Precision`]) and, for
@@ -13,11 +14,16 @@
 //!   configuration of a core without an FPU.
 //! * **Frames**: [`ACCURACY_SCENE`] from every view of [`super::VIEWS`],
 //!   240×240 RGB565, cleared to [`super::BACKGROUND`], key light, the
-//!   tree's declared effects. [`AccuracyLine`] is the line both sides print
-//!   (the firmware appends `instr=N`).
+//!   tree's declared effects, drawn into a whole frame ([`Full`]) or band
+//!   by band ([`Bands`]: the same checksum). [`AccuracyLine`] is the line
+//!   both sides print (the firmware appends `instr=N`).
 //! * Each configuration renders with its own [`Renderer`] and [`Scratch`]
-//!   on the stack (a few KiB: the largest, fixed point, is 106 bytes a
-//!   vertex), so nothing stays allocated between configurations.
+//!   on the stack (at most 106 bytes a vertex, [`ACCURACY_VERTS`]), so
+//!   nothing stays allocated between configurations.
+//! * **Flash**: [`render_config_in`] compiles only a set of
+//!   [`Arithmetic`]s; [`one_arithmetic_builds`] are the builds that carry
+//!   every configuration one arithmetic and one tree at a time (the
+//!   Cortex-M0's 256 KiB).
 
 use core::fmt;
 

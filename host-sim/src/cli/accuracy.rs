@@ -274,15 +274,15 @@ pub fn run(a: &AccuracyArgs) -> CliResult {
         .iter()
         .find(|r| r.config == DEFAULT_CONFIG)
         .and_then(|r| r.mcu_instr);
-    let (x_of, x_title): (Box<dyn Fn(&Row) -> f64>, &str) = match mcu_base {
-        Some(b) => (
-            Box::new(move |r: &Row| r.mcu_instr.map_or(f64::NAN, |n| n as f64 / b as f64)),
-            "Cortex-M4F instructions per frame / default (fixed-subpx-4), bench_city 240x240",
-        ),
-        None => (
-            Box::new(|r: &Row| r.host_rel_time.unwrap_or(f64::NAN)),
-            "host time per frame / default (fixed-subpx-4)",
-        ),
+    let x_of = |r: &Row| match mcu_base {
+        Some(b) => r.mcu_instr.map_or(f64::NAN, |n| n as f64 / b as f64),
+        None => r.host_rel_time.unwrap_or(f64::NAN),
+    };
+    let x_title = match mcu_base {
+        Some(_) => {
+            "Cortex-M4F instructions per frame / default (fixed-subpx-4), bench_city 240x240"
+        }
+        None => "host time per frame / default (fixed-subpx-4)",
     };
     let points: Vec<PlotPoint> = rows
         .iter()
