@@ -11,12 +11,15 @@
 //!   the environment would replace).
 //!   `FPT_BENCH_RAM_KIB` replaces the RAM's length (for `fpt mcu-bench`'s
 //!   measurement of a stack that does not fit), `FPT_BENCH_FLASH_KIB` the
-//!   flash's (for the accuracy study's Cortex-M0 column, see
-//!   `src/bin/accuracy.rs`).
+//!   flash's (to see by how much a build outgrows it).
+//! * `src/bin/accuracy.rs`'s `band` build (the accuracy study's Cortex-M0
+//!   column) takes its tree, band and memory from the same variables, and
+//!   its configurations from `FPT_ACCURACY_CONFIGS`.
 //! * `src/bin/bench.rs` (`fpt mcu-bench`): writes `bench_config.rs` into
 //!   `OUT_DIR` from the environment (see [`BenchConfig`]).
 use std::{env, fs, path::PathBuf};
 
+use fpt_frames::accuracy::{arithmetic, CONFIGS};
 use fpt_frames::orbit::{band_words, OrbitPrecision};
 use fpt_nostd::reader::Tree;
 
@@ -35,9 +38,14 @@ struct BenchConfig {
     /// `FPT_BENCH_MEMORY`: words of working memory (vertex cache and
     /// display list; default 0).
     memory: usize,
+    /// `FPT_ACCURACY_CONFIGS`: the accuracy configurations the `accuracy`
+    /// binary's `band` build compiles and draws, comma-separated (default:
+    /// all of `fpt_frames::accuracy::CONFIGS`; 256 KiB of flash holds a
+    /// `bench_city` tree and the code of a few).
+    accuracy: Vec<String>,
 }
 
-const VARS: [&str; 9] = [
+const VARS: [&str; 10] = [
     "FPT_BENCH_RAM_KIB",
     "FPT_BENCH_FLASH_KIB",
     "FPT_BENCH_TREE",
@@ -47,6 +55,7 @@ const VARS: [&str; 9] = [
     "FPT_BENCH_PRECISION",
     "FPT_BENCH_FRAMES",
     "FPT_BENCH_MEMORY",
+    "FPT_ACCURACY_CONFIGS",
 ];
 
 fn number(var: &str, default: u32) -> u32 {
@@ -71,6 +80,16 @@ impl BenchConfig {
             number("FPT_BENCH_HEIGHT", 240),
         );
         assert!(size.0 > 0 && size.1 > 0, "empty display");
+        let accuracy: Vec<String> = match env::var("FPT_ACCURACY_CONFIGS") {
+            Ok(v) => v.split(',').map(|c| c.trim().to_string()).collect(),
+            Err(_) => CONFIGS.iter().map(|c| c.to_string()).collect(),
+        };
+        for c in &accuracy {
+            assert!(
+                arithmetic(c).is_some(),
+                "FPT_ACCURACY_CONFIGS: {c} is not an accuracy configuration"
+            );
+        }
         BenchConfig {
             tree: fs::canonicalize(&tree)
                 .unwrap_or_else(|e| panic!("FPT_BENCH_TREE={}: {e}", tree.display())),
@@ -79,6 +98,7 @@ impl BenchConfig {
             precision,
             frames: number("FPT_BENCH_FRAMES", 8).max(1),
             memory: number("FPT_BENCH_MEMORY", 0) as usize,
+            accuracy,
         }
     }
 
@@ -118,7 +138,9 @@ impl BenchConfig {
              /// says it needs.\n\
              pub const VERTS: usize = {verts};\n\
              /// The vertex arithmetic.\n\
-             pub type BenchPrecision = {ptype};\n",
+             pub type BenchPrecision = {ptype};\n\
+             /// The accuracy configurations of the `band` build.\n\
+             pub const ACCURACY_CONFIGS: &[&str] = &{accuracy:?};\n",
             path = self.tree.display().to_string(),
             band = self.band,
             words = band_words(w, h, self.band),
@@ -128,6 +150,7 @@ impl BenchConfig {
             memory = self.memory,
             verts = tree.capacities().vertices,
             ptype = self.precision.type_path(),
+            accuracy = self.accuracy,
         )
     }
 }
@@ -145,9 +168,7 @@ fn main() {
     let mut layout = fs::read_to_string(memory).unwrap_or_else(|e| panic!("reading {memory}: {e}"));
     // `fpt mcu-bench` measures a Cortex-M0 stack that outgrows the 16 KiB
     // by relinking with more RAM and running on QEMU's mps2-an385.
-    // The accuracy study's Cortex-M0 column (`m0_instr`) runs the M0's code
-    // with a whole frame and every tree in memory on the same machine, with
-    // `FPT_BENCH_FLASH_KIB` too.
+    // `FPT_BENCH_FLASH_KIB`: how far past the 256 KiB a build reaches.
     for (region, var) in [
         ("RAM", "FPT_BENCH_RAM_KIB"),
         ("FLASH", "FPT_BENCH_FLASH_KIB"),

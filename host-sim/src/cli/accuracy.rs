@@ -20,14 +20,14 @@
 //!   --bin accuracy > FILE`, see [`fpt_frames::accuracy`]), whose
 //!   checksums the firmware has already checked against the host's; empty
 //!   without `--mcu`; `m0_instr` the same for the Cortex-M0's code
-//!   (Thumb-1, no FPU, no divide), from `--m0 FILE`: the same binary
-//!   built for `thumbv6m-none-eabi` with room for a whole frame and the
-//!   three trees (`FPT_BENCH_RAM_KIB=1024 FPT_BENCH_FLASH_KIB=4096`, a
-//!   240×240 frame does not fit a 16 KiB part) and run on QEMU's
-//!   `mps2-an385`, whose Cortex-M3 executes that code (see
-//!   `firmware/README.md`); empty without `--m0`;
-//! * `DIR/accuracy.png`: `wrong_face_frac` against `host_rel_time`, points
-//!   labelled with the configuration.
+//!   (Thumb-1, no FPU, no divide) with 16 KiB of RAM, from `--m0 FILE`:
+//!   the same frames drawn in 8-row bands on QEMU's `microbit`, one build
+//!   per tree encoding and arithmetic (`FPT_ACCURACY_M0_OUT=FILE cargo
+//!   test -p fpt-tests --test all m0_accuracy_matches_host`, see
+//!   docs/accuracy.md); empty without `--m0`;
+//! * `DIR/accuracy.png`: `wrong_face_frac` against time, points labelled
+//!   with the configuration: `mcu_instr` relative to the default's with
+//!   `--mcu` (deterministic), else `host_rel_time`.
 //!
 //! The `vertex-*` rows differ only in the tree's vertex storage: the
 //! renderer decodes every stored vertex to `f32` and transforms it like an
@@ -81,9 +81,9 @@ pub struct AccuracyArgs {
     /// accuracy` in firmware/), for the mcu_instr column.
     #[arg(long)]
     pub mcu: Option<PathBuf>,
-    /// The same binary's output built for the Cortex-M0
-    /// (`thumbv6m-none-eabi`, run on QEMU mps2-an385), for the m0_instr
-    /// column.
+    /// The Cortex-M0's lines for the same frames, in 8-row bands on QEMU
+    /// microbit (`FPT_ACCURACY_M0_OUT=FILE cargo test -p fpt-tests --test
+    /// all m0_accuracy_matches_host`), for the m0_instr column.
     #[arg(long)]
     pub m0: Option<PathBuf>,
 }
@@ -267,11 +267,28 @@ pub fn run(a: &AccuracyArgs) -> CliResult {
     }
     let csv_path = a.out.join("accuracy.csv");
     write_atomic(&csv_path, csv.as_bytes()).map_err(|e| cli_err!("{}: {e}", csv_path.display()))?;
+    // Time on the plot: the Cortex-M4F's instructions when given
+    // (deterministic), else the host's wall time (noisy on a loaded
+    // machine), both relative to the default configuration.
+    let mcu_base = rows
+        .iter()
+        .find(|r| r.config == DEFAULT_CONFIG)
+        .and_then(|r| r.mcu_instr);
+    let x_of = |r: &Row| match mcu_base {
+        Some(b) => r.mcu_instr.map_or(f64::NAN, |n| n as f64 / b as f64),
+        None => r.host_rel_time.unwrap_or(f64::NAN),
+    };
+    let x_title = match mcu_base {
+        Some(_) => {
+            "Cortex-M4F instructions per frame / default (fixed-subpx-4), bench_city 240x240"
+        }
+        None => "host time per frame / default (fixed-subpx-4)",
+    };
     let points: Vec<PlotPoint> = rows
         .iter()
         .map(|r| PlotPoint {
             label: r.config.clone(),
-            x: r.host_rel_time.unwrap_or(f64::NAN),
+            x: x_of(r),
             y: r.counts.wrong_face_frac(),
         })
         .collect();
@@ -283,7 +300,7 @@ pub fn run(a: &AccuracyArgs) -> CliResult {
             cases.len(),
             vs.len()
         ),
-        "host time per frame / default (fixed-subpx-4)",
+        x_title,
         "pixels showing another face than the f64 reference (wrong_face_frac, %)",
         &png,
     )?;

@@ -36,7 +36,9 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use fpt_frames::accuracy::{render_config, vertex_format, AccuracyLine, ACCURACY_SCENE, CONFIGS};
+use fpt_frames::accuracy::{
+    render_config, vertex_format, AccuracyLine, Full, ACCURACY_SCENE, CONFIGS,
+};
 use fpt_frames::work::frame_work;
 use fpt_frames::{
     render_banded, render_full, FrameLine, FrameRenderer, NoProbe, BAND_WORDS, FRAME_WORDS, HEIGHT,
@@ -153,7 +155,7 @@ pub fn accuracy_lines(trees: &[(VertexFormat, Vec<u8>)]) -> Result<Vec<String>, 
             .ok_or_else(|| cli_err!("no {} tree for {config}", want.name()))?;
         let tree = Tree::from_bytes(bytes).map_err(|e| cli_err!("{config}: {e}"))?;
         for (k, v) in VIEWS.iter().enumerate() {
-            let crc = render_config(config, &tree, v, &mut buf, &NoProbe)
+            let crc = render_config(config, &tree, v, Full(&mut buf), &NoProbe)
                 .map_err(|e| cli_err!("{config} view {k}: {e}"))?;
             let line = AccuracyLine {
                 config,

@@ -14,11 +14,11 @@
 //!   (`--target thumbv6m-none-eabi`, feature `band`, QEMU `microbit`),
 //!   which embeds the scene that fits its flash (vise), and
 //!   checks that its statics and measured stack peak fit its 16 KiB of RAM.
-//! * `m0_accuracy_matches_host`: the `accuracy` binary built for the
-//!   Cortex-M0 with room for a whole frame (run on QEMU `mps2-an385`,
-//!   whose Cortex-M3 executes the M0's code): every configuration's
-//!   checksums equal the host's (the `m0_instr` column of the accuracy
-//!   study).
+//! * `m0_accuracy_matches_host`: the `accuracy` binary's `band` build on
+//!   the Cortex-M0 (QEMU `microbit`, 16 KiB of RAM, 256 KiB of flash), one
+//!   build per tree encoding and arithmetic: every configuration's
+//!   checksums equal the host's and each build fits the RAM (the `m0_instr`
+//!   column of the accuracy study).
 //!
 //! The firmware tests are skipped, with a message, when
 //! `qemu-system-arm` or the thumb target is missing — unless
@@ -30,7 +30,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use fpt_frames::accuracy::AccuracyLine;
+use fpt_frames::accuracy::{in_build, one_arithmetic_builds, AccuracyLine, CONFIGS};
 use fpt_frames::{FrameLine, SCENES, VIEWS};
 use host_sim::cli::frames::{
     accuracy_lines, accuracy_tree_file, accuracy_trees, expected_text, frame_lines,
@@ -306,10 +306,30 @@ fn m0_firmware_matches_host() {
     assert!(success, "M0 firmware exited with failure:\n{out}");
 }
 
-/// The accuracy configurations in the Cortex-M0's code (Thumb-1, software
-/// floating point, no divide instruction), with the RAM and flash a whole
-/// 240×240 frame and the three trees need, on QEMU `mps2-an385`: the same
-/// checksums as the host's, a cost each (`fpt bench-accuracy --m0`).
+/// Rows per band of the Cortex-M0's accuracy frames (`fpt mcu-bench
+/// --cpu m0`'s default: a 16-row band, 7.5 KiB, would leave the working
+/// memory nothing).
+const M0_ACCURACY_BAND: &str = "8";
+/// Words of working memory of the Cortex-M0's accuracy frames: what the
+/// largest build's statics and stack leave of the 16 KiB with a margin
+/// (the fixed-point builds: 3,856 B of statics besides the memory and a
+/// 7,528 B stack peak, each configuration's renderer and scratch on it,
+/// leave 1,186 words with `fpt mcu-bench`'s 256 B margin); the same for
+/// every configuration, so that they take the same walks. A frame of
+/// `bench_city` needs 13,099 for one walk (`fpt info`).
+const M0_ACCURACY_MEMORY: &str = "1152";
+
+/// The accuracy configurations on the Cortex-M0 with 16 KiB of RAM (QEMU
+/// `microbit`; Thumb-1, software floating point, no divide): each drawn in
+/// [`M0_ACCURACY_BAND`]-row bands with [`M0_ACCURACY_MEMORY`] words of
+/// working memory by the `accuracy` binary's `band` build, one build per
+/// tree encoding and arithmetic (256 KiB of flash hold a `bench_city` tree
+/// and one: [`one_arithmetic_builds`]). Every checksum equals the host's,
+/// every frame has a cost, and every build's statics and stack peak fit
+/// the 16 KiB. With `FPT_ACCURACY_M0_OUT=FILE` the lines are also written
+/// to FILE, in the host's order, then a `build tree=… configs=…
+/// static_ram=… stack_peak=…` line per build: the `m0_instr` column of the
+/// accuracy study (`fpt bench-accuracy --m0 FILE`).
 #[test]
 fn m0_accuracy_matches_host() {
     if !can_run("m0_accuracy_matches_host", "thumbv6m-none-eabi") {
@@ -319,17 +339,66 @@ fn m0_accuracy_matches_host() {
         accuracy_lines(&ok(read_accuracy_trees(&trees_dir()), "accuracy trees")),
         "drawing the accuracy frames on the host",
     );
+    // Its own target folder: the builds' variables would otherwise make
+    // the other Cortex-M0 tests rebuild.
     let target_dir = firmware_dir().join("target").join("m0-accuracy");
-    let runner = "qemu-system-arm -machine mps2-an385 -cpu cortex-m3 -nographic \
-                  -semihosting-config enable=on,target=native -icount shift=0 -kernel";
-    let (success, out) = run_firmware_with(
-        &["--bin", "accuracy", "--target", "thumbv6m-none-eabi"],
-        &[
-            ("FPT_BENCH_RAM_KIB", "1024"),
-            ("FPT_BENCH_FLASH_KIB", "4096"),
-            ("CARGO_TARGET_DIR", &target_dir.to_string_lossy()),
-            ("CARGO_TARGET_THUMBV6M_NONE_EABI_RUNNER", runner),
-        ],
-    );
-    check_accuracy(&host, success, &out, "Cortex-M0");
+    let mut out = String::new();
+    let mut ram = Vec::new();
+    for (format, arithmetic) in one_arithmetic_builds() {
+        let configs: Vec<&str> = in_build(format, arithmetic).collect();
+        let tree = format!("trees/{}", accuracy_tree_file(format));
+        let (success, text) = run_firmware_with(
+            &[
+                "--bin",
+                "accuracy",
+                "--target",
+                "thumbv6m-none-eabi",
+                "--no-default-features",
+                "--features",
+                "band",
+            ],
+            &[
+                ("FPT_BENCH_TREE", &tree),
+                ("FPT_ACCURACY_CONFIGS", &configs.join(",")),
+                ("FPT_BENCH_BAND", M0_ACCURACY_BAND),
+                ("FPT_BENCH_MEMORY", M0_ACCURACY_MEMORY),
+                ("CARGO_TARGET_DIR", &target_dir.to_string_lossy()),
+            ],
+        );
+        assert!(
+            success,
+            "Cortex-M0 accuracy build {configs:?} exited with failure:\n{text}"
+        );
+        let value = |key: &str| {
+            text.lines()
+                .find_map(|l| l.strip_prefix(key))
+                .and_then(|v| v.trim().parse::<usize>().ok())
+                .unwrap_or_else(|| panic!("no {key} line:\n{text}"))
+        };
+        let (statics, stack) = (value("static_ram="), value("stack_peak="));
+        assert!(
+            statics + stack <= M0_RAM,
+            "M0 accuracy {configs:?}: {statics} B static + {stack} B stack > {M0_RAM} B"
+        );
+        out.push_str(&text);
+        ram.push(format!(
+            "build tree={tree} configs={} static_ram={statics} stack_peak={stack}",
+            configs.join(",")
+        ));
+    }
+    // The builds' lines in the host's order (configurations, then views).
+    let key = |l: &AccuracyLine| (CONFIGS.iter().position(|c| *c == l.config), l.view);
+    let mut lines: Vec<&str> = out
+        .lines()
+        .filter(|l| AccuracyLine::parse(l).is_some())
+        .collect();
+    lines.sort_by_key(|l| AccuracyLine::parse(l).map(|p| key(&p)));
+    let sorted = lines.join("\n") + "\n";
+    check_accuracy(&host, true, &sorted, "Cortex-M0");
+    if let Some(path) = std::env::var_os("FPT_ACCURACY_M0_OUT") {
+        // Each build's RAM after the frames (`fpt bench-accuracy` reads
+        // the `accuracy` lines only).
+        let text = sorted + &ram.join("\n") + "\n";
+        ok(std::fs::write(&path, text), "writing FPT_ACCURACY_M0_OUT");
+    }
 }
