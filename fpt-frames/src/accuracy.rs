@@ -53,32 +53,58 @@ pub const ACCURACY_SCENE: &str = "bench_city";
 /// never drawn wrong.
 pub const ACCURACY_VERTS: usize = 16;
 
-/// The configurations, in `fpt bench-accuracy`'s row order.
-pub const CONFIGS: [&str; 15] = [
-    "vertex-f32",
-    "vertex-q16",
-    "vertex-q32",
-    "fixed",
-    "f32-libm",
-    "f32-micromath",
-    "subpx-0",
-    "subpx-2",
-    "subpx-4",
-    "subpx-6",
-    "subpx-8",
-    "trig-libm",
-    "trig-micromath",
-    "int",
-    "int-q16",
-];
+/// Every configuration, in `fpt bench-accuracy`'s row order: its name,
+/// the encoding of the tree it draws, and its [`Arithmetic`]. The one
+/// list [`CONFIGS`], [`vertex_format`] and [`arithmetic`] read.
+const TABLE: [(&str, VertexFormat, Arithmetic); 15] = {
+    use Arithmetic as A;
+    use VertexFormat::{F32, Q16, Q32};
+    [
+        ("vertex-f32", F32, A::Fixed4),
+        ("vertex-q16", Q16, A::Fixed4),
+        ("vertex-q32", Q32, A::Fixed4),
+        ("fixed", F32, A::Fixed4),
+        ("f32-libm", F32, A::FloatLibm),
+        ("f32-micromath", F32, A::FloatMicromath),
+        ("subpx-0", F32, A::Fixed0),
+        ("subpx-2", F32, A::Fixed2),
+        ("subpx-4", F32, A::Fixed4),
+        ("subpx-6", F32, A::Fixed6),
+        ("subpx-8", F32, A::Fixed8),
+        ("trig-libm", F32, A::Fixed4),
+        ("trig-micromath", F32, A::FixedMicromath),
+        ("int", F32, A::Int),
+        ("int-q16", Q16, A::Int),
+    ]
+};
 
-/// The vertex encoding of the tree configuration `name` draws.
-pub fn vertex_format(name: &str) -> VertexFormat {
-    match name {
-        "vertex-q16" | "int-q16" => VertexFormat::Q16,
-        "vertex-q32" => VertexFormat::Q32,
-        _ => VertexFormat::F32,
+/// The configurations, in `fpt bench-accuracy`'s row order.
+pub const CONFIGS: [&str; 15] = {
+    let mut names = [""; 15];
+    let mut i = 0;
+    while i < TABLE.len() {
+        names[i] = TABLE[i].0;
+        i += 1;
     }
+    names
+};
+
+/// The entry of [`TABLE`] named `name`.
+const fn entry(name: &str) -> Option<(VertexFormat, Arithmetic)> {
+    let mut i = 0;
+    while i < TABLE.len() {
+        if same(TABLE[i].0, name) {
+            return Some((TABLE[i].1, TABLE[i].2));
+        }
+        i += 1;
+    }
+    None
+}
+
+/// The vertex encoding of the tree configuration `name` draws (`f32` for
+/// an unknown name).
+pub fn vertex_format(name: &str) -> VertexFormat {
+    entry(name).map_or(VertexFormat::F32, |e| e.0)
 }
 
 /// Where a configuration's frame is drawn: [`Full`] or [`Bands`]. A
@@ -231,31 +257,10 @@ const fn same(a: &str, b: &str) -> bool {
 
 /// The arithmetic of configuration `name` (`None` for an unknown name).
 pub const fn arithmetic(name: &str) -> Option<Arithmetic> {
-    const TABLE: [(&str, Arithmetic); 15] = [
-        ("vertex-f32", Arithmetic::Fixed4),
-        ("vertex-q16", Arithmetic::Fixed4),
-        ("vertex-q32", Arithmetic::Fixed4),
-        ("fixed", Arithmetic::Fixed4),
-        ("f32-libm", Arithmetic::FloatLibm),
-        ("f32-micromath", Arithmetic::FloatMicromath),
-        ("subpx-0", Arithmetic::Fixed0),
-        ("subpx-2", Arithmetic::Fixed2),
-        ("subpx-4", Arithmetic::Fixed4),
-        ("subpx-6", Arithmetic::Fixed6),
-        ("subpx-8", Arithmetic::Fixed8),
-        ("trig-libm", Arithmetic::Fixed4),
-        ("trig-micromath", Arithmetic::FixedMicromath),
-        ("int", Arithmetic::Int),
-        ("int-q16", Arithmetic::Int),
-    ];
-    let mut i = 0;
-    while i < TABLE.len() {
-        if same(TABLE[i].0, name) {
-            return Some(TABLE[i].1);
-        }
-        i += 1;
+    match entry(name) {
+        Some(e) => Some(e.1),
+        None => None,
     }
-    None
 }
 
 /// The set of the arithmetics of `names` (for [`render_config_in`]);
