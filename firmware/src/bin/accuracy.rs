@@ -57,6 +57,9 @@ mod probe;
 mod stack;
 
 #[cfg(feature = "band")]
+#[path = "../bench_buffers.rs"]
+mod bench_buffers;
+#[cfg(feature = "band")]
 #[allow(dead_code)]
 mod config {
     include!(concat!(env!("OUT_DIR"), "/bench_config.rs"));
@@ -140,8 +143,7 @@ mod target {
 /// Where the frames are drawn: bands, and the working memory.
 #[cfg(feature = "band")]
 mod target {
-    use super::config::{ACCURACY_CONFIGS, BAND, BUF_WORDS, MEMORY_WORDS, TREE};
-    use core::mem::MaybeUninit;
+    use super::config::{ACCURACY_CONFIGS, BAND, TREE};
     use fpt_frames::accuracy::Bands;
     use fpt_nostd::format::VertexFormat;
 
@@ -165,26 +167,10 @@ mod target {
             .then_some(TREE)
     }
 
-    /// The band buffer and the working memory; call once.
-    ///
-    /// The band buffer is the last static (section `.uninit`, right below
-    /// the stack), as in the `bench` binary: a stack that outgrows its
-    /// room scribbles over pixels first, and the run survives to report
-    /// the overflow.
+    /// The band buffer and the working memory
+    /// (`bench_buffers`, the `bench` binary's); call once.
     pub fn buffers() -> (&'static mut [u16], &'static mut [u32]) {
-        #[link_section = ".uninit.fpt_accuracy_buf"]
-        static mut BUF: MaybeUninit<[u16; BUF_WORDS]> = MaybeUninit::uninit();
-        static mut MEMORY: [u32; MEMORY_WORDS] = [0; MEMORY_WORDS];
-        // SAFETY: called once, from `main`; no other reference to BUF or
-        // MEMORY exists. The band words are zeroed before the slice is made.
-        unsafe {
-            let p = core::ptr::addr_of_mut!(BUF).cast::<u16>();
-            core::ptr::write_bytes(p, 0, BUF_WORDS);
-            (
-                core::slice::from_raw_parts_mut(p, BUF_WORDS),
-                &mut *core::ptr::addr_of_mut!(MEMORY),
-            )
-        }
+        (super::bench_buffers::buffer(), super::bench_buffers::memory())
     }
 
     /// The target of one frame.

@@ -28,6 +28,8 @@
 #![no_std]
 #![no_main]
 
+#[path = "../bench_buffers.rs"]
+mod bench_buffers;
 #[path = "../clock.rs"]
 mod clock;
 #[path = "../fail.rs"]
@@ -41,7 +43,6 @@ mod config {
     include!(concat!(env!("OUT_DIR"), "/bench_config.rs"));
 }
 
-use core::mem::MaybeUninit;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 
@@ -52,39 +53,12 @@ use fpt_nostd::render::TreeRenderer;
 use static_cell::ConstStaticCell;
 
 use clock::{now, Clock};
-use config::{
-    BenchPrecision, BAND, BUF_WORDS, FRAMES, HEIGHT, MEMORY_WORDS, VERTS, WALK_DEPTH, WIDTH,
-};
+use bench_buffers::{buffer, memory};
+use config::{BenchPrecision, BAND, FRAMES, HEIGHT, VERTS, WALK_DEPTH, WIDTH};
 use fail::fail;
 
 /// The renderer of the benchmark.
 type BenchRenderer = TreeRenderer<BenchPrecision, VERTS>;
-
-/// The band (or frame) buffer, zeroed; call once.
-///
-/// It is the last static (section `.uninit`, after `.bss`), right below the
-/// stack: a stack that outgrows its room scribbles over pixels before it
-/// reaches the renderer or the clock, so the run survives to report the
-/// overflow (checked after every frame) instead of hanging.
-fn buffer() -> &'static mut [u16] {
-    #[link_section = ".uninit.fpt_bench_buf"]
-    static mut BUF: MaybeUninit<[u16; BUF_WORDS]> = MaybeUninit::uninit();
-    // SAFETY: called once, from `main`; no other reference to BUF exists.
-    // The words are zeroed in place before the slice is made.
-    unsafe {
-        let p = core::ptr::addr_of_mut!(BUF).cast::<u16>();
-        core::ptr::write_bytes(p, 0, BUF_WORDS);
-        core::slice::from_raw_parts_mut(p, BUF_WORDS)
-    }
-}
-
-/// The frame's working memory (`FPT_BENCH_MEMORY` words); call once.
-fn memory() -> &'static mut [u32] {
-    static mut MEMORY: [u32; MEMORY_WORDS] = [0; MEMORY_WORDS];
-    // SAFETY: called once, from `main`; no other reference to MEMORY
-    // exists.
-    unsafe { &mut *core::ptr::addr_of_mut!(MEMORY) }
-}
 
 /// The renderer, in a static initialised at build time (`TreeRenderer::new`
 /// is a `const fn`): its scratch buffers are a few KiB, which must not pass
