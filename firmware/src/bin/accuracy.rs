@@ -170,7 +170,10 @@ mod target {
     /// The band buffer and the working memory
     /// (`bench_buffers`, the `bench` binary's); call once.
     pub fn buffers() -> (&'static mut [u16], &'static mut [u32]) {
-        (super::bench_buffers::buffer(), super::bench_buffers::memory())
+        (
+            super::bench_buffers::buffer(),
+            super::bench_buffers::memory(),
+        )
     }
 
     /// The target of one frame.

@@ -52,8 +52,8 @@ use fpt_nostd::reader::Tree;
 use fpt_nostd::render::TreeRenderer;
 use static_cell::ConstStaticCell;
 
-use clock::{now, Clock};
 use bench_buffers::{buffer, memory};
+use clock::{now, Clock};
 use config::{BenchPrecision, BAND, FRAMES, HEIGHT, VERTS, WALK_DEPTH, WIDTH};
 use fail::fail;
 
