@@ -17,12 +17,11 @@
 //! clipping off, dithering) completes.
 #![no_main]
 
-use fpt_nostd::format::{crc32, header};
 use fpt_nostd::effects::Effects;
+use fpt_nostd::format::{crc32, header};
 use fpt_nostd::order::{Class, Order, View};
 use fpt_nostd::raster::{
-    BinaryFramebuffer, DepthCue, Dither, FixedPrecision, FloatLibm, Libm, Orbit,
-    Rgb565Framebuffer,
+    BinaryFramebuffer, DepthCue, Dither, FixedPrecision, FloatLibm, Libm, Orbit, Rgb565Framebuffer,
 };
 use fpt_nostd::reader::Tree;
 use fpt_nostd::render::{Frame, TreeRenderer};
@@ -136,7 +135,11 @@ fn draw(tree: &Tree<'_>, control: u8) {
     let r = tree.bounding_radius();
     let distance = if control & 8 != 0 { 0.5 * r } else { 2.5 * r };
     let orbit = Orbit::new([0.0; 3], 0.7, 0.4, distance, 0.9);
-    let effects = [Effects::ALL, Effects::from_bits(tree.effects()), Effects::NONE];
+    let effects = [
+        Effects::ALL,
+        Effects::from_bits(tree.effects()),
+        Effects::NONE,
+    ];
     let mut words = vec![0u16; (W * H) as usize];
     let mut bits = vec![0u8; BinaryFramebuffer::required_len(W, H)];
     macro_rules! with {
