@@ -27,7 +27,7 @@ pub(crate) struct Runs<'a> {
     /// before the table (two more words made the firmware's stack 64
     /// bytes deeper and its frames with effects 0.6 % dearer).
     #[cfg(feature = "plane-table")]
-    planes: &'a [u8],
+    planes: &'a [[u8; PLANE_LEN]],
     /// Whether the runs index the plane table.
     #[cfg(feature = "plane-table")]
     table: bool,
@@ -42,8 +42,11 @@ impl<'a> Runs<'a> {
         let _ = (planes, table);
         Runs {
             recs,
+            // Entries, not bytes: an index is then checked against the
+            // table's length with one comparison (the section is a whole
+            // number of entries, so nothing is dropped).
             #[cfg(feature = "plane-table")]
-            planes,
+            planes: bytemuck::try_cast_slice(planes).unwrap_or(&[]),
             #[cfg(feature = "plane-table")]
             table,
         }
@@ -60,9 +63,9 @@ impl<'a> Runs<'a> {
         false
     }
 
-    /// The plane table (empty without one).
+    /// The plane table's entries (none without one).
     #[inline(always)]
-    pub(crate) fn planes(&self) -> &'a [u8] {
+    pub(crate) fn planes(&self) -> &'a [[u8; PLANE_LEN]] {
         #[cfg(feature = "plane-table")]
         return self.planes;
         #[cfg(not(feature = "plane-table"))]
@@ -103,8 +106,8 @@ impl<'a> Runs<'a> {
 
 /// Entry `i` of the plane table `planes` (zeros past its end).
 #[inline(always)]
-pub(crate) fn table_plane(planes: &[u8], i: u32) -> &[u8; 16] {
-    plane_at(planes, (i as usize).wrapping_mul(PLANE_LEN))
+pub(crate) fn table_plane(planes: &[[u8; PLANE_LEN]], i: u32) -> &[u8; PLANE_LEN] {
+    planes.get(i as usize).unwrap_or(&[0; PLANE_LEN])
 }
 
 /// Offsets `b` and `b + 1` of the bunch section `s`, of `L / 2` bytes
