@@ -192,9 +192,9 @@ impl Seg {
         let mut recs = R::records(runs, self.run, self.run_end);
         let mut start = self.start;
         let mut run = self.run;
-        while let Some((end, no, plane, rest)) = R::split(recs, runs, run) {
+        while let Some((end, backward, rest)) = R::test(recs, runs, run, face) {
             recs = rest;
-            let passes = face.backward_at(no, plane) == want;
+            let passes = backward == want;
             run = run.wrapping_add(1);
             if passes {
                 self.run = run;
@@ -222,12 +222,14 @@ impl Seg {
         if self.is_empty() {
             return None;
         }
-        let want = match self.pick {
-            Pick::Backward => true,
-            Pick::Forward => false,
-            Pick::All => return self.take_as::<R>(runs, face),
-        };
-        self.scan_walk::<R>(runs, face, want)
+        // One scan per pick, each with its facing a constant: a `want`
+        // read and compared in the loop was a register more than the table
+        // layout's loop had.
+        match self.pick {
+            Pick::Backward => self.scan_walk::<R>(runs, face, true),
+            Pick::Forward => self.scan_walk::<R>(runs, face, false),
+            Pick::All => self.take_as::<R>(runs, face),
+        }
     }
 
     /// [`Seg::take_walk`]'s scan for runs whose facing is `want`, over the
@@ -247,9 +249,9 @@ impl Seg {
         // Record by record off the front (a length test each), rather than
         // `chunks_exact`, whose set-up divides the length: a class has one
         // or two runs, mostly.
-        while let Some((end, no, plane, rest)) = R::split(recs, runs, run) {
+        while let Some((end, backward, rest)) = R::test(recs, runs, run, face) {
             recs = rest;
-            let passes = face.backward_at(no, plane) == want;
+            let passes = backward == want;
             run = run.wrapping_add(1);
             match (passes, first) {
                 (true, None) => first = Some(start),
@@ -301,6 +303,19 @@ pub(super) trait RunRecord {
         runs: &Runs<'a>,
         run: u32,
     ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])>;
+
+    /// [`RunRecord::split`] and the facing test of the plane: the end,
+    /// whether the plane is backward for `face`, the records after it.
+    #[inline(always)]
+    fn test<'a>(
+        recs: &'a [u8],
+        runs: &Runs<'a>,
+        run: u32,
+        face: &Facing<'_>,
+    ) -> Option<(u32, bool, &'a [u8])> {
+        let (end, no, plane, rest) = Self::split(recs, runs, run)?;
+        Some((end, face.backward_at(no, plane), rest))
+    }
 
     /// The memo's number and the record of the plane of switch `k`
     /// (`base`: the number of switch record 0 without a table).
@@ -373,6 +388,26 @@ impl RunRecord for TableRun {
         let w = u32::from_le_bytes(*r);
         let (end, i) = (w & 0xFFFF, w >> 16);
         Some((end, i, table_plane(runs.planes(), i), rest))
+    }
+
+    /// An index past the table (which validation rules out) is a zero
+    /// plane, never backward: tested without reading one, so that the
+    /// loop keeps no fallback address in a register.
+    #[inline(always)]
+    fn test<'a>(
+        recs: &'a [u8],
+        runs: &Runs<'a>,
+        _run: u32,
+        face: &Facing<'_>,
+    ) -> Option<(u32, bool, &'a [u8])> {
+        let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
+        let w = u32::from_le_bytes(*r);
+        let (end, i) = (w & 0xFFFF, w >> 16);
+        let backward = match runs.planes().get(i as usize) {
+            Some(plane) => face.backward_at(i, plane),
+            None => false,
+        };
+        Some((end, backward, rest))
     }
 
     #[inline(always)]
