@@ -95,7 +95,7 @@ pub(crate) use class::MEMO;
 use crate::format::NO_SWITCH;
 use crate::reader::{Plane, PolygonRef, Tree, WalkData};
 pub use class::Class;
-use class::{Cursor, Facing, Pick, Seg};
+use class::{Cursor, Facing, InlineRun, Pick, RunRecord, Seg, TableRun};
 
 /// A view, in the model's coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -471,7 +471,7 @@ impl<'a, const N: usize> Order<'a, N> {
     /// up: backward faces of `B_j` (down) or `F_j` (up), with the forward
     /// faces of the other bunch for an open volume; false if nothing passes.
     #[inline(always)]
-    fn start_level(&mut self, f: &Frame, j: u32, down: bool) -> bool {
+    fn start_level<R: RunRecord>(&mut self, f: &Frame, j: u32, down: bool) -> bool {
         // F_j and B_j of level j (0-based) are bunches fb + 2j and fb + 2j + 1.
         let fj = f.first_bunch.wrapping_add(j.wrapping_mul(2));
         let bj = fj.wrapping_add(1);
@@ -485,7 +485,7 @@ impl<'a, const N: usize> Order<'a, N> {
         if a.0 >= a.1 && b.0 >= b.1 {
             return false; // both bunches empty: the common case, made cheap
         }
-        self.begin(a, Pick::Backward, b)
+        self.begin::<R>(a, Pick::Backward, b)
     }
 
     /// Starts a class of the runs `a` (picked by `pick`) and the runs `b`
@@ -493,22 +493,22 @@ impl<'a, const N: usize> Order<'a, N> {
     /// Out of line: the walk's loop over the tree calls it only for a class
     /// that has runs, and keeps its own registers for the empty ones.
     #[inline(never)]
-    fn begin(&mut self, a: (u32, u32), pick: Pick, b: (u32, u32)) -> bool {
+    fn begin<R: RunRecord>(&mut self, a: (u32, u32), pick: Pick, b: (u32, u32)) -> bool {
         let segs = [
-            Seg::new(&self.w, a, pick),
-            Seg::new(&self.w, b, Pick::Forward),
+            Seg::new_as::<R>(&self.w, a, pick),
+            Seg::new_as::<R>(&self.w, b, Pick::Forward),
         ];
-        self.at.start_walk(&self.w.runs, &self.face, segs)
+        self.at.start_walk::<R>(&self.w.runs, &self.face, segs)
     }
 
     /// The way up through the levels of `f` (frame `top`, in phase `UP`)
     /// below its level `f.j`: starts the next class that has runs and
     /// stores `f`'s progress, true; with none left, pops the frame, false.
     #[inline(always)]
-    fn up(&mut self, top: usize, f: &mut Frame) -> bool {
+    fn up<R: RunRecord>(&mut self, top: usize, f: &mut Frame) -> bool {
         while f.j > 0 {
             f.j -= 1;
-            if self.start_level(f, f.j, false) {
+            if self.start_level::<R>(f, f.j, false) {
                 self.put(top, *f);
                 return true;
             }
@@ -520,7 +520,7 @@ impl<'a, const N: usize> Order<'a, N> {
     /// Starts the class of the on-plane bunch of `f`'s switch; false if
     /// nothing passes.
     #[inline]
-    fn start_on(&mut self, f: &Frame) -> bool {
+    fn start_on<R: RunRecord>(&mut self, f: &Frame) -> bool {
         let on = f.first_bunch.wrapping_add(f.levels.wrapping_mul(2));
         let runs = self.w.bunch(on);
         if runs.0 >= runs.1 {
@@ -531,7 +531,7 @@ impl<'a, const N: usize> Order<'a, N> {
         } else {
             Pick::All
         };
-        self.begin(runs, pick, (0, 0))
+        self.begin::<R>(runs, pick, (0, 0))
     }
 
     /// The next range of polygon ids back to front, whole runs where it
@@ -544,11 +544,25 @@ impl<'a, const N: usize> Order<'a, N> {
     /// class, [`Iterator::next`] returns the rest of that class.
     #[inline(never)]
     pub fn next_range(&mut self) -> Option<core::ops::Range<u32>> {
+        // One test of the run layout a call, each layout's walk compiled
+        // on its own (see `class::RunRecord`): a table tree's walk then
+        // costs a narrow tree's (without the `plane-table` feature the
+        // test is a constant and only the narrow walk is compiled).
+        if self.w.runs.is_table() {
+            self.next_range_as::<TableRun>()
+        } else {
+            self.next_range_as::<InlineRun>()
+        }
+    }
+
+    /// [`Order::next_range`] over the run records of layout `R`.
+    #[inline(always)]
+    fn next_range_as<R: RunRecord>(&mut self) -> Option<core::ops::Range<u32>> {
         loop {
-            if let Some(r) = self.at.next_range_walk(&self.w.runs, &self.face) {
+            if let Some(r) = self.at.next_range_walk::<R>(&self.w.runs, &self.face) {
                 return Some(r);
             }
-            if !self.advance() {
+            if !self.advance::<R>() {
                 return None;
             }
         }
@@ -559,14 +573,14 @@ impl<'a, const N: usize> Order<'a, N> {
     /// [`Order::next_range`] (out of line), which nearly every hand-out of
     /// a class goes through: one call a range, not two.
     #[inline(always)]
-    fn advance(&mut self) -> bool {
+    fn advance<R: RunRecord>(&mut self) -> bool {
         if self.root_pending {
             self.root_pending = false;
             self.push(0);
         }
         if self.prelude_runs != 0 {
             let runs = (0, core::mem::take(&mut self.prelude_runs));
-            if self.begin(runs, Pick::Forward, (0, 0)) {
+            if self.begin::<R>(runs, Pick::Forward, (0, 0)) {
                 return true;
             }
         }
@@ -582,7 +596,7 @@ impl<'a, const N: usize> Order<'a, N> {
                     while f.j < f.levels {
                         let j = f.j;
                         f.j += 1;
-                        if self.start_level(&f, j, true) {
+                        if self.start_level::<R>(&f, j, true) {
                             self.put(top, f);
                             return true;
                         }
@@ -592,13 +606,13 @@ impl<'a, const N: usize> Order<'a, N> {
                         // storing the frame and reading it back (half the
                         // nodes of a feudal tree).
                         f.phase = UP;
-                        if self.up(top, &mut f) {
+                        if self.up::<R>(top, &mut f) {
                             return true;
                         }
                         continue;
                     }
                     // The back group is farther when the eye is in front.
-                    let (plane, rec) = self.w.switch_at(f.switch, self.switch_base);
+                    let (plane, rec) = R::switch_at(&self.w, f.switch, self.switch_base);
                     let back_is_far = self.face.backward_at(plane, rec);
                     f.phase = ON | if back_is_far { FAR_IS_BACK } else { 0 };
                     self.put(top, f);
@@ -618,12 +632,12 @@ impl<'a, const N: usize> Order<'a, N> {
                     }
                     // The near group is walked after this class is drawn.
                     self.push(child(f.switch, !back_is_far));
-                    if self.start_on(&f) {
+                    if self.start_on::<R>(&f) {
                         return true;
                     }
                 }
                 _ => {
-                    if self.up(top, &mut f) {
+                    if self.up::<R>(top, &mut f) {
                         return true;
                     }
                 }
@@ -644,7 +658,14 @@ impl<'a, const N: usize> Iterator for Order<'a, N> {
     fn next(&mut self) -> Option<Class<'a>> {
         // What is left of the current class first (nothing, unless
         // `next_range` stopped inside it).
-        if !self.at.pending(&self.w.runs, &self.face) && !self.advance() {
+        let advanced = |o: &mut Self| {
+            if o.w.runs.is_table() {
+                o.advance::<TableRun>()
+            } else {
+                o.advance::<InlineRun>()
+            }
+        };
+        if !self.at.pending(&self.w.runs, &self.face) && !advanced(self) {
             return None;
         }
         let at = core::mem::replace(&mut self.at, Cursor::EMPTY);

@@ -408,7 +408,11 @@ impl<'a> Tree<'a> {
             vertices: s.vertices,
             polygons: s.polygons,
             indices: s.indices,
-            planes: if table { runs.planes() } else { runs.recs },
+            planes: if table {
+                runs.planes().as_flattened()
+            } else {
+                runs.recs
+            },
             plane_len: if table { PLANE_LEN } else { RUN_LEN } as u8,
             polygon_count: counts.polygons,
             index_count: counts.indices,
@@ -510,7 +514,7 @@ impl<'a> Tree<'a> {
 
     /// Entries of the plane table (0 without one).
     pub fn plane_table_len(&self) -> u32 {
-        (self.w.runs.planes().len() / PLANE_LEN) as u32
+        self.w.runs.planes().len() as u32
     }
 
     /// What the compact records add to the sections

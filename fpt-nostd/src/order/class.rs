@@ -112,12 +112,29 @@ impl Seg {
     /// The runs `runs` of a bunch.
     #[inline(always)]
     pub(super) fn new(w: &WalkData<'_>, runs: (u32, u32), pick: Pick) -> Seg {
+        if w.runs.is_table() {
+            Self::new_as::<TableRun>(w, runs, pick)
+        } else {
+            Self::new_as::<InlineRun>(w, runs, pick)
+        }
+    }
+
+    /// [`Seg::new`] over the run records of layout `R`.
+    #[inline(always)]
+    pub(super) fn new_as<R: RunRecord>(w: &WalkData<'_>, runs: (u32, u32), pick: Pick) -> Seg {
         let (run, run_end) = runs;
         Seg {
             run,
             run_end,
             // Only read when there is a run to start.
-            start: if run < run_end { w.run_start(run) } else { 0 },
+            start: if run < run_end {
+                match run.checked_sub(1) {
+                    Some(prev) => R::end(&w.runs, prev),
+                    None => 0,
+                }
+            } else {
+                0
+            },
             pick,
         }
     }
@@ -131,6 +148,16 @@ impl Seg {
     /// The polygon ids of the next run that passes, and moves past it.
     #[inline(always)]
     fn take(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> Option<(u32, u32)> {
+        if runs.is_table() {
+            self.take_as::<TableRun>(runs, face)
+        } else {
+            self.take_as::<InlineRun>(runs, face)
+        }
+    }
+
+    /// [`Seg::take`] over the run records of layout `R`.
+    #[inline(always)]
+    fn take_as<R: RunRecord>(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> Option<(u32, u32)> {
         // Emptiness first: the second bunch of a closed volume's class is
         // always empty, and this keeps that case to one predictable branch.
         if self.is_empty() {
@@ -141,18 +168,14 @@ impl Seg {
             Pick::Forward => false,
             Pick::All => {
                 // Everything at once: the runs are contiguous.
-                let end = runs.end(self.run_end.wrapping_sub(1));
+                let end = R::end(runs, self.run_end.wrapping_sub(1));
                 let start = self.start;
                 self.run = self.run_end;
                 self.start = end;
                 return Some((start, end));
             }
         };
-        if runs.is_table() {
-            self.scan::<TableRun>(runs, face, want)
-        } else {
-            self.scan::<InlineRun>(runs, face, want)
-        }
+        self.scan::<R>(runs, face, want)
     }
 
     /// [`Seg::take`]'s scan for a run whose facing is `want`, over the
@@ -166,12 +189,12 @@ impl Seg {
     ) -> Option<(u32, u32)> {
         // One range check for the whole scan; the records are then read
         // from fixed-size arrays (see `crate::reader`).
-        let mut recs = R::records(runs.recs, self.run, self.run_end);
+        let mut recs = R::records(runs, self.run, self.run_end);
         let mut start = self.start;
         let mut run = self.run;
-        while let Some((end, no, plane, rest)) = R::split(recs, runs.planes(), run) {
+        while let Some((end, backward, rest)) = R::test(recs, runs, run, face) {
             recs = rest;
-            let passes = face.backward_at(no, plane) == want;
+            let passes = backward == want;
             run = run.wrapping_add(1);
             if passes {
                 self.run = run;
@@ -191,19 +214,21 @@ impl Seg {
     /// The first run that then fails is used up with them (tested once,
     /// never emitted). The ids and their order are [`Seg::take`]'s.
     #[inline(always)]
-    fn take_walk(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> Option<(u32, u32)> {
+    fn take_walk<R: RunRecord>(
+        &mut self,
+        runs: &Runs<'_>,
+        face: &Facing<'_>,
+    ) -> Option<(u32, u32)> {
         if self.is_empty() {
             return None;
         }
-        let want = match self.pick {
-            Pick::Backward => true,
-            Pick::Forward => false,
-            Pick::All => return self.take(runs, face),
-        };
-        if runs.is_table() {
-            self.scan_walk::<TableRun>(runs, face, want)
-        } else {
-            self.scan_walk::<InlineRun>(runs, face, want)
+        // One scan per pick, each with its facing a constant: a `want`
+        // read and compared in the loop was a register more than the table
+        // layout's loop had.
+        match self.pick {
+            Pick::Backward => self.scan_walk::<R>(runs, face, true),
+            Pick::Forward => self.scan_walk::<R>(runs, face, false),
+            Pick::All => self.take_as::<R>(runs, face),
         }
     }
 
@@ -216,7 +241,7 @@ impl Seg {
         face: &Facing<'_>,
         want: bool,
     ) -> Option<(u32, u32)> {
-        let mut recs = R::records(runs.recs, self.run, self.run_end);
+        let mut recs = R::records(runs, self.run, self.run_end);
         let mut start = self.start;
         let mut run = self.run;
         // The first passing run's start, once one passed.
@@ -224,9 +249,9 @@ impl Seg {
         // Record by record off the front (a length test each), rather than
         // `chunks_exact`, whose set-up divides the length: a class has one
         // or two runs, mostly.
-        while let Some((end, no, plane, rest)) = R::split(recs, runs.planes(), run) {
+        while let Some((end, backward, rest)) = R::test(recs, runs, run, face) {
             recs = rest;
-            let passes = face.backward_at(no, plane) == want;
+            let passes = backward == want;
             run = run.wrapping_add(1);
             match (passes, first) {
                 (true, None) => first = Some(start),
@@ -255,68 +280,139 @@ impl Seg {
     }
 }
 
-/// How a scan reads one layout of run records ([`Runs`]): chosen once per
-/// scan, so that the loop over the records has no branch on the layout.
-trait RunRecord {
+/// How the walk reads one layout of run records ([`Runs`]) and their
+/// planes: chosen once per call into the walk ([`super::Order::next_range`]
+/// and the out-of-line class start are compiled once per layout), so that
+/// neither the loops over the records nor the registers they keep pay for
+/// the other layout. Everything the walk reads of a run or a switch's
+/// plane goes through here: another encoding of the planes is another
+/// implementation.
+pub(super) trait RunRecord {
     /// The records of the runs `run..run_end` (one range check for the
     /// whole scan; empty if out of range).
-    fn records(recs: &[u8], run: u32, run_end: u32) -> &[u8];
+    fn records<'a>(runs: &Runs<'a>, run: u32, run_end: u32) -> &'a [u8];
+
+    /// One past the last polygon of run `r < run_count`.
+    fn end(runs: &Runs<'_>, r: u32) -> u32;
 
     /// The first record of `recs` (that of run `run`): its end, the memo's
     /// number of its plane, the plane's 16 bytes (in `recs` or in the
-    /// table `planes`), and the records after it.
+    /// table), and the records after it.
     fn split<'a>(
         recs: &'a [u8],
-        planes: &'a [u8],
+        runs: &Runs<'a>,
         run: u32,
     ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])>;
+
+    /// [`RunRecord::split`] and the facing test of the plane: the end,
+    /// whether the plane is backward for `face`, the records after it.
+    #[inline(always)]
+    fn test<'a>(
+        recs: &'a [u8],
+        runs: &Runs<'a>,
+        run: u32,
+        face: &Facing<'_>,
+    ) -> Option<(u32, bool, &'a [u8])> {
+        let (end, no, plane, rest) = Self::split(recs, runs, run)?;
+        Some((end, face.backward_at(no, plane), rest))
+    }
+
+    /// The memo's number and the record of the plane of switch `k`
+    /// (`base`: the number of switch record 0 without a table).
+    fn switch_at<'a>(w: &WalkData<'a>, k: u32, base: u32) -> (u32, &'a [u8; 16]);
 }
 
 /// Records of [`RUN_LEN`] bytes: the plane, then a `u32` end.
-struct InlineRun;
+pub(super) struct InlineRun;
 
 impl RunRecord for InlineRun {
     #[inline(always)]
-    fn records(recs: &[u8], run: u32, run_end: u32) -> &[u8] {
+    fn records<'a>(runs: &Runs<'a>, run: u32, run_end: u32) -> &'a [u8] {
         let lo = (run as usize).wrapping_mul(RUN_LEN);
         let hi = (run_end as usize).wrapping_mul(RUN_LEN);
-        recs.get(lo..hi).unwrap_or(&[])
+        runs.recs.get(lo..hi).unwrap_or(&[])
+    }
+
+    #[inline(always)]
+    fn end(runs: &Runs<'_>, r: u32) -> u32 {
+        runs.inline_end(r)
     }
 
     #[inline(always)]
     fn split<'a>(
         recs: &'a [u8],
-        _planes: &'a [u8],
+        _runs: &Runs<'a>,
         run: u32,
     ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])> {
         let (r, rest) = recs.split_first_chunk::<RUN_LEN>()?;
         Some((le_u32(r, rn::END), run, plane_at(r, 0), rest))
     }
+
+    #[inline(always)]
+    fn switch_at<'a>(w: &WalkData<'a>, k: u32, base: u32) -> (u32, &'a [u8; 16]) {
+        w.switch_inline(k, base)
+    }
 }
+
+// `TableRun::split` reads a record as one little-endian word.
+const _: () = assert!(tr::END == 0 && tr::PLANE == 2 && TABLE_RUN_LEN == 4);
 
 /// Records of [`TABLE_RUN_LEN`] bytes: a `u16` end and a `u16` index into
 /// the plane table, which is also the memo's number of the plane (a plane
 /// that several runs share is tested once a frame with a memo).
-struct TableRun;
+pub(super) struct TableRun;
 
 impl RunRecord for TableRun {
     #[inline(always)]
-    fn records(recs: &[u8], run: u32, run_end: u32) -> &[u8] {
+    fn records<'a>(runs: &Runs<'a>, run: u32, run_end: u32) -> &'a [u8] {
         let lo = (run as usize).wrapping_mul(TABLE_RUN_LEN);
         let hi = (run_end as usize).wrapping_mul(TABLE_RUN_LEN);
-        recs.get(lo..hi).unwrap_or(&[])
+        runs.recs.get(lo..hi).unwrap_or(&[])
+    }
+
+    #[inline(always)]
+    fn end(runs: &Runs<'_>, r: u32) -> u32 {
+        runs.table_end(r)
     }
 
     #[inline(always)]
     fn split<'a>(
         recs: &'a [u8],
-        planes: &'a [u8],
+        runs: &Runs<'a>,
         _run: u32,
     ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])> {
         let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
-        let end = u32::from(u16::from_le_bytes([r[tr::END], r[tr::END + 1]]));
-        let i = u32::from(u16::from_le_bytes([r[tr::PLANE], r[tr::PLANE + 1]]));
-        Some((end, i, table_plane(planes, i), rest))
+        // One load for both halves (`tr::END` the low, `tr::PLANE` the
+        // high): two halfword loads and a shift were 4 more instructions a
+        // run test.
+        let w = u32::from_le_bytes(*r);
+        let (end, i) = (w & 0xFFFF, w >> 16);
+        Some((end, i, table_plane(runs.planes(), i), rest))
+    }
+
+    /// An index past the table (which validation rules out) is a zero
+    /// plane, never backward: tested without reading one, so that the
+    /// loop keeps no fallback address in a register.
+    #[inline(always)]
+    fn test<'a>(
+        recs: &'a [u8],
+        runs: &Runs<'a>,
+        _run: u32,
+        face: &Facing<'_>,
+    ) -> Option<(u32, bool, &'a [u8])> {
+        let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
+        let w = u32::from_le_bytes(*r);
+        let (end, i) = (w & 0xFFFF, w >> 16);
+        let backward = match runs.planes().get(i as usize) {
+            Some(plane) => face.backward_at(i, plane),
+            None => false,
+        };
+        Some((end, backward, rest))
+    }
+
+    #[inline(always)]
+    fn switch_at<'a>(w: &WalkData<'a>, k: u32, _base: u32) -> (u32, &'a [u8; 16]) {
+        w.switch_table(k)
     }
 }
 
@@ -359,16 +455,16 @@ impl Cursor {
     /// cursor written once, at the end: written first and read back, as
     /// [`Cursor::start`] does, they went through memory for every run.
     #[inline(always)]
-    pub(super) fn start_walk(
+    pub(super) fn start_walk<R: RunRecord>(
         &mut self,
         runs: &Runs<'_>,
         face: &Facing<'_>,
         segs: [Seg; 2],
     ) -> bool {
         let [mut s0, mut s1] = segs;
-        let (found, cur) = match s0.take_walk(runs, face) {
+        let (found, cur) = match s0.take_walk::<R>(runs, face) {
             Some(r) => (Some(r), 0),
-            None => (s1.take_walk(runs, face), 1),
+            None => (s1.take_walk::<R>(runs, face), 1),
         };
         // With no run left after the one found (a closed volume's class is
         // mostly one bunch of one or two runs), the cursor is marked used
@@ -391,9 +487,9 @@ impl Cursor {
     /// [`Cursor::settle`] with [`Seg::take_walk`]: `next..end` becomes the
     /// next passing runs in a row.
     #[inline(always)]
-    fn settle_walk(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> bool {
+    fn settle_walk<R: RunRecord>(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> bool {
         while let Some(seg) = self.segs.get_mut(self.cur) {
-            if let Some((start, end)) = seg.take_walk(runs, face) {
+            if let Some((start, end)) = seg.take_walk::<R>(runs, face) {
                 self.next = start;
                 self.end = end;
                 return true;
@@ -407,12 +503,12 @@ impl Cursor {
     /// ([`super::Order::next_range`]): the rest of the current range, else
     /// the next passing runs in a row ([`Seg::take_walk`]).
     #[inline(always)]
-    pub(super) fn next_range_walk(
+    pub(super) fn next_range_walk<R: RunRecord>(
         &mut self,
         runs: &Runs<'_>,
         face: &Facing<'_>,
     ) -> Option<Range<u32>> {
-        if self.next >= self.end && !self.settle_walk(runs, face) {
+        if self.next >= self.end && !self.settle_walk::<R>(runs, face) {
             return None;
         }
         let r = self.next..self.end;

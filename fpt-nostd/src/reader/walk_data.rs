@@ -27,7 +27,7 @@ pub(crate) struct Runs<'a> {
     /// before the table (two more words made the firmware's stack 64
     /// bytes deeper and its frames with effects 0.6 % dearer).
     #[cfg(feature = "plane-table")]
-    planes: &'a [u8],
+    planes: &'a [[u8; PLANE_LEN]],
     /// Whether the runs index the plane table.
     #[cfg(feature = "plane-table")]
     table: bool,
@@ -42,8 +42,11 @@ impl<'a> Runs<'a> {
         let _ = (planes, table);
         Runs {
             recs,
+            // Entries, not bytes: an index is then checked against the
+            // table's length with one comparison (the section is a whole
+            // number of entries, so nothing is dropped).
             #[cfg(feature = "plane-table")]
-            planes,
+            planes: bytemuck::try_cast_slice(planes).unwrap_or(&[]),
             #[cfg(feature = "plane-table")]
             table,
         }
@@ -60,9 +63,9 @@ impl<'a> Runs<'a> {
         false
     }
 
-    /// The plane table (empty without one).
+    /// The plane table's entries (none without one).
     #[inline(always)]
-    pub(crate) fn planes(&self) -> &'a [u8] {
+    pub(crate) fn planes(&self) -> &'a [[u8; PLANE_LEN]] {
         #[cfg(feature = "plane-table")]
         return self.planes;
         #[cfg(not(feature = "plane-table"))]
@@ -73,11 +76,23 @@ impl<'a> Runs<'a> {
     #[inline(always)]
     pub(crate) fn end(&self, r: u32) -> u32 {
         if self.is_table() {
-            let [a, b, _, _] = rec::<TABLE_RUN_LEN>(self.recs, r as usize);
-            u32::from(u16::from_le_bytes([a, b]))
+            self.table_end(r)
         } else {
-            le_u32(&rec::<RUN_LEN>(self.recs, r as usize), rn::END)
+            self.inline_end(r)
         }
+    }
+
+    /// [`Runs::end`] of [`RUN_LEN`]-byte records.
+    #[inline(always)]
+    pub(crate) fn inline_end(&self, r: u32) -> u32 {
+        le_u32(&rec::<RUN_LEN>(self.recs, r as usize), rn::END)
+    }
+
+    /// [`Runs::end`] of [`TABLE_RUN_LEN`]-byte records.
+    #[inline(always)]
+    pub(crate) fn table_end(&self, r: u32) -> u32 {
+        let [a, b, _, _] = rec::<TABLE_RUN_LEN>(self.recs, r as usize);
+        u32::from(u16::from_le_bytes([a, b]))
     }
 
     /// The memo's number and the 16 bytes of the plane of run `r <
@@ -103,8 +118,8 @@ impl<'a> Runs<'a> {
 
 /// Entry `i` of the plane table `planes` (zeros past its end).
 #[inline(always)]
-pub(crate) fn table_plane(planes: &[u8], i: u32) -> &[u8; 16] {
-    plane_at(planes, (i as usize).wrapping_mul(PLANE_LEN))
+pub(crate) fn table_plane(planes: &[[u8; PLANE_LEN]], i: u32) -> &[u8; PLANE_LEN] {
+    planes.get(i as usize).unwrap_or(&[0; PLANE_LEN])
 }
 
 /// Offsets `b` and `b + 1` of the bunch section `s`, of `L / 2` bytes
@@ -223,16 +238,6 @@ impl<'a> WalkData<'a> {
         self.runs.end(r)
     }
 
-    /// The first polygon of run `r ≤ run_count` (the polygon count for
-    /// `r = run_count`).
-    #[inline(always)]
-    pub(crate) fn run_start(&self, r: u32) -> u32 {
-        match r.checked_sub(1) {
-            Some(prev) => self.run_end(prev),
-            None => 0,
-        }
-    }
-
     /// The plane of run `r < run_count`.
     #[inline]
     pub(crate) fn run_plane(&self, r: u32) -> Plane {
@@ -255,23 +260,37 @@ impl<'a> WalkData<'a> {
     /// entry's index, as the runs number their planes.
     #[inline(always)]
     pub(crate) fn switch_at(&self, k: u32, base: u32) -> (u32, &'a [u8; SWITCH_LEN]) {
+        if self.runs.is_table() {
+            self.switch_table(k)
+        } else {
+            self.switch_inline(k, base)
+        }
+    }
+
+    /// [`WalkData::switch_at`] without a plane table.
+    #[inline(always)]
+    pub(crate) fn switch_inline(&self, k: u32, base: u32) -> (u32, &'a [u8; SWITCH_LEN]) {
         let no = base.wrapping_add(k);
         if self.shared {
             let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
-            if self.runs.is_table() {
-                (i, table_plane(self.runs.planes(), i))
-            } else {
-                (
-                    no,
-                    plane_at(self.runs.recs, (i as usize).wrapping_mul(RUN_LEN)),
-                )
-            }
+            (
+                no,
+                plane_at(self.runs.recs, (i as usize).wrapping_mul(RUN_LEN)),
+            )
         } else {
             (
                 no,
                 plane_at(self.switches, (k as usize).wrapping_mul(SWITCH_LEN)),
             )
         }
+    }
+
+    /// [`WalkData::switch_at`] with a plane table (whose files always
+    /// have shared switch planes, [`FLAG_NARROW`]).
+    #[inline(always)]
+    pub(crate) fn switch_table(&self, k: u32) -> (u32, &'a [u8; SWITCH_LEN]) {
+        let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
+        (i, table_plane(self.runs.planes(), i))
     }
 
     /// The plane index of switch `k` with shared planes (`None` without
