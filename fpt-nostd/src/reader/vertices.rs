@@ -24,10 +24,11 @@ pub struct VertexDecoder<'a> {
     /// empty: an `f32` vertex is then one bounds check, which also stands
     /// for the test of the format (a cache miss's decode, once a vertex).
     pub(super) f32s: &'a [[u8; 12]],
-    /// The section as 6-byte records when it holds `q16` vertices and the
-    /// decoder reads them as stored ([`VertexDecoder::q16_as_stored`]),
-    /// else empty.
-    pub(super) q16s: &'a [[u8; 6]],
+    /// Whether the section holds `q16` vertices and the decoder reads them
+    /// as stored ([`VertexDecoder::q16_as_stored`]). A flag, not a slice
+    /// of records: the decoder keeps its size (a larger one made the
+    /// default trees' walk dearer, session 25).
+    pub(super) as_stored: bool,
     pub(super) format: VertexFormat,
     pub(super) q16_scale: [f32; 3],
     pub(super) q32_scale: f32,
@@ -36,7 +37,7 @@ pub struct VertexDecoder<'a> {
     pub(super) scale: f32,
 }
 
-impl VertexDecoder<'_> {
+impl<'a> VertexDecoder<'a> {
     /// This decoder with every vertex multiplied by `s` as it is decoded
     /// (`x · s` rounded once, as a caller multiplying would): for a walk
     /// whose matrix does not take the scale and whose code multiplies
@@ -45,7 +46,7 @@ impl VertexDecoder<'_> {
     pub(crate) fn scaled(self, s: f32) -> Self {
         VertexDecoder {
             f32s: &[],
-            q16s: &[],
+            as_stored: false,
             scale: s,
             ..self
         }
@@ -59,11 +60,10 @@ impl VertexDecoder<'_> {
     /// format (or a scaled decoder).
     #[must_use]
     pub(crate) fn q16_as_stored(self) -> Self {
-        let q16s = match self.format {
-            VertexFormat::Q16 if self.scale == 1.0 => self.section.as_chunks::<6>().0,
-            _ => &[],
-        };
-        VertexDecoder { q16s, ..self }
+        VertexDecoder {
+            as_stored: self.format == VertexFormat::Q16 && self.scale == 1.0,
+            ..self
+        }
     }
 
     /// What each axis of a q16 tree's stored values is multiplied by as
@@ -100,13 +100,25 @@ impl VertexDecoder<'_> {
         }
     }
 
-    /// Vertex `v` of a decoder made by [`VertexDecoder::q16_as_stored`]:
-    /// its stored values converted to `f32`, inline (the origin for
-    /// another decoder or an index outside the section). For a loop over
-    /// a q16 tree's vertices of its own (a proven frame's prefill).
+    /// The vertex records of a decoder made by
+    /// [`VertexDecoder::q16_as_stored`] (6 bytes each), else none: for a
+    /// loop over a q16 tree's vertices of its own (a proven frame's
+    /// prefill), which holds them in registers and reads each with
+    /// [`VertexDecoder::as_stored_f32`].
+    #[inline]
+    pub(crate) fn q16_stored_records(&self) -> &'a [[u8; 6]] {
+        if self.as_stored {
+            self.section.as_chunks::<6>().0
+        } else {
+            &[]
+        }
+    }
+
+    /// A q16 record's values converted to `f32` (exact; the origin for
+    /// `None`).
     #[inline(always)]
-    pub(crate) fn get_q16_as_stored(&self, v: usize) -> [f32; 3] {
-        match self.q16s.get(v) {
+    pub(crate) fn as_stored_f32(r: Option<&[u8; 6]>) -> [f32; 3] {
+        match r {
             Some(&[a, b, c, d, e, f]) => {
                 [[a, b], [c, d], [e, f]].map(|h| f32::from(i16::from_le_bytes(h)))
             }
@@ -123,8 +135,8 @@ impl VertexDecoder<'_> {
     #[cold]
     #[inline(never)]
     fn get_packed(&self, v: usize) -> [f32; 3] {
-        if v < self.q16s.len() {
-            return self.get_q16_as_stored(v);
+        if self.as_stored {
+            return Self::as_stored_f32(self.q16_stored_records().get(v));
         }
         self.get_unscaled(v).map(|c| c * self.scale)
     }

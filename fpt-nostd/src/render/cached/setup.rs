@@ -77,7 +77,10 @@ pub(super) fn prefill<P: Precision, E: Compiled>(
         // The stored values read inline (the walk's `get` calls out for
         // them): a q16 tree's proven frame then costs an `f32` tree's.
         (None, Source::FoldedQ16 { .. }) => {
-            r.prefill(cache, count, |v| dec.get_q16_as_stored(v as usize));
+            let recs = dec.q16_stored_records();
+            r.prefill(cache, count, |v| {
+                VertexDecoder::as_stored_f32(recs.get(v as usize))
+            });
         }
         (None, _) => r.prefill(cache, count, |v| dec.get(v as usize)),
     }
