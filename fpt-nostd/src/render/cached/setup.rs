@@ -335,4 +335,53 @@ mod tests {
             assert!(folded_camera::<FloatLibm<4>>(&t, &odd).is_none());
         }
     }
+
+    /// A q16 tree's values as stored through the matrix with the per-axis
+    /// scale folded in land where the decoded vertices do through the
+    /// frame's (within the products' rounding), the stored values are read
+    /// exactly, and an `f32` tree takes no per-axis fold.
+    #[test]
+    fn q16_folded_matrix_transforms_as_the_decoded_vertices() {
+        let f32_bytes = two_floors().bytes();
+        let t = Tree::from_bytes(&f32_bytes).unwrap_or_else(|e| panic!("{e:?}"));
+        let mut r = two_floors();
+        let (f32_dec, n) = (t.vertex_decoder(), t.vertex_count() as usize);
+        r.format = VertexFormat::Q16;
+        r.half_extent = [1.5, 1.25, 1.0];
+        r.vertex_bytes.clear();
+        for v in 0..n {
+            for (c, h) in f32_dec.get(v).into_iter().zip(r.half_extent) {
+                let q = (c / h * 32767.0).round() as i16;
+                r.vertex_bytes.extend_from_slice(&q.to_le_bytes());
+            }
+        }
+        let bytes = r.bytes();
+        let q16 = Tree::from_bytes(&bytes).unwrap_or_else(|e| panic!("{e:?}"));
+        let (dec, raw) = (q16.vertex_decoder(), q16.vertex_decoder().q16_as_stored());
+        for v in 0..n {
+            assert_eq!(raw.get(v), dec.raw_q16(v).map(|c| c as f32), "vertex {v}");
+            let recs = raw.q16_stored_records();
+            assert_eq!(VertexDecoder::as_stored_f32(recs.get(v)), raw.get(v));
+            assert_eq!(t.vertex_decoder().q16_as_stored().get(v), f32_dec.get(v));
+        }
+        for (yaw, pitch) in [(0.3f32, 0.2f32), (2.5, -1.1), (-1.0, 0.7)] {
+            let o = Orbit::new([0.0; 3], yaw, pitch, 5.0, 0.9);
+            let frame = Frame::relative(&q16, &o.camera::<Libm>(1.2));
+            let cam = folded_camera::<FloatLibm<4>>(&q16, &frame)
+                .unwrap_or_else(|| panic!("no fold at scale {}", frame.vertex_scale));
+            assert!(q16_folded_camera(&t, &cam).is_none());
+            let q = q16_folded_camera(&q16, &cam).unwrap_or_else(|| panic!("no q16 fold"));
+            for v in 0..n {
+                let a = FloatPath::<Libm>::transform(&q.matrix, raw.get(v));
+                let b = FloatPath::<Libm>::transform(&cam.matrix, dec.get(v));
+                let (Some(a), Some(b)) = (a, b) else {
+                    panic!("vertex {v}: {a:?} {b:?}");
+                };
+                let big = b.x.abs().max(b.y.abs()).max(b.w.abs());
+                for (x, y) in [(a.x, b.x), (a.y, b.y), (a.w, b.w)] {
+                    assert!((x - y).abs() <= big * 1e-6, "vertex {v}: {x} {y}");
+                }
+            }
+        }
+    }
 }
