@@ -24,11 +24,10 @@ pub struct VertexDecoder<'a> {
     /// empty: an `f32` vertex is then one bounds check, which also stands
     /// for the test of the format (a cache miss's decode, once a vertex).
     pub(super) f32s: &'a [[u8; 12]],
-    /// Whether the section holds `q16` vertices and the decoder reads them
-    /// as stored ([`VertexDecoder::q16_as_stored`]). A flag, not a slice
-    /// of records: the decoder keeps its size (a larger one made the
-    /// default trees' walk dearer, session 25).
-    pub(super) as_stored: bool,
+    /// The section as 6-byte records when it holds `q16` vertices and the
+    /// decoder reads them as stored ([`VertexDecoder::q16_as_stored`]),
+    /// else empty.
+    pub(super) q16s: &'a [[u8; 6]],
     pub(super) format: VertexFormat,
     pub(super) q16_scale: [f32; 3],
     pub(super) q32_scale: f32,
@@ -37,7 +36,7 @@ pub struct VertexDecoder<'a> {
     pub(super) scale: f32,
 }
 
-impl<'a> VertexDecoder<'a> {
+impl VertexDecoder<'_> {
     /// This decoder with every vertex multiplied by `s` as it is decoded
     /// (`x · s` rounded once, as a caller multiplying would): for a walk
     /// whose matrix does not take the scale and whose code multiplies
@@ -46,7 +45,7 @@ impl<'a> VertexDecoder<'a> {
     pub(crate) fn scaled(self, s: f32) -> Self {
         VertexDecoder {
             f32s: &[],
-            as_stored: false,
+            q16s: &[],
             scale: s,
             ..self
         }
@@ -60,10 +59,11 @@ impl<'a> VertexDecoder<'a> {
     /// format (or a scaled decoder).
     #[must_use]
     pub(crate) fn q16_as_stored(self) -> Self {
-        VertexDecoder {
-            as_stored: self.format == VertexFormat::Q16 && self.scale == 1.0,
-            ..self
-        }
+        let q16s = match self.format {
+            VertexFormat::Q16 if self.scale == 1.0 => self.section.as_chunks::<6>().0,
+            _ => &[],
+        };
+        VertexDecoder { q16s, ..self }
     }
 
     /// What each axis of a q16 tree's stored values is multiplied by as
@@ -100,25 +100,13 @@ impl<'a> VertexDecoder<'a> {
         }
     }
 
-    /// The vertex records of a decoder made by
-    /// [`VertexDecoder::q16_as_stored`] (6 bytes each), else none: for a
-    /// loop over a q16 tree's vertices of its own (a proven frame's
-    /// prefill), which holds them in registers and reads each with
-    /// [`VertexDecoder::as_stored_f32`].
-    #[inline]
-    pub(crate) fn q16_stored_records(&self) -> &'a [[u8; 6]] {
-        if self.as_stored {
-            self.section.as_chunks::<6>().0
-        } else {
-            &[]
-        }
-    }
-
-    /// A q16 record's values converted to `f32` (exact; the origin for
-    /// `None`).
+    /// Vertex `v` of a decoder made by [`VertexDecoder::q16_as_stored`]:
+    /// its stored values converted to `f32`, inline (the origin for
+    /// another decoder or an index outside the section). For a loop over
+    /// a q16 tree's vertices of its own (a proven frame's prefill).
     #[inline(always)]
-    pub(crate) fn as_stored_f32(r: Option<&[u8; 6]>) -> [f32; 3] {
-        match r {
+    pub(crate) fn get_q16_as_stored(&self, v: usize) -> [f32; 3] {
+        match self.q16s.get(v) {
             Some(&[a, b, c, d, e, f]) => {
                 [[a, b], [c, d], [e, f]].map(|h| f32::from(i16::from_le_bytes(h)))
             }
@@ -135,8 +123,8 @@ impl<'a> VertexDecoder<'a> {
     #[cold]
     #[inline(never)]
     fn get_packed(&self, v: usize) -> [f32; 3] {
-        if self.as_stored {
-            return Self::as_stored_f32(self.q16_stored_records().get(v));
+        if v < self.q16s.len() {
+            return self.get_q16_as_stored(v);
         }
         self.get_unscaled(v).map(|c| c * self.scale)
     }

@@ -77,10 +77,7 @@ pub(super) fn prefill<P: Precision, E: Compiled>(
         // The stored values read inline (the walk's `get` calls out for
         // them): a q16 tree's proven frame then costs an `f32` tree's.
         (None, Source::FoldedQ16 { .. }) => {
-            let recs = dec.q16_stored_records();
-            r.prefill(cache, count, |v| {
-                VertexDecoder::as_stored_f32(recs.get(v as usize))
-            });
+            r.prefill(cache, count, |v| dec.get_q16_as_stored(v as usize));
         }
         (None, _) => r.prefill(cache, count, |v| dec.get(v as usize)),
     }
@@ -360,8 +357,7 @@ mod tests {
         let (dec, raw) = (q16.vertex_decoder(), q16.vertex_decoder().q16_as_stored());
         for v in 0..n {
             assert_eq!(raw.get(v), dec.raw_q16(v).map(|c| c as f32), "vertex {v}");
-            let recs = raw.q16_stored_records();
-            assert_eq!(VertexDecoder::as_stored_f32(recs.get(v)), raw.get(v));
+            assert_eq!(raw.get_q16_as_stored(v), raw.get(v));
             assert_eq!(t.vertex_decoder().q16_as_stored().get(v), f32_dec.get(v));
         }
         for (yaw, pitch) in [(0.3f32, 0.2f32), (2.5, -1.1), (-1.0, 0.7)] {
