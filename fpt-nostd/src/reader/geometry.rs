@@ -145,6 +145,7 @@ impl<'a> Geometry<'a> {
                 VertexFormat::F32 => section.as_chunks::<12>().0,
                 _ => &[],
             },
+            q16s: &[],
             format: self.format,
             q16_scale: self.q16_scale,
             q32_scale: self.q32_scale,
