@@ -110,7 +110,7 @@ mod target {
     static TREES: [(VertexFormat, &[u8]); 3] = [
         (
             VertexFormat::F32,
-            include_bytes!("../../trees/bench_city.fpt"),
+            include_bytes!("../../trees/bench_city.f32.fpt"),
         ),
         (
             VertexFormat::Q16,

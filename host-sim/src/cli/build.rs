@@ -4,6 +4,7 @@ use super::{BenchBuildArgs, BuildArgs, CliError, CliResult};
 use crate::build::{build, Progress};
 use crate::cli_err;
 use crate::output::write_atomic;
+use crate::serialize::SerializeOptions;
 use crate::tree::{FpTree, Method, Stats};
 use fpt_nostd::effects::Effects;
 use fpt_nostd::format::{UpAxis, VertexFormat};
@@ -31,6 +32,53 @@ pub fn parse_vertex_format(s: &str) -> Result<VertexFormat, CliError> {
         .into_iter()
         .find(|f| f.name() == s)
         .ok_or_else(|| cli_err!("unknown vertex format '{s}' (expected f32, q16 or q32)"))
+}
+
+/// `--vertex-format`'s default: that of [`SerializeOptions::default`],
+/// the default file options.
+pub fn default_vertex_format() -> String {
+    SerializeOptions::default().vertex_format.name().to_string()
+}
+
+/// The `--records` choices and the record options each writes
+/// (`compact`, `narrow` and `plane_table` of [`SerializeOptions`]).
+const RECORDS: [(&str, [bool; 3]); 4] = [
+    ("table", [true, true, true]),
+    ("narrow", [true, true, false]),
+    ("compact", [true, false, false]),
+    ("wide", [false, false, false]),
+];
+
+/// The `--records` name of `opts`' record options, `None` for a
+/// combination no name writes.
+pub fn records_name(opts: &SerializeOptions) -> Option<&'static str> {
+    let flags = [opts.compact, opts.narrow, opts.plane_table];
+    RECORDS.iter().find(|r| r.1 == flags).map(|r| r.0)
+}
+
+/// `--records`' default: the name of [`SerializeOptions::default`]'s
+/// records.
+pub fn default_records() -> String {
+    records_name(&SerializeOptions::default())
+        .unwrap_or("narrow")
+        .to_string()
+}
+
+/// `opts` with the record options of `--records NAME`.
+pub fn with_records(opts: SerializeOptions, name: &str) -> Result<SerializeOptions, CliError> {
+    let [compact, narrow, plane_table] = RECORDS
+        .iter()
+        .find(|r| r.0 == name)
+        .ok_or_else(|| {
+            cli_err!("unknown records '{name}' (expected table, narrow, compact or wide)")
+        })?
+        .1;
+    Ok(SerializeOptions {
+        compact,
+        narrow,
+        plane_table,
+        ..opts
+    })
 }
 
 /// Build progress on stderr. On a terminal: a bar that appears once a
@@ -332,15 +380,16 @@ pub fn run(a: &BuildArgs) -> CliResult {
             a.crease
         ));
     }
-    let opts = crate::serialize::SerializeOptions {
-        vertex_format,
-        effects: Some(effects.bits()),
-        up,
-        crease_deg: a.crease,
-        compact: a.records != "wide",
-        narrow: a.records == "narrow" || a.records == "table",
-        plane_table: a.records == "table",
-    };
+    let opts = with_records(
+        SerializeOptions {
+            vertex_format,
+            effects: Some(effects.bits()),
+            up,
+            crease_deg: a.crease,
+            ..SerializeOptions::default()
+        },
+        &a.records,
+    )?;
     let bytes = crate::serialize::serialize(&tree, &opts)?;
     // Stats first: if it cannot be written, no tree file appears either.
     if let Some(path) = &a.stats {
@@ -506,8 +555,7 @@ fn bench_scaling(a: &BenchBuildArgs) -> CliResult {
         let peak =
             crate::memory::peak().map(|p| p.saturating_sub(base) as f64 / f64::from(1 << 20));
         let rss = peak_rss_mib().filter(|_| rss_reset);
-        let bytes =
-            crate::serialize::serialize(&t, &crate::serialize::SerializeOptions::default())?;
+        let bytes = crate::serialize::serialize(&t, &SerializeOptions::default())?;
         let s = &t.stats;
         let secs = s.build_ms / 1e3;
         times.push((n as f64, secs));
@@ -596,4 +644,26 @@ pub fn bench(a: &BenchBuildArgs) -> CliResult {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `fpt build`'s defaults are the default file options, and every
+    /// `--records` name writes the options it is the name of.
+    #[test]
+    fn cli_defaults_are_the_default_file_options() {
+        let d = SerializeOptions::default();
+        assert_eq!(
+            parse_vertex_format(&default_vertex_format()).ok(),
+            Some(d.vertex_format)
+        );
+        assert_eq!(with_records(d, &default_records()).ok(), Some(d));
+        for (name, _) in RECORDS {
+            let o = with_records(d, name).expect("a --records name");
+            assert_eq!(records_name(&o), Some(name));
+        }
+        assert!(with_records(d, "nope").is_err());
+    }
 }

@@ -22,10 +22,12 @@
 //! on it), otherwise the command fails.
 //!
 //! The accuracy configurations ([`fpt_frames::accuracy`], the
-//! firmware's feature `accuracy`) draw the benchmark scene from trees in
-//! every vertex encoding: `--export` also writes
-//! `bench_city.q16.fpt`, `bench_city.q32.fpt` and their lines,
-//! `accuracy.txt`; `fpt frames --accuracy` prints those lines.
+//! firmware's `accuracy` binary) draw the benchmark scene from trees in
+//! every vertex encoding, with records pinned by the study
+//! ([`tree_options`]) rather than the default file options: `--export`
+//! also writes `bench_city.f32.fpt`, `bench_city.q16.fpt`,
+//! `bench_city.q32.fpt` and their lines, `accuracy.txt`;
+//! `fpt frames --accuracy` prints those lines.
 //!
 //! `fpt frames --work` prints what each frame is made of instead
 //! ([`fpt_frames::work`]: polygons handed out by the walk, their
@@ -47,6 +49,7 @@ use fpt_frames::{
 use fpt_nostd::format::VertexFormat;
 use fpt_nostd::reader::Tree;
 
+use super::accuracy::eval::tree_options;
 use super::{CliError, CliResult};
 use crate::build::{build, NoProgress, DEFAULT_SEED};
 use crate::cli_err;
@@ -94,37 +97,34 @@ fn scene(name: &str) -> Result<Scene, CliError> {
     }
 }
 
-/// The tree file of scene `name`: [`METHOD`], [`DEFAULT_SEED`], `f32`
-/// vertices, the default effects of the scene's kind. Deterministic.
+/// The tree file of scene `name`: [`METHOD`], [`DEFAULT_SEED`], the
+/// default file options ([`SerializeOptions::default`]: the firmware's
+/// trees are what `fpt build` writes), the default effects of the scene's
+/// kind. Deterministic.
 pub fn scene_tree(name: &str) -> Result<Vec<u8>, CliError> {
-    scene_tree_as(name, VertexFormat::F32)
+    scene_tree_with(name, &SerializeOptions::default())
 }
 
-/// [`scene_tree`] with vertices in `vertex_format`.
-pub fn scene_tree_as(name: &str, vertex_format: VertexFormat) -> Result<Vec<u8>, CliError> {
+/// [`scene_tree`] written with `opts`.
+fn scene_tree_with(name: &str, opts: &SerializeOptions) -> Result<Vec<u8>, CliError> {
     let s = scene(name)?;
     let tree = build(s.polygons, s.closed, METHOD, DEFAULT_SEED, &mut NoProgress);
-    let opts = SerializeOptions {
-        vertex_format,
-        ..SerializeOptions::default()
-    };
-    serialize(&tree, &opts).map_err(|e| cli_err!("{name}: {e}"))
+    serialize(&tree, opts).map_err(|e| cli_err!("{name}: {e}"))
 }
 
 /// The file name of the accuracy scene's tree in `f`
-/// (`bench_city.fpt` for `f32`, which is the frame set's).
+/// (`bench_city.f32.fpt`, ...: its own files, in the study's pinned
+/// encodings, not the frame set's `bench_city.fpt`).
 pub fn accuracy_tree_file(f: VertexFormat) -> String {
-    match f {
-        VertexFormat::F32 => format!("{ACCURACY_SCENE}.fpt"),
-        _ => format!("{ACCURACY_SCENE}.{}.fpt", f.name()),
-    }
+    format!("{ACCURACY_SCENE}.{}.fpt", f.name())
 }
 
-/// The accuracy scene's trees in every vertex encoding, built now.
+/// The accuracy scene's trees in every vertex encoding, built now with
+/// the study's pinned options ([`tree_options`]).
 pub fn accuracy_trees() -> Result<Vec<(VertexFormat, Vec<u8>)>, CliError> {
     VertexFormat::ALL
         .into_iter()
-        .map(|f| Ok((f, scene_tree_as(ACCURACY_SCENE, f)?)))
+        .map(|f| Ok((f, scene_tree_with(ACCURACY_SCENE, &tree_options(f))?)))
         .collect()
 }
 
@@ -275,7 +275,7 @@ pub fn run(a: &FramesArgs) -> CliResult {
             dir.join(EXPECTED_FILE),
             expected_text(&frame_lines).into_bytes(),
         ));
-        for (f, b) in acc_trees.iter().filter(|(f, _)| *f != VertexFormat::F32) {
+        for (f, b) in &acc_trees {
             files.push((dir.join(accuracy_tree_file(*f)), b.clone()));
         }
         files.push((

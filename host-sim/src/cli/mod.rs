@@ -122,7 +122,7 @@ pub struct BuildArgs {
     #[arg(long)]
     pub stats: Option<PathBuf>,
     /// Vertex encoding in the tree file: f32, q16 or q32.
-    #[arg(long = "vertex-format", default_value = "f32", value_parser = ["f32", "q16", "q32"])]
+    #[arg(long = "vertex-format", default_value_t = build::default_vertex_format(), value_parser = ["f32", "q16", "q32"])]
     pub vertex_format: String,
     /// The scene's effects, stored in the file: comma-separated culling,
     /// two-sided, clipping, lighting, depth-cue, dither, outline, smooth; or none.
@@ -163,7 +163,7 @@ pub struct BuildArgs {
     /// before compact records existed); for comparisons and older
     /// readers. `table` falls back to `narrow` beyond 65,535 polygons,
     /// `narrow` and `compact` to `wide` when the fields do not fit.
-    #[arg(long, default_value = "narrow", value_parser = ["narrow", "table", "compact", "wide"])]
+    #[arg(long, default_value_t = build::default_records(), value_parser = ["narrow", "table", "compact", "wide"])]
     pub records: String,
 }
 

@@ -159,14 +159,17 @@ pub fn link_overflows(stderr: &str) -> Vec<(String, u64)> {
 /// Thumb-1 code with 4 MiB of RAM at the same address).
 pub(super) const MEASURE_RAM_KIB: u32 = 1024;
 
-/// The firmware features a tree needs: `plane-table` for a tree with a
+/// The firmware features a tree needs, and only those (the default
+/// features are off: the benchmark binary needs neither `full` nor
+/// `band`, and what they turn on for the frame set's trees would cost the
+/// walk of a tree that does not need it): `plane-table` for a tree with a
 /// shared plane table, `large-trees` for one without small walk records
-/// (the firmware reads neither by default: each feature costs every
-/// walk).
+/// (each feature costs every walk).
 fn tree_features(tree: &std::path::Path) -> Vec<&'static str> {
     let bytes = std::fs::read(tree).unwrap_or_default();
+    let mut args = vec!["--no-default-features"];
     let Ok(t) = fpt_nostd::reader::Tree::from_bytes(&bytes) else {
-        return vec![];
+        return args;
     };
     let features = [
         (t.has_plane_table(), "plane-table"),
@@ -174,10 +177,11 @@ fn tree_features(tree: &std::path::Path) -> Vec<&'static str> {
     ];
     let wanted: Vec<&str> = features.iter().filter(|f| f.0).map(|f| f.1).collect();
     match wanted.as_slice() {
-        [] => vec![],
-        [one] => vec!["--features", one],
-        _ => vec!["--features", "plane-table large-trees"],
+        [] => {}
+        [one] => args.extend(["--features", one]),
+        _ => args.extend(["--features", "plane-table large-trees"]),
     }
+    args
 }
 
 /// Builds the benchmark firmware (with `MEASURE_RAM_KIB` of RAM if
