@@ -92,7 +92,7 @@ mod class;
 
 pub(crate) use class::MEMO;
 
-use crate::format::NO_SWITCH;
+use crate::format::{compact_side, NO_SWITCH};
 use crate::reader::{Plane, PolygonRef, Tree, WalkData};
 pub use class::Class;
 use class::{Cursor, Facing, Pick, Seg};
@@ -598,8 +598,14 @@ impl<'a, const N: usize> Order<'a, N> {
                         continue;
                     }
                     // The back group is farther when the eye is in front.
-                    let (plane, rec) = self.w.switch_at(f.switch, self.switch_base);
-                    let back_is_far = self.face.backward_at(plane, rec);
+                    let back_is_far = if self.w.runs.is_compact() {
+                        let (i, entry) = self.w.switch_compact(f.switch);
+                        self.face
+                            .backward_at(i, compact_side(&entry, self.w.runs.unit()))
+                    } else {
+                        let (plane, rec) = self.w.switch_at(f.switch, self.switch_base);
+                        self.face.backward_at(plane, rec)
+                    };
                     f.phase = ON | if back_is_far { FAR_IS_BACK } else { 0 };
                     self.put(top, f);
                     self.push(child(f.switch, back_is_far));

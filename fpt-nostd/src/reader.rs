@@ -111,6 +111,7 @@ use crate::format::{
     FormatError, Sections, UpAxis, VertexFormat, CRC_LEN, FLAG_CLOSED, HEADER_LEN, MAGIC,
     MAX_SHIFT, NODE_LEN, POLYGON_LEN, Q16_MAX, RUN_LEN, SWITCH_LEN, VERSION,
 };
+use crate::format::{plane_unit, COMPACT_PLANE_LEN, FLAG_COMPACT_PLANES};
 use crate::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT, FLAG_NARROW, SWITCH_REF_LEN};
 use crate::format::{FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 use crate::format::{FLAG_PLANES, PLANE_LEN, TABLE_RUN_LEN};
@@ -261,7 +262,7 @@ impl<'a> Tree<'a> {
         let flags = rd_u32(bytes, h::FLAGS);
         // A plane table only with the `plane-table` feature.
         let planes = if cfg!(feature = "plane-table") {
-            FLAG_PLANES
+            FLAG_PLANES | FLAG_COMPACT_PLANES
         } else {
             0
         };
@@ -279,6 +280,7 @@ impl<'a> Tree<'a> {
             || (!large && flags & FLAG_SMALL == 0)
             || (flags & FLAG_NARROW != 0 && flags & FLAG_COMPACT == 0)
             || (flags & FLAG_PLANES != 0 && flags & FLAG_NARROW == 0)
+            || (flags & FLAG_COMPACT_PLANES != 0 && flags & FLAG_PLANES == 0)
         {
             return Err(FormatError::BadHeader("flags"));
         }
@@ -362,16 +364,28 @@ impl<'a> Tree<'a> {
         };
         let shared = narrow.is_some();
         let table = narrow.is_some_and(|n| n.table);
+        let compact_planes = narrow.is_some_and(|n| n.compact_planes);
+        let unit = plane_unit(radius);
+        if compact_planes && !unit.is_finite() {
+            return Err(FormatError::BadHeader("radius"));
+        }
         let switch_len = if shared { SWITCH_REF_LEN } else { SWITCH_LEN };
+        let plane_len = if compact_planes {
+            COMPACT_PLANE_LEN
+        } else {
+            PLANE_LEN
+        };
         let runs = if table {
             Runs::new(
                 section(s.runs, counts.runs, TABLE_RUN_LEN)?,
-                section(s.planes, extra_planes, PLANE_LEN)?,
+                section(s.planes, extra_planes, plane_len)?,
                 table,
+                compact_planes,
+                unit,
             )
         } else {
             let records = counts.runs.saturating_add(extra_planes);
-            Runs::new(section(s.runs, records, RUN_LEN)?, &[], table)
+            Runs::new(section(s.runs, records, RUN_LEN)?, &[], table, false, unit)
         };
         let w = WalkData {
             runs,
@@ -409,7 +423,9 @@ impl<'a> Tree<'a> {
             polygons: s.polygons,
             indices: s.indices,
             planes: if table { runs.planes() } else { runs.recs },
-            plane_len: if table { PLANE_LEN } else { RUN_LEN } as u8,
+            plane_len: if table { plane_len } else { RUN_LEN } as u8,
+            #[cfg(feature = "plane-table")]
+            plane_unit: unit,
             polygon_count: counts.polygons,
             index_count: counts.indices,
             format,
@@ -508,9 +524,15 @@ impl<'a> Tree<'a> {
         self.w.runs.is_table()
     }
 
+    /// Whether the plane table's entries are compact
+    /// ([`crate::format::FLAG_COMPACT_PLANES`]).
+    pub fn has_compact_planes(&self) -> bool {
+        self.w.runs.is_compact()
+    }
+
     /// Entries of the plane table (0 without one).
     pub fn plane_table_len(&self) -> u32 {
-        (self.w.runs.planes().len() / PLANE_LEN) as u32
+        (self.w.runs.planes().len() / self.w.runs.plane_len()) as u32
     }
 
     /// What the compact records add to the sections
@@ -526,6 +548,7 @@ impl<'a> Tree<'a> {
                     self.extra_plane_count()
                 },
                 table: self.w.runs.is_table(),
+                compact_planes: self.w.runs.is_compact(),
             }),
         })
     }

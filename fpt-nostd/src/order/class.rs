@@ -10,7 +10,8 @@ use core::cell::Cell;
 use core::ops::Range;
 
 use super::LocalView;
-use crate::format::{le_f32, le_u32, plane_at, run as rn, table_run as tr, RUN_LEN, TABLE_RUN_LEN};
+use crate::format::{compact_side, le_f32, le_u32, plane_at, run as rn, table_run as tr};
+use crate::format::{RUN_LEN, TABLE_RUN_LEN};
 use crate::raster::shade::HAS_FPU;
 use crate::reader::{table_plane, PolygonRef, Runs, Tree, WalkData};
 
@@ -55,7 +56,7 @@ impl<'m> Facing<'m> {
     /// [`Facing::backward`] of plane number `i` (runs first, then switch
     /// records), through the memo when it holds the plane.
     #[inline]
-    pub(super) fn backward_at<const L: usize>(&self, i: u32, r: &[u8; L]) -> bool {
+    pub(super) fn backward_at<P: FacingPlane>(&self, i: u32, r: P) -> bool {
         if !MEMO {
             return self.backward(r);
         }
@@ -72,13 +73,40 @@ impl<'m> Facing<'m> {
         b
     }
 
-    /// Whether the plane stored at the start of record `r` (normal, offset)
-    /// is backward.
+    /// Whether the plane `r` is backward.
     #[inline(always)]
-    pub(super) fn backward<const L: usize>(&self, r: &[u8; L]) -> bool {
+    pub(super) fn backward<P: FacingPlane>(&self, r: P) -> bool {
+        let [n0, n1, n2, d] = r.factors();
         let a = self.a;
-        le_f32(r, 0) * a[0] + le_f32(r, 4) * a[1] + le_f32(r, 8) * a[2] + le_f32(r, 12) * self.w
-            > 0.0
+        n0 * a[0] + n1 * a[1] + n2 * a[2] + d * self.w > 0.0
+    }
+}
+
+/// A plane as the facing test reads it: `n` and `d` of `n · a + d · w`.
+pub(super) trait FacingPlane: Copy {
+    /// `[n₀, n₁, n₂, d]`.
+    fn factors(self) -> [f32; 4];
+}
+
+/// A plane stored at the start of a record: `f32` normal and offset.
+impl<const L: usize> FacingPlane for &[u8; L] {
+    #[inline(always)]
+    fn factors(self) -> [f32; 4] {
+        [
+            le_f32(self, 0),
+            le_f32(self, 4),
+            le_f32(self, 8),
+            le_f32(self, 12),
+        ]
+    }
+}
+
+/// A compact table entry, converted ([`compact_side`]): the same sign as
+/// its unit plane's.
+impl FacingPlane for [f32; 4] {
+    #[inline(always)]
+    fn factors(self) -> [f32; 4] {
+        self
     }
 }
 
@@ -148,7 +176,9 @@ impl Seg {
                 return Some((start, end));
             }
         };
-        if runs.is_table() {
+        if runs.is_compact() {
+            self.scan::<CompactRun>(runs, face, want)
+        } else if runs.is_table() {
             self.scan::<TableRun>(runs, face, want)
         } else {
             self.scan::<InlineRun>(runs, face, want)
@@ -169,7 +199,7 @@ impl Seg {
         let mut recs = R::records(runs.recs, self.run, self.run_end);
         let mut start = self.start;
         let mut run = self.run;
-        while let Some((end, no, plane, rest)) = R::split(recs, runs.planes(), run) {
+        while let Some((end, no, plane, rest)) = R::split(recs, runs, run) {
             recs = rest;
             let passes = face.backward_at(no, plane) == want;
             run = run.wrapping_add(1);
@@ -200,7 +230,9 @@ impl Seg {
             Pick::Forward => false,
             Pick::All => return self.take(runs, face),
         };
-        if runs.is_table() {
+        if runs.is_compact() {
+            self.scan_walk::<CompactRun>(runs, face, want)
+        } else if runs.is_table() {
             self.scan_walk::<TableRun>(runs, face, want)
         } else {
             self.scan_walk::<InlineRun>(runs, face, want)
@@ -224,7 +256,7 @@ impl Seg {
         // Record by record off the front (a length test each), rather than
         // `chunks_exact`, whose set-up divides the length: a class has one
         // or two runs, mostly.
-        while let Some((end, no, plane, rest)) = R::split(recs, runs.planes(), run) {
+        while let Some((end, no, plane, rest)) = R::split(recs, runs, run) {
             recs = rest;
             let passes = face.backward_at(no, plane) == want;
             run = run.wrapping_add(1);
@@ -262,14 +294,17 @@ trait RunRecord {
     /// whole scan; empty if out of range).
     fn records(recs: &[u8], run: u32, run_end: u32) -> &[u8];
 
+    /// The plane as the facing test reads it.
+    type Plane<'a>: FacingPlane;
+
     /// The first record of `recs` (that of run `run`): its end, the memo's
-    /// number of its plane, the plane's 16 bytes (in `recs` or in the
-    /// table `planes`), and the records after it.
+    /// number of its plane, the plane (in `recs` or in the table of
+    /// `runs`), and the records after it.
     fn split<'a>(
         recs: &'a [u8],
-        planes: &'a [u8],
+        runs: &Runs<'a>,
         run: u32,
-    ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])>;
+    ) -> Option<(u32, u32, Self::Plane<'a>, &'a [u8])>;
 }
 
 /// Records of [`RUN_LEN`] bytes: the plane, then a `u32` end.
@@ -283,10 +318,12 @@ impl RunRecord for InlineRun {
         recs.get(lo..hi).unwrap_or(&[])
     }
 
+    type Plane<'a> = &'a [u8; 16];
+
     #[inline(always)]
     fn split<'a>(
         recs: &'a [u8],
-        _planes: &'a [u8],
+        _runs: &Runs<'a>,
         run: u32,
     ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])> {
         let (r, rest) = recs.split_first_chunk::<RUN_LEN>()?;
@@ -307,16 +344,55 @@ impl RunRecord for TableRun {
         recs.get(lo..hi).unwrap_or(&[])
     }
 
+    type Plane<'a> = &'a [u8; 16];
+
     #[inline(always)]
     fn split<'a>(
         recs: &'a [u8],
-        planes: &'a [u8],
+        runs: &Runs<'a>,
         _run: u32,
     ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])> {
-        let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
-        let end = u32::from(u16::from_le_bytes([r[tr::END], r[tr::END + 1]]));
-        let i = u32::from(u16::from_le_bytes([r[tr::PLANE], r[tr::PLANE + 1]]));
-        Some((end, i, table_plane(planes, i), rest))
+        let (end, i, rest) = table_run(recs)?;
+        Some((end, i, table_plane(runs.planes(), i), rest))
+    }
+}
+
+/// The first [`TABLE_RUN_LEN`]-byte record of `recs`: its end, its plane
+/// index, and the records after it.
+#[inline(always)]
+fn table_run(recs: &[u8]) -> Option<(u32, u32, &[u8])> {
+    let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
+    let end = u32::from(u16::from_le_bytes([r[tr::END], r[tr::END + 1]]));
+    let i = u32::from(u16::from_le_bytes([r[tr::PLANE], r[tr::PLANE + 1]]));
+    Some((end, i, rest))
+}
+
+/// [`TableRun`]'s records over a table of compact entries
+/// ([`crate::format::FLAG_COMPACT_PLANES`]): the entry is converted to the
+/// facing test's factors as it is read.
+struct CompactRun;
+
+impl RunRecord for CompactRun {
+    type Plane<'a> = [f32; 4];
+
+    #[inline(always)]
+    fn records(recs: &[u8], run: u32, run_end: u32) -> &[u8] {
+        TableRun::records(recs, run, run_end)
+    }
+
+    #[inline(always)]
+    fn split<'a>(
+        recs: &'a [u8],
+        runs: &Runs<'a>,
+        _run: u32,
+    ) -> Option<(u32, u32, [f32; 4], &'a [u8])> {
+        let (end, i, rest) = table_run(recs)?;
+        Some((
+            end,
+            i,
+            compact_side(&runs.compact_entry(i), runs.unit()),
+            rest,
+        ))
     }
 }
 

@@ -6,6 +6,8 @@
 #[cfg(doc)]
 use super::Tree;
 use super::{Geometry, Plane, RawVertex, VertexFormat, VertexIndices, Vertices};
+#[cfg(feature = "plane-table")]
+use crate::format::{compact_plane, rec, COMPACT_PLANE_LEN};
 use crate::format::{plane_at, RUN_LEN};
 /// One polygon of a [`Tree`].
 #[derive(Clone, Copy, Debug)]
@@ -224,6 +226,12 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
             RUN_LEN
         };
         let at = (r as usize).wrapping_mul(len);
+        #[cfg(feature = "plane-table")]
+        if len == COMPACT_PLANE_LEN {
+            let entry = rec::<COMPACT_PLANE_LEN>(self.g.planes, r as usize);
+            let (normal, d) = compact_plane(&entry, self.g.plane_unit);
+            return Plane { normal, d };
+        }
         Plane::from_record(plane_at(self.g.planes, at))
     }
 

@@ -6,12 +6,13 @@
 //! `crate::reader` for the no-panic contract).
 
 use super::Plane;
+use crate::format::{compact_plane, COMPACT_PLANE_LEN};
 use crate::format::{
     le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, PLANE_LEN, RUN_LEN,
     SMALL_NODE_LEN, SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
-use crate::format::{FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
+use crate::format::{plane_unit, FLAG_COMPACT_PLANES, FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
 
 /// The run section as the walk reads it: [`RUN_LEN`]-byte records (plane,
 /// `u32` end), or with a plane table ([`FLAG_PLANES`]) [`TABLE_RUN_LEN`]-byte
@@ -31,21 +32,85 @@ pub(crate) struct Runs<'a> {
     /// Whether the runs index the plane table.
     #[cfg(feature = "plane-table")]
     table: bool,
+    /// Whether the table's entries are compact ([`FLAG_COMPACT_PLANES`]).
+    #[cfg(feature = "plane-table")]
+    compact: bool,
+    /// The plane unit of compact entries ([`plane_unit`]).
+    #[cfg(feature = "plane-table")]
+    unit: f32,
 }
 
 impl<'a> Runs<'a> {
     /// The runs `recs`, indexing the plane table `planes` if `table` (a
-    /// table is refused without the `plane-table` feature, before this).
+    /// table is refused without the `plane-table` feature, before this),
+    /// of compact entries of plane unit `unit` if `compact`.
     #[inline]
-    pub(crate) fn new(recs: &'a [u8], planes: &'a [u8], table: bool) -> Runs<'a> {
+    pub(crate) fn new(
+        recs: &'a [u8],
+        planes: &'a [u8],
+        table: bool,
+        compact: bool,
+        unit: f32,
+    ) -> Runs<'a> {
         #[cfg(not(feature = "plane-table"))]
-        let _ = (planes, table);
+        let _ = (planes, table, compact, unit);
         Runs {
             recs,
             #[cfg(feature = "plane-table")]
             planes,
             #[cfg(feature = "plane-table")]
             table,
+            #[cfg(feature = "plane-table")]
+            compact: table && compact,
+            #[cfg(feature = "plane-table")]
+            unit,
+        }
+    }
+
+    /// Whether the plane table's entries are compact: never without the
+    /// `plane-table` feature.
+    #[inline(always)]
+    pub(crate) fn is_compact(&self) -> bool {
+        #[cfg(feature = "plane-table")]
+        return self.compact;
+        #[cfg(not(feature = "plane-table"))]
+        false
+    }
+
+    /// The plane unit of compact entries (meaningless without them).
+    #[inline(always)]
+    pub(crate) fn unit(&self) -> f32 {
+        #[cfg(feature = "plane-table")]
+        return self.unit;
+        #[cfg(not(feature = "plane-table"))]
+        0.0
+    }
+
+    /// Bytes of one plane table entry.
+    #[inline(always)]
+    pub(crate) fn plane_len(&self) -> usize {
+        if self.is_compact() {
+            COMPACT_PLANE_LEN
+        } else {
+            PLANE_LEN
+        }
+    }
+
+    /// Compact entry `i` of the table (zeros past its end).
+    #[inline(always)]
+    pub(crate) fn compact_entry(&self, i: u32) -> [u8; COMPACT_PLANE_LEN] {
+        rec::<COMPACT_PLANE_LEN>(self.planes(), i as usize)
+    }
+
+    /// Entry `i` of the plane table as a [`Plane`] (compact entries
+    /// normalised).
+    #[inline]
+    pub(crate) fn decode(&self, i: u32) -> Plane {
+        if self.is_compact() {
+            let (normal, d) = compact_plane(&self.compact_entry(i), self.unit());
+            Plane { normal, d }
+        } else {
+            Plane::from_record(table_plane(self.planes(), i))
         }
     }
 
@@ -236,6 +301,9 @@ impl<'a> WalkData<'a> {
     /// The plane of run `r < run_count`.
     #[inline]
     pub(crate) fn run_plane(&self, r: u32) -> Plane {
+        if self.runs.is_compact() {
+            return self.runs.decode(self.runs.plane_index(r));
+        }
         Plane::from_record(self.runs.plane(r).1)
     }
 
@@ -295,12 +363,24 @@ impl<'a> WalkData<'a> {
     /// Entry `i` of the plane table ([`FLAG_PLANES`]).
     #[inline]
     pub(crate) fn table_plane(&self, i: u32) -> Plane {
-        Plane::from_record(table_plane(self.runs.planes(), i))
+        self.runs.decode(i)
     }
 
     /// The plane of switch `k < switch_count`.
     #[inline]
     pub(crate) fn switch_plane(&self, k: u32) -> Plane {
+        if self.runs.is_compact() {
+            let i = self.switch_plane_index(k).unwrap_or(0);
+            return self.runs.decode(i);
+        }
         Plane::from_record(self.switch_record(k))
+    }
+
+    /// With compact planes: the table index of switch `k`'s plane (its
+    /// memo number) and its entry.
+    #[inline(always)]
+    pub(crate) fn switch_compact(&self, k: u32) -> (u32, [u8; COMPACT_PLANE_LEN]) {
+        let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
+        (i, self.runs.compact_entry(i))
     }
 }

@@ -340,6 +340,7 @@ pub fn run(a: &BuildArgs) -> CliResult {
         compact: a.records != "wide",
         narrow: a.records == "narrow" || a.records == "table",
         plane_table: a.records == "table",
+        compact_planes: a.planes == "compact",
     };
     let bytes = crate::serialize::serialize(&tree, &opts)?;
     // Stats first: if it cannot be written, no tree file appears either.
