@@ -561,7 +561,7 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         counts: &counts,
         opts,
         index_size,
-        radius: round_up_f32(radius),
+        plane_unit: fpt_nostd::format::plane_unit(enc.half_extent),
     })?;
     let Plan {
         layout,

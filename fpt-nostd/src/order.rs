@@ -370,7 +370,7 @@ impl<'a, const N: usize> Order<'a, N> {
         // `Order` is large), the root entered by the first `advance`.
         Order {
             w: tree.walk_data(),
-            face: Facing::of(&view, memo),
+            face: Facing::of(&view, memo, tree.facing_scale()),
             switch_base: tree.run_count(),
             view,
             closed: tree.is_closed() || cull,
@@ -600,8 +600,7 @@ impl<'a, const N: usize> Order<'a, N> {
                     // The back group is farther when the eye is in front.
                     let back_is_far = if self.w.runs.is_compact() {
                         let (i, entry) = self.w.switch_compact(f.switch);
-                        self.face
-                            .backward_at(i, compact_side(&entry, self.w.runs.unit()))
+                        self.face.backward_at(i, compact_side(&entry))
                     } else {
                         let (plane, rec) = self.w.switch_at(f.switch, self.switch_base);
                         self.face.backward_at(plane, rec)

@@ -2,37 +2,30 @@
 //! the writer's half of `fpt_nostd::format::compact_side` (the layout and
 //! its error bound are described there).
 
-use fpt_nostd::format::{plane_unit, COMPACT_PLANE_LEN, Q16_MAX};
+use fpt_nostd::format::{COMPACT_PLANE_LEN, Q16_MAX};
 
 /// The compact entry of the plane `[n, d]` (unit normal `n`, offset `d`
-/// relative to the origin) in a file whose header radius is `radius`:
-/// the normal scaled so that its largest component is ±32767 and rounded,
-/// the offset `d · |m|` rounded to the plane unit (so the plane keeps its
-/// foot point `−d · n` as nearly as the unit allows), clamped to the
-/// `i16` range (only rounding can push a plane through the bounding
-/// sphere beyond it). `None` for a zero or non-finite normal.
-pub(super) fn encode(plane: [f32; 4], radius: f32) -> Option<[u8; COMPACT_PLANE_LEN]> {
+/// relative to the origin) in a file of plane unit `unit`
+/// ([`fpt_nostd::format::plane_unit`] of its half extent): the normal
+/// times 32767 and the offset times `32767 / unit`, rounded (the offset
+/// clamped to the `i16` range, which only rounding can leave: `|d|` is at
+/// most the bounding radius, at most `unit`). `None` for a normal that
+/// is not a unit one within what an `f32` plane's rounding allows.
+pub(super) fn encode(plane: [f32; 4], unit: f32) -> Option<[u8; COMPACT_PLANE_LEN]> {
     let n = [plane[0], plane[1], plane[2]].map(f64::from);
-    let max = n.iter().fold(0f64, |m, c| m.max(c.abs()));
-    if !(max > 0.0 && max.is_finite()) {
+    let len = n.iter().map(|c| c * c).sum::<f64>().sqrt();
+    if !((len - 1.0).abs() < 1e-5) {
         return None;
     }
     let q = f64::from(Q16_MAX);
-    let clamp = |x: f64| x.round().clamp(-q, q) as i16;
-    // The largest component is exactly ±32767: n / max is ±1 there.
-    let m = n.map(|c| clamp(c / max * q));
-    let len = m.iter().map(|&c| f64::from(c).powi(2)).sum::<f64>().sqrt();
-    let nlen = n.iter().map(|c| c * c).sum::<f64>().sqrt();
-    // The plane m · x + e · u = 0 through the foot point −d · n / |n|
-    // of the stored plane: e · u = d · (m · n) / |n|², with m · n ≈ |m| |n|.
-    let dot: f64 = m.iter().zip(n).map(|(&a, b)| f64::from(a) * b).sum();
-    let unit = f64::from(plane_unit(radius));
+    let round = |x: f64| x.round().clamp(-q, q) as i16;
+    // Scaled by 1 / |n| too: the entry's rounding is then the only error.
+    let m = n.map(|c| round(c / len * q));
     let e = if unit > 0.0 {
-        clamp(f64::from(plane[3]) * dot / (nlen * nlen) / unit)
+        round(f64::from(plane[3]) / len * q / f64::from(unit))
     } else {
         0
     };
-    debug_assert!(len >= q);
     let mut out = [0u8; COMPACT_PLANE_LEN];
     for (chunk, v) in out.chunks_exact_mut(2).zip([m[0], m[1], m[2], e]) {
         chunk.copy_from_slice(&v.to_le_bytes());
@@ -50,7 +43,7 @@ mod tests {
     #[test]
     fn round_trip_within_bound() {
         let radius = 3.5f32;
-        let unit = plane_unit(radius);
+        let unit = fpt_nostd::format::plane_unit([radius, 1.0, 2.0]);
         let mut seed = 12345u64;
         let mut rnd = || {
             seed = seed
@@ -67,7 +60,7 @@ mod tests {
             }
             let n = v.map(|c| (c / l) as f32);
             let d = (rnd() * f64::from(radius)) as f32;
-            let e = encode([n[0], n[1], n[2], d], radius).unwrap();
+            let e = encode([n[0], n[1], n[2], d], unit).unwrap();
             assert!(compact_plane_ok(&e));
             let (m, dd) = compact_plane(&e, unit);
             // Distance between the planes over the bounding sphere: the
@@ -79,8 +72,8 @@ mod tests {
             let err = f64::from(dd - d).abs() + tilt * f64::from(radius) * 2.0;
             worst = worst.max(err / f64::from(radius));
         }
-        // radius · √3 / 65534 for the offset, about the same for the tilt.
+        // unit / 65534 for the offset, √3 / 65534 of a radian for the tilt.
         assert!(worst < 2e-4, "worst relative error {worst}");
-        assert!(encode([0.0; 4], radius).is_none());
+        assert!(encode([0.0; 4], unit).is_none());
     }
 }

@@ -23,8 +23,9 @@ pub(super) struct PlanInput<'a> {
     pub(super) counts: &'a Counts,
     pub(super) opts: &'a SerializeOptions,
     pub(super) index_size: usize,
-    /// The header's radius (the unit of compact planes).
-    pub(super) radius: f32,
+    /// The plane unit of compact planes
+    /// ([`fpt_nostd::format::plane_unit`] of the header's half extent).
+    pub(super) plane_unit: f32,
 }
 
 /// How a file stores its polygon records and planes, and its layout.
@@ -51,7 +52,7 @@ impl Plan {
         let o = input.opts;
         let table = (o.compact && o.narrow && o.plane_table)
             .then(|| {
-                let compact = o.compact_planes.then_some(input.radius);
+                let compact = o.compact_planes.then_some(input.plane_unit);
                 plane_table(input.runs, input.switch_planes, input.order.len(), compact)
             })
             .flatten();
@@ -205,8 +206,8 @@ pub(super) struct PlaneTable {
 }
 
 /// The plane table of a file with `polygons` polygons, these runs and
-/// switch planes, with compact entries for a file of header radius
-/// `radius` if `compact` is `Some(radius)`, or `None` when its `u16` run
+/// switch planes, with compact entries for a file of plane unit `u` if
+/// `compact` is `Some(u)`, or `None` when its `u16` run
 /// records cannot hold it (more than 65,535 polygons or 65,536 planes) or
 /// a plane has no compact entry.
 fn plane_table(
@@ -223,7 +224,7 @@ fn plane_table(
     let mut len = 0usize;
     let mut entry = |p: &[f32; 4]| -> Option<u32> {
         let e: Vec<u8> = match compact {
-            Some(radius) => planes::encode(*p, radius)?.to_vec(),
+            Some(unit) => planes::encode(*p, unit)?.to_vec(),
             None => p.iter().flat_map(|x| x.to_le_bytes()).collect(),
         };
         Some(*index.entry(e).or_insert_with_key(|e| {

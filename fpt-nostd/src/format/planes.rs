@@ -1,29 +1,26 @@
 //! Compact plane table entries ([`super::FLAG_COMPACT_PLANES`]): a plane in
 //! [`COMPACT_PLANE_LEN`] = 8 bytes instead of four `f32`.
 //!
-//! An entry is `m: i16 × 3, e: i16`, little-endian, for the plane
-//! `m · x + e · u = 0` (`x` relative to the origin, as every stored plane),
-//! where `u` is the file's **plane unit** `radius · √3` ([`plane_unit`]).
-//! The writer scales the unit normal so that its largest component is
-//! ±32767 (so `|m|` is 32767 to 32767·√3) and rounds; the offset
-//! `d · |m|` is then at most `radius · 32767 · √3` in magnitude, so `e`
-//! fits an `i16` in steps of `u`: a plane moves by at most `u / (2 |m|) ≤
-//! radius · √3 / 65534` across its normal, about what the normal's own
-//! rounding (±½ in 32767 a component) tilts it by at the bounding
-//! sphere. An `i32` offset (10 bytes) would remove only the first of the
-//! two errors.
+//! An entry is `m: i16 × 3, e: i16`, little-endian: the unit normal times
+//! 32767, rounded, and the offset in steps of `u / 32767`, where `u` is
+//! the file's **plane unit** `√3 · max(half_extent)` ([`plane_unit`], at
+//! least the bounding radius, so every plane through the model fits):
+//! the plane is `m · x + e · u = 0` (`x` relative to the origin, as every
+//! stored plane). Its normal is within `√3 / 65534` of the exact one and
+//! of length 1 within 3·10⁻⁵ (lighting reads it as it is, times 1/32767),
+//! its offset within `u / 65534` (`radius · √3 / 65534` at most): the
+//! plane moves by about `radius / 20,000` at the bounding sphere. An `i32`
+//! offset (10 bytes) would remove only the offset's half of that error.
 //!
-//! The facing test `m · a + e · u · w > 0` needs no normalisation (its sign
-//! is that of the unit plane's); [`compact_side`] gives it the four
-//! factors as `f32`. Only planes themselves (lighting, outlines,
-//! [`crate::reader::Plane`]) are normalised ([`compact_plane`]).
+//! The facing test is `m · a + e · (u · w) > 0`: the walk scales the view's
+//! `w` by `u` once ([`compact_side`] gives the four converted factors), so
+//! a test costs four conversions more than an `f32` plane's.
 //!
 //! Well-formed entries (checked at load, else
-//! [`super::FormatError::BadPlane`]): every component in `−32767..=32767`
-//! (−32768 is refused, so that each plane has one encoding with its
-//! negation) and the largest `|m_i|` exactly 32767 (so `m` is never zero).
+//! [`super::FormatError::BadPlane`]): no component −32768 and `|m|`
+//! within 32766 to 32768 (what rounding a unit normal gives; never zero).
 
-use super::{le_u32, Q16_MAX};
+use super::le_u32;
 
 /// Length of one compact plane table entry.
 pub const COMPACT_PLANE_LEN: usize = 8;
@@ -31,11 +28,15 @@ pub const COMPACT_PLANE_LEN: usize = 8;
 /// `√3` as the reader rounds it: the writer encodes with the same `f32`.
 const SQRT_3: f32 = 1.732_050_8;
 
-/// The plane unit `u` of a file whose header radius is `radius`: the step
-/// of a compact entry's offset.
+/// `1 / 32767`: a compact normal's scale.
+const INV_SCALE: f32 = 1.0 / 32767.0;
+
+/// The plane unit `u` of a file whose header half extent is
+/// `half_extent`: `√3` times its largest component (at least the
+/// distance of any stored vertex from the origin).
 #[inline]
-pub fn plane_unit(radius: f32) -> f32 {
-    radius * SQRT_3
+pub fn plane_unit(half_extent: [f32; 3]) -> f32 {
+    SQRT_3 * half_extent[0].max(half_extent[1]).max(half_extent[2])
 }
 
 /// The four `i16` of an entry.
@@ -46,40 +47,28 @@ fn fields<const L: usize>(r: &[u8; L]) -> [i16; 4] {
     [w0 as i16, (w0 >> 16) as i16, w1 as i16, (w1 >> 16) as i16]
 }
 
-/// `[m₀, m₁, m₂, e · unit]` of the entry at the start of `r`: the facing
-/// test's factors (`m · a + e · unit · w`), exact conversions and one
-/// product.
+/// `[m₀, m₁, m₂, e]` of the entry at the start of `r`, converted exactly:
+/// the facing test's factors, with `w` scaled by the plane unit.
 #[inline(always)]
-pub fn compact_side<const L: usize>(r: &[u8; L], unit: f32) -> [f32; 4] {
-    let [x, y, z, e] = fields(r);
-    [
-        f32::from(x),
-        f32::from(y),
-        f32::from(z),
-        f32::from(e) * unit,
-    ]
+pub fn compact_side<const L: usize>(r: &[u8; L]) -> [f32; 4] {
+    fields(r).map(f32::from)
 }
 
-/// The unit normal and offset of the entry at the start of `r` (the
-/// plane divided by `|m|`).
+/// The normal (unit within 3·10⁻⁵) and offset of the entry at the start
+/// of `r` in a file of plane unit `unit`.
 #[inline]
 pub fn compact_plane<const L: usize>(r: &[u8; L], unit: f32) -> ([f32; 3], f32) {
-    let [x, y, z, d] = compact_side(r, unit);
-    // |m| ≥ 32767 on a well-formed entry; zeros (an index past the end,
-    // never read on a validated file) give zeros, not NaN.
-    let len2 = x * x + y * y + z * z;
-    let k = if len2 > 0.0 {
-        1.0 / libm::sqrtf(len2)
-    } else {
-        0.0
-    };
-    ([x * k, y * k, z * k], d * k)
+    let [x, y, z, e] = compact_side(r);
+    (
+        [x * INV_SCALE, y * INV_SCALE, z * INV_SCALE],
+        e * (unit * INV_SCALE),
+    )
 }
 
 /// Whether the entry at the start of `r` is well formed (see the module
 /// docs).
 pub fn compact_plane_ok<const L: usize>(r: &[u8; L]) -> bool {
     let f = fields(r);
-    let max = Q16_MAX.unsigned_abs();
-    f.iter().all(|&c| c != i16::MIN) && f[..3].iter().map(|c| c.unsigned_abs()).max() == Some(max)
+    let len2: i64 = f[..3].iter().map(|&c| i64::from(c) * i64::from(c)).sum();
+    f.iter().all(|&c| c != i16::MIN) && (32766 * 32766..=32768 * 32768).contains(&len2)
 }

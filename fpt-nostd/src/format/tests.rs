@@ -159,25 +159,31 @@ fn compact_planes_decode_and_validate() {
         }
         r
     };
-    let unit = plane_unit(2.0);
+    let unit = plane_unit([2.0, 1.0, 0.5]);
+    assert_eq!(unit, 2.0 * 1.732_050_8);
     // m = (0, 0, 32767), e = −3: the plane z = 3 · unit / 32767.
     let r = entry([0, 0, 32767, -3]);
     assert!(compact_plane_ok(&r));
-    assert_eq!(compact_side(&r, unit), [0.0, 0.0, 32767.0, -3.0 * unit]);
+    assert_eq!(compact_side(&r), [0.0, 0.0, 32767.0, -3.0]);
     let (n, d) = compact_plane(&r, unit);
     assert_eq!(n, [0.0, 0.0, 1.0]);
     assert!((d - -3.0 * unit / 32767.0).abs() < 1e-9);
-    // A diagonal normal is normalised.
-    let (n, _) = compact_plane(&entry([32767, -32767, 32767, 0]), unit);
+    // A diagonal normal, rounded: unit length within 3·10⁻⁵.
+    let c = 18918; // 32767 / √3
+    let r = entry([c, -c, c, 0]);
+    assert!(compact_plane_ok(&r));
+    let (n, _) = compact_plane(&r, unit);
     let len: f32 = n.iter().map(|c| c * c).sum();
-    assert!((len - 1.0).abs() < 1e-6 && n[1] < 0.0);
-    // Ill-formed: no component ±32767, a component −32768.
+    assert!((len - 1.0).abs() < 6e-5 && n[1] < 0.0);
+    // Ill-formed: zero, too short or too long a normal, a component −32768.
     assert!(!compact_plane_ok(&entry([0, 0, 0, 0])));
     assert!(!compact_plane_ok(&entry([16383, 0, 0, 0])));
+    assert!(!compact_plane_ok(&entry([32767, 300, 0, 0])));
+    assert!(!compact_plane_ok(&entry([c - 2, -c, c, 0])));
     assert!(!compact_plane_ok(&entry([-32768, 0, 0, 0])));
     assert!(!compact_plane_ok(&entry([32767, 0, 0, i16::MIN])));
     assert!(compact_plane_ok(&entry([-32767, 5, -7, 32767])));
-    // Zeros (past the end of a table) decode to zeros, not NaN.
+    // Zeros (past the end of a table) decode to zeros.
     assert_eq!(compact_plane(&[0u8; 8], unit), ([0.0; 3], 0.0));
 }
 

@@ -44,11 +44,14 @@ pub(super) struct Facing<'m> {
 }
 
 impl<'m> Facing<'m> {
-    /// The test of `view`, remembering results in `memo` (empty: none).
-    pub(super) fn of(view: &LocalView, memo: &'m [Cell<u32>]) -> Facing<'m> {
+    /// The test of `view`, remembering results in `memo` (empty: none),
+    /// with `w` times `scale`: 1, or the plane unit of compact planes
+    /// (whose offsets are in its steps, so that a test converts the
+    /// entry and multiplies nothing more).
+    pub(super) fn of(view: &LocalView, memo: &'m [Cell<u32>], scale: f32) -> Facing<'m> {
         let (a, w) = match *view {
             LocalView::Parallel(d) => ([-d[0], -d[1], -d[2]], 0.0),
-            LocalView::Eye(e) => (e, 1.0),
+            LocalView::Eye(e) => (e, scale),
         };
         Facing { a, w, memo }
     }
@@ -387,12 +390,7 @@ impl RunRecord for CompactRun {
         _run: u32,
     ) -> Option<(u32, u32, [f32; 4], &'a [u8])> {
         let (end, i, rest) = table_run(recs)?;
-        Some((
-            end,
-            i,
-            compact_side(&runs.compact_entry(i), runs.unit()),
-            rest,
-        ))
+        Some((end, i, compact_side(&runs.compact_entry(i)), rest))
     }
 }
 

@@ -45,9 +45,7 @@ pub(super) struct Geometry<'a> {
     /// Bytes of one entry of `planes` (the plane at its start), 8 for
     /// compact entries ([`crate::format::FLAG_COMPACT_PLANES`]).
     pub(super) plane_len: u8,
-    /// The plane unit of compact entries ([`crate::format::plane_unit`]).
-    #[cfg(feature = "plane-table")]
-    pub(super) plane_unit: f32,
+
     pub(super) polygon_count: u32,
     pub(super) index_count: u32,
     pub(super) format: VertexFormat,

@@ -6,13 +6,13 @@
 //! `crate::reader` for the no-panic contract).
 
 use super::Plane;
-use crate::format::{compact_plane, COMPACT_PLANE_LEN};
+use crate::format::COMPACT_PLANE_LEN;
 use crate::format::{
     le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, PLANE_LEN, RUN_LEN,
     SMALL_NODE_LEN, SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
-use crate::format::{plane_unit, FLAG_COMPACT_PLANES, FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
+use crate::format::{FLAG_COMPACT_PLANES, FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
 
 /// The run section as the walk reads it: [`RUN_LEN`]-byte records (plane,
 /// `u32` end), or with a plane table ([`FLAG_PLANES`]) [`TABLE_RUN_LEN`]-byte
@@ -27,63 +27,49 @@ pub(crate) struct Runs<'a> {
     /// feature, like `table`: without it the walk carries what it did
     /// before the table (two more words made the firmware's stack 64
     /// bytes deeper and its frames with effects 0.6 % dearer).
-    #[cfg(feature = "plane-table")]
+    #[cfg(any(feature = "plane-table", feature = "compact-planes"))]
     planes: &'a [u8],
     /// Whether the runs index the plane table.
-    #[cfg(feature = "plane-table")]
+    #[cfg(any(feature = "plane-table", feature = "compact-planes"))]
     table: bool,
     /// Whether the table's entries are compact ([`FLAG_COMPACT_PLANES`]).
-    #[cfg(feature = "plane-table")]
+    #[cfg(all(feature = "plane-table", feature = "compact-planes"))]
     compact: bool,
-    /// The plane unit of compact entries ([`plane_unit`]).
-    #[cfg(feature = "plane-table")]
-    unit: f32,
 }
 
 impl<'a> Runs<'a> {
     /// The runs `recs`, indexing the plane table `planes` if `table` (a
     /// table is refused without the `plane-table` feature, before this),
-    /// of compact entries of plane unit `unit` if `compact`.
+    /// of compact entries if `compact`.
     #[inline]
-    pub(crate) fn new(
-        recs: &'a [u8],
-        planes: &'a [u8],
-        table: bool,
-        compact: bool,
-        unit: f32,
-    ) -> Runs<'a> {
-        #[cfg(not(feature = "plane-table"))]
-        let _ = (planes, table, compact, unit);
+    pub(crate) fn new(recs: &'a [u8], planes: &'a [u8], table: bool, compact: bool) -> Runs<'a> {
+        #[cfg(not(all(feature = "plane-table", feature = "compact-planes")))]
+        let _ = compact;
+        #[cfg(not(any(feature = "plane-table", feature = "compact-planes")))]
+        let _ = (planes, table);
         Runs {
             recs,
-            #[cfg(feature = "plane-table")]
+            #[cfg(any(feature = "plane-table", feature = "compact-planes"))]
             planes,
-            #[cfg(feature = "plane-table")]
+            #[cfg(any(feature = "plane-table", feature = "compact-planes"))]
             table,
-            #[cfg(feature = "plane-table")]
+            #[cfg(all(feature = "plane-table", feature = "compact-planes"))]
             compact: table && compact,
-            #[cfg(feature = "plane-table")]
-            unit,
         }
     }
 
     /// Whether the plane table's entries are compact: never without the
-    /// `plane-table` feature.
+    /// `compact-planes` feature, always with a table with it alone (the
+    /// reader then refuses `f32` tables), so that a firmware built for
+    /// one kind of entry has the walk of that kind only.
     #[inline(always)]
     pub(crate) fn is_compact(&self) -> bool {
-        #[cfg(feature = "plane-table")]
+        #[cfg(all(feature = "compact-planes", feature = "plane-table"))]
         return self.compact;
-        #[cfg(not(feature = "plane-table"))]
+        #[cfg(all(feature = "compact-planes", not(feature = "plane-table")))]
+        return self.is_table();
+        #[cfg(not(feature = "compact-planes"))]
         false
-    }
-
-    /// The plane unit of compact entries (meaningless without them).
-    #[inline(always)]
-    pub(crate) fn unit(&self) -> f32 {
-        #[cfg(feature = "plane-table")]
-        return self.unit;
-        #[cfg(not(feature = "plane-table"))]
-        0.0
     }
 
     /// Bytes of one plane table entry.
@@ -102,35 +88,23 @@ impl<'a> Runs<'a> {
         rec::<COMPACT_PLANE_LEN>(self.planes(), i as usize)
     }
 
-    /// Entry `i` of the plane table as a [`Plane`] (compact entries
-    /// normalised).
-    #[inline]
-    pub(crate) fn decode(&self, i: u32) -> Plane {
-        if self.is_compact() {
-            let (normal, d) = compact_plane(&self.compact_entry(i), self.unit());
-            Plane { normal, d }
-        } else {
-            Plane::from_record(table_plane(self.planes(), i))
-        }
-    }
-
     /// Whether the runs index a plane table: never without the
     /// `plane-table` feature, so that the walk's choice of layout is
     /// compiled out.
     #[inline(always)]
     pub(crate) fn is_table(&self) -> bool {
-        #[cfg(feature = "plane-table")]
+        #[cfg(any(feature = "plane-table", feature = "compact-planes"))]
         return self.table;
-        #[cfg(not(feature = "plane-table"))]
+        #[cfg(not(any(feature = "plane-table", feature = "compact-planes")))]
         false
     }
 
     /// The plane table (empty without one).
     #[inline(always)]
     pub(crate) fn planes(&self) -> &'a [u8] {
-        #[cfg(feature = "plane-table")]
+        #[cfg(any(feature = "plane-table", feature = "compact-planes"))]
         return self.planes;
-        #[cfg(not(feature = "plane-table"))]
+        #[cfg(not(any(feature = "plane-table", feature = "compact-planes")))]
         &[]
     }
 
@@ -301,9 +275,6 @@ impl<'a> WalkData<'a> {
     /// The plane of run `r < run_count`.
     #[inline]
     pub(crate) fn run_plane(&self, r: u32) -> Plane {
-        if self.runs.is_compact() {
-            return self.runs.decode(self.runs.plane_index(r));
-        }
         Plane::from_record(self.runs.plane(r).1)
     }
 
@@ -363,16 +334,12 @@ impl<'a> WalkData<'a> {
     /// Entry `i` of the plane table ([`FLAG_PLANES`]).
     #[inline]
     pub(crate) fn table_plane(&self, i: u32) -> Plane {
-        self.runs.decode(i)
+        Plane::from_record(table_plane(self.runs.planes(), i))
     }
 
     /// The plane of switch `k < switch_count`.
     #[inline]
     pub(crate) fn switch_plane(&self, k: u32) -> Plane {
-        if self.runs.is_compact() {
-            let i = self.switch_plane_index(k).unwrap_or(0);
-            return self.runs.decode(i);
-        }
         Plane::from_record(self.switch_record(k))
     }
 

@@ -504,12 +504,12 @@ fn compact_plane_tables_are_validated() {
         b[table + 6..table + 8].copy_from_slice(&32767i16.to_le_bytes());
         fix_length_and_crc(&mut b);
         assert!(exercise(&b));
-        // A radius whose plane unit is not finite.
-        let radius = fpt_nostd::format::header::RADIUS;
+        // A half extent whose plane unit is not finite.
+        let he = fpt_nostd::format::header::HALF_EXTENT;
         assert_eq!(
-            reject(&bytes, &|b| b[radius..radius + 4]
+            reject(&bytes, &|b| b[he..he + 4]
                 .copy_from_slice(&f32::MAX.to_le_bytes())),
-            Some(FormatError::BadHeader("radius"))
+            Some(FormatError::BadHeader("half_extent"))
         );
     }
 }

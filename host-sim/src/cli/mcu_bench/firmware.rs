@@ -160,7 +160,8 @@ pub fn link_overflows(stderr: &str) -> Vec<(String, u64)> {
 pub(super) const MEASURE_RAM_KIB: u32 = 1024;
 
 /// The firmware features a tree needs: `plane-table` for a tree with a
-/// shared plane table, `large-trees` for one without small walk records
+/// shared plane table of `f32` entries, `compact-planes` for one of
+/// compact entries, `large-trees` for one without small walk records
 /// (the firmware reads neither by default: each feature costs every
 /// walk).
 fn tree_features(tree: &std::path::Path) -> Vec<&'static str> {
@@ -169,14 +170,19 @@ fn tree_features(tree: &std::path::Path) -> Vec<&'static str> {
         return vec![];
     };
     let features = [
-        (t.has_plane_table(), "plane-table"),
+        (
+            t.has_plane_table() && !t.has_compact_planes(),
+            "plane-table",
+        ),
+        (t.has_compact_planes(), "compact-planes"),
         (!t.has_small_records(), "large-trees"),
     ];
     let wanted: Vec<&str> = features.iter().filter(|f| f.0).map(|f| f.1).collect();
     match wanted.as_slice() {
         [] => vec![],
         [one] => vec!["--features", one],
-        _ => vec!["--features", "plane-table large-trees"],
+        ["plane-table", _] => vec!["--features", "plane-table large-trees"],
+        _ => vec!["--features", "compact-planes large-trees"],
     }
 }
 
