@@ -185,15 +185,18 @@
 //!
 //! **Compact planes** (flag [`FLAG_COMPACT_PLANES`], only with
 //! [`FLAG_PLANES`]; session 25, `fpt build --records table --planes
-//! compact`): each table entry is [`COMPACT_PLANE_LEN`] = 8 bytes, an
-//! `i16 × 3` normal scaled so that its largest component is ±32767 and an
-//! `i16` offset in units of `radius · √3` (the header's radius); the
-//! plane is `m · x + e · radius · √3 = 0`. Entries are distinct (several
-//! exact planes that round to one entry share it). `Tree::from_bytes`
-//! checks each entry well formed ([`FormatError::BadPlane`]: no
-//! component −32768, largest normal component ±32767) and the radius
-//! times √3 finite. The walk tests `m · a + e · u · w > 0` on the
-//! converted integers; the builder's order was computed on the exact
+//! compact`): each table entry is [`COMPACT_PLANE_LEN`] = 8 bytes, the
+//! unit normal times 32767 as `i16 × 3` and an `i16` offset `e` in steps
+//! of `u / 32767`, `u` = `√3 · max(half_extent)` ([`plane_unit`]); the
+//! plane is `m · x + e · u = 0`. Entries are distinct (several exact
+//! planes that round to one entry share it). `Tree::from_bytes` checks
+//! each entry well formed ([`FormatError::BadPlane`]: no component
+//! −32768, `|m|` from 32766 to 32768) and `u` finite
+//! ([`FormatError::BadHeader`]`("half_extent")`). Read only with
+//! fpt-nostd's `compact-planes` feature (alone, it refuses `f32` tables,
+//! and the walk has no `f32` table path). The walk tests
+//! `m · a + e · (u · w) > 0` on the converted integers (`u · w` once a
+//! walk); the builder's order was computed on the exact
 //! planes, which the rounded ones can contradict only for an eye within
 //! about `radius / 20,000` of the plane, where the polygon is edge-on (the
 //! error analysis is in `format/planes.rs`, the measured pictures in

@@ -14,7 +14,8 @@ use fpt_nostd::format::{COMPACT_PLANE_LEN, Q16_MAX};
 pub(super) fn encode(plane: [f32; 4], unit: f32) -> Option<[u8; COMPACT_PLANE_LEN]> {
     let n = [plane[0], plane[1], plane[2]].map(f64::from);
     let len = n.iter().map(|c| c * c).sum::<f64>().sqrt();
-    if !((len - 1.0).abs() < 1e-5) {
+    // NaN fails too.
+    if (len - 1.0).abs() >= 1e-5 || !len.is_finite() {
         return None;
     }
     let q = f64::from(Q16_MAX);
