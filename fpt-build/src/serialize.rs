@@ -54,8 +54,8 @@ use fpt_nostd::format::{
 };
 use fpt_nostd::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT};
 use fpt_nostd::format::{EDGE_LEN, FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
+use fpt_nostd::format::{FLAG_COMPACT_PLANES, FLAG_PLANES, TABLE_RUN_LEN};
 use fpt_nostd::format::{FLAG_NARROW, NARROW_LEN, SWITCH_REF_LEN};
-use fpt_nostd::format::{FLAG_PLANES, PLANE_LEN, TABLE_RUN_LEN};
 use fpt_nostd::format::{FLAG_SMALL, SMALL_MAX_RUNS, SMALL_MAX_SWITCHES};
 use glam::DVec3;
 
@@ -97,6 +97,10 @@ pub struct SerializeOptions {
     /// cost, see `docs/tree-format.md`) writes the 20-byte runs of
     /// session 17.
     pub plane_table: bool,
+    /// With `plane_table`: compact table entries, 8 bytes instead of 16
+    /// ([`fpt_nostd::format::FLAG_COMPACT_PLANES`]: planes rounded to
+    /// about radius / 20,000); `false` writes the `f32` planes.
+    pub compact_planes: bool,
 }
 
 impl Default for SerializeOptions {
@@ -109,6 +113,7 @@ impl Default for SerializeOptions {
             compact: true,
             narrow: true,
             plane_table: false,
+            compact_planes: false,
         }
     }
 }
@@ -556,6 +561,7 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         counts: &counts,
         opts,
         index_size,
+        plane_unit: fpt_nostd::format::plane_unit(enc.half_extent),
     })?;
     let Plan {
         layout,
@@ -584,7 +590,11 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
             } else {
                 0
             }
-            | if table.is_some() { FLAG_PLANES } else { 0 }
+            | match &table {
+                Some(t) if t.compact => FLAG_PLANES | FLAG_COMPACT_PLANES,
+                Some(_) => FLAG_PLANES,
+                None => 0,
+            }
             | if counts.small { FLAG_SMALL } else { 0 },
     );
     put_u32(&mut out, effects);
@@ -699,8 +709,8 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     debug_assert_eq!(out.len(), s.normals + counts.normals as usize * NORMAL_LEN);
     out.resize(s.planes, 0);
     if let Some(t) = &table {
-        t.planes.iter().for_each(|&p| put_plane(&mut out, p));
-        debug_assert_eq!(out.len(), s.planes + t.planes.len() * PLANE_LEN);
+        out.extend_from_slice(&t.bytes);
+        debug_assert_eq!(out.len(), s.planes + t.bytes.len());
     }
     out.resize(s.runs, 0);
     for (&(plane, end), r) in runs.iter().zip(0..) {
@@ -784,6 +794,7 @@ fn is_reflex(verts: &[DVec3], i: usize, normal: DVec3) -> bool {
     u.cross(v).dot(normal) < -1e-9 * u.length() * v.length()
 }
 
+mod planes;
 mod records;
 #[cfg(test)]
 mod tests;

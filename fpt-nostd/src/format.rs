@@ -31,7 +31,7 @@
 //! | 4 | `u16` | version | [`VERSION`] (3; version 2 had no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (112) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
-//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; bit 5 [`FLAG_PLANES`] (only with bit 4): a shared plane table and 4-byte runs; bit 6 [`FLAG_SMALL`]: `u16` bunch offsets and 8-byte node records; other bits must be 0 |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; bit 5 [`FLAG_PLANES`] (only with bit 4): a shared plane table and 4-byte runs; bit 6 [`FLAG_SMALL`]: `u16` bunch offsets and 8-byte node records; bit 7 [`FLAG_COMPACT_PLANES`] (only with bit 5): 8-byte plane table entries; other bits must be 0 |
 //! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
@@ -183,6 +183,25 @@
 //! an FPU) numbers the planes by their table index, so a plane shared by
 //! several runs is tested once a frame.
 //!
+//! **Compact planes** (flag [`FLAG_COMPACT_PLANES`], only with
+//! [`FLAG_PLANES`]; session 25, `fpt build --records table --planes
+//! compact`): each table entry is [`COMPACT_PLANE_LEN`] = 8 bytes, the
+//! unit normal times 32767 as `i16 × 3` and an `i16` offset `e` in steps
+//! of `u / 32767`, `u` = `√3 · max(half_extent)` ([`plane_unit`]); the
+//! plane is `m · x + e · u = 0`. Entries are distinct (several exact
+//! planes that round to one entry share it). `Tree::from_bytes` checks
+//! each entry well formed ([`FormatError::BadPlane`]: no component
+//! −32768, `|m|` from 32766 to 32768) and `u` finite
+//! ([`FormatError::BadHeader`]`("half_extent")`). Read only with
+//! fpt-nostd's `compact-planes` feature (alone, it refuses `f32` tables,
+//! and the walk has no `f32` table path). The walk tests
+//! `m · a + e · (u · w) > 0` on the converted integers (`u · w` once a
+//! walk); the builder's order was computed on the exact
+//! planes, which the rounded ones can contradict only for an eye within
+//! about `radius / 20,000` of the plane, where the polygon is edge-on (the
+//! error analysis is in `format/planes.rs`, the measured pictures in
+//! `docs/tree-format.md`, "Session 25").
+//!
 //! ## Vertex index list (`index_count` entries of `index_size` bytes)
 //!
 //! `u16` or `u32` indices into the vertex section.
@@ -293,8 +312,10 @@
 //! bytes before them.
 
 mod error;
+mod planes;
 mod sections;
 pub use error::FormatError;
+pub use planes::{compact_plane, compact_plane_ok, compact_side, plane_unit, COMPACT_PLANE_LEN};
 pub use sections::{Counts, Narrow, Records, Sections};
 
 /// The first four bytes of every tree file.
@@ -335,6 +356,10 @@ pub const SWITCH_REF_LEN: usize = 4;
 pub const FLAG_PLANES: u32 = 1 << 5;
 /// Length of one plane table entry ([`FLAG_PLANES`]): normal, offset.
 pub const PLANE_LEN: usize = 16;
+/// Header flag (with [`FLAG_PLANES`] only): compact plane table entries,
+/// [`COMPACT_PLANE_LEN`] bytes each (`i16` normal and offset, see
+/// [`compact_side`]), instead of [`PLANE_LEN`].
+pub const FLAG_COMPACT_PLANES: u32 = 1 << 7;
 /// Length of one run record with a plane table ([`FLAG_PLANES`]).
 pub const TABLE_RUN_LEN: usize = 4;
 /// Byte offsets inside a run record of a file with a plane table.

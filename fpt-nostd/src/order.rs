@@ -95,6 +95,8 @@ pub(crate) use class::MEMO;
 use crate::format::NO_SWITCH;
 use crate::reader::{Plane, PolygonRef, Tree, WalkData};
 pub use class::Class;
+#[cfg(feature = "compact-planes")]
+use class::CompactRun;
 use class::{Cursor, Facing, InlineRun, Pick, RunRecord, Seg, TableRun};
 
 /// A view, in the model's coordinates.
@@ -370,7 +372,7 @@ impl<'a, const N: usize> Order<'a, N> {
         // `Order` is large), the root entered by the first `advance`.
         Order {
             w: tree.walk_data(),
-            face: Facing::of(&view, memo),
+            face: Facing::of(&view, memo, tree.facing_scale()),
             switch_base: tree.run_count(),
             view,
             closed: tree.is_closed() || cull,
@@ -548,6 +550,10 @@ impl<'a, const N: usize> Order<'a, N> {
         // on its own (see `class::RunRecord`): a table tree's walk then
         // costs a narrow tree's (without the `plane-table` feature the
         // test is a constant and only the narrow walk is compiled).
+        #[cfg(feature = "compact-planes")]
+        if self.w.runs.is_compact() {
+            return self.next_range_as::<CompactRun>();
+        }
         if self.w.runs.is_table() {
             self.next_range_as::<TableRun>()
         } else {
@@ -659,6 +665,10 @@ impl<'a, const N: usize> Iterator for Order<'a, N> {
         // What is left of the current class first (nothing, unless
         // `next_range` stopped inside it).
         let advanced = |o: &mut Self| {
+            #[cfg(feature = "compact-planes")]
+            if o.w.runs.is_compact() {
+                return o.advance::<CompactRun>();
+            }
             if o.w.runs.is_table() {
                 o.advance::<TableRun>()
             } else {

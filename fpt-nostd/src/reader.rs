@@ -22,7 +22,9 @@
 //!   names a plane record below `run_count + extra_planes`, and the extra
 //!   plane records have finite planes and an end of 0;
 //! - a shared plane table ([`crate::format::FLAG_PLANES`], read only with
-//!   the `plane-table` feature): every entry finite, every run's and
+//!   the `plane-table` feature): every entry finite (compact entries,
+//!   [`crate::format::FLAG_COMPACT_PLANES`]: well formed, with a finite
+//!   plane unit), every run's and
 //!   switch's plane index below the table's length, and each polygon's
 //!   run field its run's plane index;
 //! - small walk records ([`crate::format::FLAG_SMALL`]; only these
@@ -97,7 +99,9 @@
 //! with narrow records and shared switch planes, four (`small_*`, session
 //! 23) with small walk records, one of them with the plane table
 //! (`small_table_twocubes_static`), one dynamic with `q16` vertices and the
-//! depth cue, dither and outline effects; the seed meshes one OBJ,
+//! depth cue, dither and outline effects, one (session 25,
+//! `small_table_compact_twocubes_bsp_q16`, not fuzzed yet) a BSP tree
+//! with `q16` vertices and a table of compact planes; the seed meshes one OBJ,
 //! OFF, ASCII STL and ASCII PLY each. Of the `tree_walk` corpus after the
 //! first run, 99 inputs are valid trees (walked) and the other 107 are
 //! rejected with every one of the 15 kinds of [`FormatError`] between them.
@@ -111,6 +115,7 @@ use crate::format::{
     FormatError, Sections, UpAxis, VertexFormat, CRC_LEN, FLAG_CLOSED, HEADER_LEN, MAGIC,
     MAX_SHIFT, NODE_LEN, POLYGON_LEN, Q16_MAX, RUN_LEN, SWITCH_LEN, VERSION,
 };
+use crate::format::{plane_unit, COMPACT_PLANE_LEN, FLAG_COMPACT_PLANES};
 use crate::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT, FLAG_NARROW, SWITCH_REF_LEN};
 use crate::format::{FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 use crate::format::{FLAG_PLANES, PLANE_LEN, TABLE_RUN_LEN};
@@ -260,11 +265,17 @@ impl<'a> Tree<'a> {
 
         let flags = rd_u32(bytes, h::FLAGS);
         // A plane table only with the `plane-table` feature.
-        let planes = if cfg!(feature = "plane-table") {
+        // A plane table only with the feature of its kind of entries.
+        let planes = if cfg!(any(feature = "plane-table", feature = "compact-planes")) {
             FLAG_PLANES
         } else {
             0
+        } | if cfg!(feature = "compact-planes") {
+            FLAG_COMPACT_PLANES
+        } else {
+            0
         };
+        let f32_table = flags & FLAG_PLANES != 0 && flags & FLAG_COMPACT_PLANES == 0;
         let known = FLAG_CLOSED
             | FLAG_EDGES
             | FLAG_NORMALS
@@ -279,6 +290,8 @@ impl<'a> Tree<'a> {
             || (!large && flags & FLAG_SMALL == 0)
             || (flags & FLAG_NARROW != 0 && flags & FLAG_COMPACT == 0)
             || (flags & FLAG_PLANES != 0 && flags & FLAG_NARROW == 0)
+            || (flags & FLAG_COMPACT_PLANES != 0 && flags & FLAG_PLANES == 0)
+            || (f32_table && !cfg!(feature = "plane-table"))
         {
             return Err(FormatError::BadHeader("flags"));
         }
@@ -362,16 +375,26 @@ impl<'a> Tree<'a> {
         };
         let shared = narrow.is_some();
         let table = narrow.is_some_and(|n| n.table);
+        let compact_planes = narrow.is_some_and(|n| n.compact_planes);
+        if compact_planes && !plane_unit(half_extent).is_finite() {
+            return Err(FormatError::BadHeader("half_extent"));
+        }
         let switch_len = if shared { SWITCH_REF_LEN } else { SWITCH_LEN };
+        let plane_len = if compact_planes {
+            COMPACT_PLANE_LEN
+        } else {
+            PLANE_LEN
+        };
         let runs = if table {
             Runs::new(
                 section(s.runs, counts.runs, TABLE_RUN_LEN)?,
-                section(s.planes, extra_planes, PLANE_LEN)?,
+                section(s.planes, extra_planes, plane_len)?,
                 table,
+                compact_planes,
             )
         } else {
             let records = counts.runs.saturating_add(extra_planes);
-            Runs::new(section(s.runs, records, RUN_LEN)?, &[], table)
+            Runs::new(section(s.runs, records, RUN_LEN)?, &[], table, false)
         };
         let w = WalkData {
             runs,
@@ -408,12 +431,8 @@ impl<'a> Tree<'a> {
             vertices: s.vertices,
             polygons: s.polygons,
             indices: s.indices,
-            planes: if table {
-                runs.planes().as_flattened()
-            } else {
-                runs.recs
-            },
-            plane_len: if table { PLANE_LEN } else { RUN_LEN } as u8,
+            planes: if table { runs.plane_bytes() } else { runs.recs },
+            plane_len: if table { plane_len } else { RUN_LEN } as u8,
             polygon_count: counts.polygons,
             index_count: counts.indices,
             format,
@@ -512,9 +531,26 @@ impl<'a> Tree<'a> {
         self.w.runs.is_table()
     }
 
+    /// Whether the plane table's entries are compact
+    /// ([`crate::format::FLAG_COMPACT_PLANES`]).
+    pub fn has_compact_planes(&self) -> bool {
+        self.w.runs.is_compact()
+    }
+
+    /// What the facing test scales the view's `w` by: the plane unit with
+    /// compact planes (their offsets are in its steps), else 1.
+    #[inline]
+    pub(crate) fn facing_scale(&self) -> f32 {
+        if self.w.runs.is_compact() {
+            plane_unit(self.g.half_extent)
+        } else {
+            1.0
+        }
+    }
+
     /// Entries of the plane table (0 without one).
     pub fn plane_table_len(&self) -> u32 {
-        self.w.runs.planes().len() as u32
+        (self.w.runs.plane_bytes().len() / self.w.runs.plane_len()) as u32
     }
 
     /// What the compact records add to the sections
@@ -530,6 +566,7 @@ impl<'a> Tree<'a> {
                     self.extra_plane_count()
                 },
                 table: self.w.runs.is_table(),
+                compact_planes: self.w.runs.is_compact(),
             }),
         })
     }

@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use fpt_nostd::format::{Counts, Narrow, Records, Sections, COMPACT_HIDDEN_SHIFT};
 
-use super::{count_u32, SerializeError, SerializeOptions};
+use super::{count_u32, planes, SerializeError, SerializeOptions};
 use crate::tree::FpTree;
 
 /// What [`Plan::new`] decides from.
@@ -23,6 +23,9 @@ pub(super) struct PlanInput<'a> {
     pub(super) counts: &'a Counts,
     pub(super) opts: &'a SerializeOptions,
     pub(super) index_size: usize,
+    /// The plane unit of compact planes
+    /// ([`fpt_nostd::format::plane_unit`] of the header's half extent).
+    pub(super) plane_unit: f32,
 }
 
 /// How a file stores its polygon records and planes, and its layout.
@@ -48,7 +51,10 @@ impl Plan {
     pub(super) fn new(input: &PlanInput<'_>) -> Result<Plan, SerializeError> {
         let o = input.opts;
         let table = (o.compact && o.narrow && o.plane_table)
-            .then(|| plane_table(input.runs, input.switch_planes, input.order.len()))
+            .then(|| {
+                let compact = o.compact_planes.then_some(input.plane_unit);
+                plane_table(input.runs, input.switch_planes, input.order.len(), compact)
+            })
             .flatten();
         let without = Plan::with(input, None)?;
         match table {
@@ -68,7 +74,7 @@ impl Plan {
     /// The plan with `table` if the narrow records hold its indices.
     fn with(input: &PlanInput<'_>, table: Option<PlaneTable>) -> Result<Plan, SerializeError> {
         let o = input.opts;
-        let planes = table.as_ref().map_or(input.runs.len(), |t| t.planes.len());
+        let planes = table.as_ref().map_or(input.runs.len(), |t| t.len);
         let layout = o
             .compact
             .then(|| {
@@ -99,11 +105,9 @@ impl Plan {
             colours: l.colours.len() as u32,
             narrow: l.narrow.map(|(_, record_len)| Narrow {
                 record_len,
-                extra_planes: table
-                    .as_ref()
-                    .map_or(extra_planes.len(), |t| t.planes.len())
-                    as u32,
+                extra_planes: table.as_ref().map_or(extra_planes.len(), |t| t.len) as u32,
                 table: table.is_some(),
+                compact_planes: table.as_ref().is_some_and(|t| t.compact),
             }),
         });
         let sections = Sections::with_records(
@@ -185,11 +189,16 @@ fn share_planes(
 
 /// A shared plane table ([`fpt_nostd::format::FLAG_PLANES`]): every
 /// distinct run and switch plane once (bit for bit, so that the facing
-/// tests and the order are the builder's), the runs' planes first in
-/// order of first use, then the switch planes no run has.
+/// tests and the order are the builder's; with compact entries, every
+/// distinct entry once), the runs' planes first in order of first use,
+/// then the switch planes no run has.
 pub(super) struct PlaneTable {
-    /// The distinct planes.
-    pub(super) planes: Vec<[f32; 4]>,
+    /// The entries as stored, one after the other.
+    pub(super) bytes: Vec<u8>,
+    /// How many.
+    pub(super) len: usize,
+    /// Whether they are compact ([`fpt_nostd::format::FLAG_COMPACT_PLANES`]).
+    pub(super) compact: bool,
     /// Each run's entry.
     pub(super) run_plane: Vec<u32>,
     /// Each switch's entry.
@@ -197,30 +206,42 @@ pub(super) struct PlaneTable {
 }
 
 /// The plane table of a file with `polygons` polygons, these runs and
-/// switch planes, or `None` when its `u16` run records cannot hold it
-/// (more than 65,535 polygons or 65,536 planes).
+/// switch planes, with compact entries for a file of plane unit `u` if
+/// `compact` is `Some(u)`, or `None` when its `u16` run
+/// records cannot hold it (more than 65,535 polygons or 65,536 planes) or
+/// a plane has no compact entry.
 fn plane_table(
     runs: &[([f32; 4], u32)],
     switch_planes: &[[f32; 4]],
     polygons: usize,
+    compact: Option<f32>,
 ) -> Option<PlaneTable> {
     if polygons > usize::from(u16::MAX) {
         return None;
     }
-    let key = |p: &[f32; 4]| p.map(f32::to_bits);
-    let mut index: HashMap<[u32; 4], u32> = HashMap::new();
-    let mut planes = Vec::new();
-    let mut entry = |p: &[f32; 4]| {
-        let next = planes.len() as u32;
-        *index.entry(key(p)).or_insert_with(|| {
-            planes.push(*p);
-            next
-        })
+    let mut index: HashMap<Vec<u8>, u32> = HashMap::new();
+    let mut bytes = Vec::new();
+    let mut len = 0usize;
+    let mut entry = |p: &[f32; 4]| -> Option<u32> {
+        let e: Vec<u8> = match compact {
+            Some(unit) => planes::encode(*p, unit)?.to_vec(),
+            None => p.iter().flat_map(|x| x.to_le_bytes()).collect(),
+        };
+        Some(*index.entry(e).or_insert_with_key(|e| {
+            bytes.extend_from_slice(e);
+            len += 1;
+            len as u32 - 1
+        }))
     };
-    let run_plane: Vec<u32> = runs.iter().map(|(p, _)| entry(p)).collect();
-    let switch_plane: Vec<u32> = switch_planes.iter().map(&mut entry).collect();
-    (planes.len() <= 1 << 16).then_some(PlaneTable {
-        planes,
+    let run_plane: Vec<u32> = runs.iter().map(|(p, _)| entry(p)).collect::<Option<_>>()?;
+    let switch_plane: Vec<u32> = switch_planes
+        .iter()
+        .map(&mut entry)
+        .collect::<Option<_>>()?;
+    (len <= 1 << 16).then_some(PlaneTable {
+        bytes,
+        len,
+        compact: compact.is_some(),
         run_plane,
         switch_plane,
     })

@@ -45,6 +45,10 @@ pub enum FormatError {
     /// This switch names a plane record past the runs and extra planes
     /// ([`FLAG_NARROW`]).
     BadSwitch(u32),
+    /// This entry of a compact plane table is not well formed (a
+    /// component of −32768, or a normal whose largest component is not
+    /// ±32767).
+    BadPlane(u32),
     /// Some connecting nodes cannot be reached from the root.
     NotATree,
     /// The header's maximum depth differs from the tree's depth.
@@ -73,6 +77,7 @@ impl fmt::Display for FormatError {
             FormatError::BadBunches => f.write_str("bunch offsets do not tile the runs"),
             FormatError::BadNode(n) => write!(f, "invalid connecting node {n}"),
             FormatError::BadSwitch(k) => write!(f, "switch {k} names no plane record"),
+            FormatError::BadPlane(i) => write!(f, "invalid compact plane table entry {i}"),
             FormatError::NotATree => f.write_str("node graph is not a tree"),
             FormatError::DepthMismatch => f.write_str("tree depth differs from the header's"),
         }

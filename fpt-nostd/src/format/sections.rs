@@ -9,12 +9,12 @@
 //! padded to a multiple of 4 bytes; see the parent module for the order.
 
 use super::{
-    VertexFormat, COLOUR_LEN, COMPACT_POLYGON_LEN, CRC_LEN, EDGE_LEN, HEADER_LEN, LAYOUT_LEN,
-    NARROW_LEN, NODE_LEN, NORMAL_LEN, PLANE_LEN, POLYGON_LEN, RUN_LEN, SMALL_NODE_LEN, SWITCH_LEN,
-    SWITCH_REF_LEN, TABLE_RUN_LEN,
+    VertexFormat, COLOUR_LEN, COMPACT_PLANE_LEN, COMPACT_POLYGON_LEN, CRC_LEN, EDGE_LEN,
+    HEADER_LEN, LAYOUT_LEN, NARROW_LEN, NODE_LEN, NORMAL_LEN, PLANE_LEN, POLYGON_LEN, RUN_LEN,
+    SMALL_NODE_LEN, SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
-use super::{FLAG_COMPACT, FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
+use super::{FLAG_COMPACT, FLAG_COMPACT_PLANES, FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
 
 /// Entry counts of the sections, as stored in the header.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -64,6 +64,9 @@ pub struct Narrow {
     /// A shared plane table ([`FLAG_PLANES`]): `extra_planes` planes of
     /// [`PLANE_LEN`] bytes before the runs, runs of [`TABLE_RUN_LEN`].
     pub table: bool,
+    /// With `table`: compact entries of [`COMPACT_PLANE_LEN`] bytes
+    /// ([`FLAG_COMPACT_PLANES`]).
+    pub compact_planes: bool,
 }
 
 /// Byte offsets of the sections of a file, computed from its counts.
@@ -163,9 +166,10 @@ impl Sections {
             Some(n) => (0, n.extra_planes, SWITCH_REF_LEN),
             None => (0, 0, SWITCH_LEN),
         };
-        let run_len = match records.and_then(|r| r.narrow) {
-            Some(n) if n.table => TABLE_RUN_LEN,
-            _ => RUN_LEN,
+        let (run_len, plane_len) = match records.and_then(|r| r.narrow) {
+            Some(n) if n.table && n.compact_planes => (TABLE_RUN_LEN, COMPACT_PLANE_LEN),
+            Some(n) if n.table => (TABLE_RUN_LEN, PLANE_LEN),
+            _ => (RUN_LEN, PLANE_LEN),
         };
         let plane_records = counts.runs.checked_add(extra)?;
         let p = next(v, counts.vertices, format.vertex_len());
@@ -173,7 +177,7 @@ impl Sections {
         let e = next(i, counts.indices, index_size);
         let nm = next(e, counts.edges, EDGE_LEN);
         let pt = next(nm, counts.normals, NORMAL_LEN);
-        let r = next(pt, table, PLANE_LEN);
+        let r = next(pt, table, plane_len);
         let b = next(r, plane_records, run_len);
         let (bunch_len, node_len) = if counts.small {
             (2, SMALL_NODE_LEN)

@@ -116,6 +116,7 @@ fn narrow_sections_follow_the_colours_and_share_planes() {
             record_len: 5,
             extra_planes: 1,
             table: false,
+            compact_planes: false,
         }),
     };
     let n = Sections::with_records(&c, VertexFormat::Q16, 2, Some(&records)).unwrap();
@@ -137,6 +138,7 @@ fn narrow_sections_follow_the_colours_and_share_planes() {
             record_len: 5,
             extra_planes: 2,
             table: true,
+            compact_planes: false,
         }),
     };
     let t = Sections::with_records(&c, VertexFormat::Q16, 2, Some(&table)).unwrap();
@@ -145,4 +147,73 @@ fn narrow_sections_follow_the_colours_and_share_planes() {
     assert_eq!(t.bunches, t.runs + 2 * TABLE_RUN_LEN);
     assert_eq!(t.crc, t.switches + SWITCH_REF_LEN);
     assert_eq!(n.planes, n.runs);
+}
+
+#[test]
+fn compact_planes_decode_and_validate() {
+    use super::{compact_plane, compact_plane_ok, compact_side, plane_unit, COMPACT_PLANE_LEN};
+    let entry = |v: [i16; 4]| {
+        let mut r = [0u8; COMPACT_PLANE_LEN];
+        for (c, x) in r.chunks_exact_mut(2).zip(v) {
+            c.copy_from_slice(&x.to_le_bytes());
+        }
+        r
+    };
+    let unit = plane_unit([2.0, 1.0, 0.5]);
+    assert_eq!(unit, 2.0 * 1.732_050_8);
+    // m = (0, 0, 32767), e = −3: the plane z = 3 · unit / 32767.
+    let r = entry([0, 0, 32767, -3]);
+    assert!(compact_plane_ok(&r));
+    assert_eq!(compact_side(&r), [0.0, 0.0, 32767.0, -3.0]);
+    let (n, d) = compact_plane(&r, unit);
+    assert_eq!(n, [0.0, 0.0, 1.0]);
+    assert!((d - -3.0 * unit / 32767.0).abs() < 1e-9);
+    // A diagonal normal, rounded: unit length within 3·10⁻⁵.
+    let c = 18918; // 32767 / √3
+    let r = entry([c, -c, c, 0]);
+    assert!(compact_plane_ok(&r));
+    let (n, _) = compact_plane(&r, unit);
+    let len: f32 = n.iter().map(|c| c * c).sum();
+    assert!((len - 1.0).abs() < 6e-5 && n[1] < 0.0);
+    // Ill-formed: zero, too short or too long a normal, a component −32768.
+    assert!(!compact_plane_ok(&entry([0, 0, 0, 0])));
+    assert!(!compact_plane_ok(&entry([16383, 0, 0, 0])));
+    assert!(!compact_plane_ok(&entry([32767, 300, 0, 0])));
+    assert!(!compact_plane_ok(&entry([c - 2, -c, c, 0])));
+    assert!(!compact_plane_ok(&entry([-32768, 0, 0, 0])));
+    assert!(!compact_plane_ok(&entry([32767, 0, 0, i16::MIN])));
+    assert!(compact_plane_ok(&entry([-32767, 5, -7, 32767])));
+    // Zeros (past the end of a table) decode to zeros.
+    assert_eq!(compact_plane(&[0u8; 8], unit), ([0.0; 3], 0.0));
+}
+
+#[test]
+fn compact_plane_table_is_half_as_long() {
+    let c = Counts {
+        vertices: 4,
+        polygons: 3,
+        indices: 9,
+        bunches: 2,
+        nodes: 3,
+        switches: 1,
+        runs: 2,
+        edges: 0,
+        normals: 0,
+        small: false,
+    };
+    let table = |compact_planes| Records {
+        colours: 2,
+        narrow: Some(Narrow {
+            record_len: 5,
+            extra_planes: 3,
+            table: true,
+            compact_planes,
+        }),
+    };
+    let t = Sections::with_records(&c, VertexFormat::Q16, 2, Some(&table(false))).unwrap();
+    let s = Sections::with_records(&c, VertexFormat::Q16, 2, Some(&table(true))).unwrap();
+    assert_eq!(t.runs, t.planes + 3 * PLANE_LEN);
+    // 3 · 8 = 24 bytes, a multiple of 4.
+    assert_eq!(s.runs, s.planes + 3 * super::COMPACT_PLANE_LEN);
+    assert_eq!(t.file_len - s.file_len, 24);
 }

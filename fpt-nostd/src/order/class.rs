@@ -10,7 +10,8 @@ use core::cell::Cell;
 use core::ops::Range;
 
 use super::LocalView;
-use crate::format::{le_f32, le_u32, plane_at, run as rn, table_run as tr, RUN_LEN, TABLE_RUN_LEN};
+use crate::format::{compact_side, le_f32, le_u32, plane_at, run as rn, table_run as tr};
+use crate::format::{RUN_LEN, TABLE_RUN_LEN};
 use crate::raster::shade::HAS_FPU;
 use crate::reader::{table_plane, PolygonRef, Runs, Tree, WalkData};
 
@@ -43,11 +44,14 @@ pub(super) struct Facing<'m> {
 }
 
 impl<'m> Facing<'m> {
-    /// The test of `view`, remembering results in `memo` (empty: none).
-    pub(super) fn of(view: &LocalView, memo: &'m [Cell<u32>]) -> Facing<'m> {
+    /// The test of `view`, remembering results in `memo` (empty: none),
+    /// with `w` times `scale`: 1, or the plane unit of compact planes
+    /// (whose offsets are in its steps, so that a test converts the
+    /// entry and multiplies nothing more).
+    pub(super) fn of(view: &LocalView, memo: &'m [Cell<u32>], scale: f32) -> Facing<'m> {
         let (a, w) = match *view {
             LocalView::Parallel(d) => ([-d[0], -d[1], -d[2]], 0.0),
-            LocalView::Eye(e) => (e, 1.0),
+            LocalView::Eye(e) => (e, scale),
         };
         Facing { a, w, memo }
     }
@@ -55,7 +59,7 @@ impl<'m> Facing<'m> {
     /// [`Facing::backward`] of plane number `i` (runs first, then switch
     /// records), through the memo when it holds the plane.
     #[inline]
-    pub(super) fn backward_at<const L: usize>(&self, i: u32, r: &[u8; L]) -> bool {
+    pub(super) fn backward_at<P: FacingPlane>(&self, i: u32, r: P) -> bool {
         if !MEMO {
             return self.backward(r);
         }
@@ -72,13 +76,40 @@ impl<'m> Facing<'m> {
         b
     }
 
-    /// Whether the plane stored at the start of record `r` (normal, offset)
-    /// is backward.
+    /// Whether the plane `r` is backward.
     #[inline(always)]
-    pub(super) fn backward<const L: usize>(&self, r: &[u8; L]) -> bool {
+    pub(super) fn backward<P: FacingPlane>(&self, r: P) -> bool {
+        let [n0, n1, n2, d] = r.factors();
         let a = self.a;
-        le_f32(r, 0) * a[0] + le_f32(r, 4) * a[1] + le_f32(r, 8) * a[2] + le_f32(r, 12) * self.w
-            > 0.0
+        n0 * a[0] + n1 * a[1] + n2 * a[2] + d * self.w > 0.0
+    }
+}
+
+/// A plane as the facing test reads it: `n` and `d` of `n · a + d · w`.
+pub(super) trait FacingPlane: Copy {
+    /// `[n₀, n₁, n₂, d]`.
+    fn factors(self) -> [f32; 4];
+}
+
+/// A plane stored at the start of a record: `f32` normal and offset.
+impl<const L: usize> FacingPlane for &[u8; L] {
+    #[inline(always)]
+    fn factors(self) -> [f32; 4] {
+        [
+            le_f32(self, 0),
+            le_f32(self, 4),
+            le_f32(self, 8),
+            le_f32(self, 12),
+        ]
+    }
+}
+
+/// A compact table entry, converted ([`compact_side`]): the same sign as
+/// its unit plane's.
+impl FacingPlane for [f32; 4] {
+    #[inline(always)]
+    fn factors(self) -> [f32; 4] {
+        self
     }
 }
 
@@ -112,6 +143,10 @@ impl Seg {
     /// The runs `runs` of a bunch.
     #[inline(always)]
     pub(super) fn new(w: &WalkData<'_>, runs: (u32, u32), pick: Pick) -> Seg {
+        #[cfg(feature = "compact-planes")]
+        if w.runs.is_compact() {
+            return Self::new_as::<CompactRun>(w, runs, pick);
+        }
         if w.runs.is_table() {
             Self::new_as::<TableRun>(w, runs, pick)
         } else {
@@ -148,6 +183,10 @@ impl Seg {
     /// The polygon ids of the next run that passes, and moves past it.
     #[inline(always)]
     fn take(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> Option<(u32, u32)> {
+        #[cfg(feature = "compact-planes")]
+        if runs.is_compact() {
+            return self.take_as::<CompactRun>(runs, face);
+        }
         if runs.is_table() {
             self.take_as::<TableRun>(runs, face)
         } else {
@@ -295,14 +334,17 @@ pub(super) trait RunRecord {
     /// One past the last polygon of run `r < run_count`.
     fn end(runs: &Runs<'_>, r: u32) -> u32;
 
+    /// The plane as the facing test reads it.
+    type Plane<'a>: FacingPlane;
+
     /// The first record of `recs` (that of run `run`): its end, the memo's
-    /// number of its plane, the plane's 16 bytes (in `recs` or in the
-    /// table), and the records after it.
+    /// number of its plane, the plane (in `recs` or in the table of
+    /// `runs`), and the records after it.
     fn split<'a>(
         recs: &'a [u8],
         runs: &Runs<'a>,
         run: u32,
-    ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])>;
+    ) -> Option<(u32, u32, Self::Plane<'a>, &'a [u8])>;
 
     /// [`RunRecord::split`] and the facing test of the plane: the end,
     /// whether the plane is backward for `face`, the records after it.
@@ -319,7 +361,7 @@ pub(super) trait RunRecord {
 
     /// The memo's number and the record of the plane of switch `k`
     /// (`base`: the number of switch record 0 without a table).
-    fn switch_at<'a>(w: &WalkData<'a>, k: u32, base: u32) -> (u32, &'a [u8; 16]);
+    fn switch_at<'a>(w: &WalkData<'a>, k: u32, base: u32) -> (u32, Self::Plane<'a>);
 }
 
 /// Records of [`RUN_LEN`] bytes: the plane, then a `u32` end.
@@ -337,6 +379,8 @@ impl RunRecord for InlineRun {
     fn end(runs: &Runs<'_>, r: u32) -> u32 {
         runs.inline_end(r)
     }
+
+    type Plane<'a> = &'a [u8; 16];
 
     #[inline(always)]
     fn split<'a>(
@@ -374,6 +418,8 @@ impl RunRecord for TableRun {
     fn end(runs: &Runs<'_>, r: u32) -> u32 {
         runs.table_end(r)
     }
+
+    type Plane<'a> = &'a [u8; 16];
 
     #[inline(always)]
     fn split<'a>(
@@ -413,6 +459,45 @@ impl RunRecord for TableRun {
     #[inline(always)]
     fn switch_at<'a>(w: &WalkData<'a>, k: u32, _base: u32) -> (u32, &'a [u8; 16]) {
         w.switch_table(k)
+    }
+}
+
+/// [`TableRun`]'s records over a table of compact entries
+/// ([`crate::format::FLAG_COMPACT_PLANES`]): the entry is converted to the
+/// facing test's factors as it is read.
+#[cfg(feature = "compact-planes")]
+pub(super) struct CompactRun;
+
+#[cfg(feature = "compact-planes")]
+impl RunRecord for CompactRun {
+    #[inline(always)]
+    fn records<'a>(runs: &Runs<'a>, run: u32, run_end: u32) -> &'a [u8] {
+        TableRun::records(runs, run, run_end)
+    }
+
+    #[inline(always)]
+    fn end(runs: &Runs<'_>, r: u32) -> u32 {
+        runs.table_end(r)
+    }
+
+    type Plane<'a> = [f32; 4];
+
+    #[inline(always)]
+    fn split<'a>(
+        recs: &'a [u8],
+        runs: &Runs<'a>,
+        _run: u32,
+    ) -> Option<(u32, u32, [f32; 4], &'a [u8])> {
+        let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
+        let w = u32::from_le_bytes(*r);
+        let (end, i) = (w & 0xFFFF, w >> 16);
+        Some((end, i, compact_side(&runs.compact_entry(i)), rest))
+    }
+
+    #[inline(always)]
+    fn switch_at<'a>(w: &WalkData<'a>, k: u32, _base: u32) -> (u32, [f32; 4]) {
+        let (i, entry) = w.switch_compact(k);
+        (i, compact_side(&entry))
     }
 }
 

@@ -350,13 +350,13 @@ fn the_walks_facing_test_is_the_local_views() {
         }
         let plane = Plane { normal, d };
         assert_eq!(
-            class::Facing::of(&view, &[]).backward(&rec),
+            class::Facing::of(&view, &[], 1.0).backward(&rec),
             view.is_backward(&plane),
             "{view:?} {plane:?}"
         );
         // Through a memo: the same answer the first time and from memory.
         let memo = [core::cell::Cell::new(0u32)];
-        let face = class::Facing::of(&view, &memo);
+        let face = class::Facing::of(&view, &memo, 1.0);
         let k = (i % 16) as u32;
         assert_eq!(face.backward_at(k, &rec), view.is_backward(&plane));
         assert_eq!(memo[0].get() >> (2 * k) & 2, 2, "remembered");

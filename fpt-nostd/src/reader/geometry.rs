@@ -42,8 +42,10 @@ pub(super) struct Geometry<'a> {
     /// records, or the plane table ([`FLAG_PLANES`], where that field is
     /// a plane index).
     pub(super) planes: &'a [u8],
-    /// Bytes of one entry of `planes` (the plane at its start).
+    /// Bytes of one entry of `planes` (the plane at its start), 8 for
+    /// compact entries ([`crate::format::FLAG_COMPACT_PLANES`]).
     pub(super) plane_len: u8,
+
     pub(super) polygon_count: u32,
     pub(super) index_count: u32,
     pub(super) format: VertexFormat,

@@ -6,7 +6,8 @@
 use super::CompactFields;
 use crate::format::{
     rd, rd_u16, rd_u32, FormatError, Narrow, Records, COLOUR_LEN, COMPACT_HIDDEN_SHIFT, CRC_LEN,
-    FLAG_COMPACT, FLAG_NARROW, FLAG_PLANES, HEADER_LEN, LAYOUT_LEN, NARROW_LEN,
+    FLAG_COMPACT, FLAG_COMPACT_PLANES, FLAG_NARROW, FLAG_PLANES, HEADER_LEN, LAYOUT_LEN,
+    NARROW_LEN,
 };
 
 /// The fields of the polygon records and what the records add to the
@@ -67,6 +68,7 @@ pub(super) fn read(
             record_len,
             extra_planes: rd_u32(&ext, 4),
             table: flags & FLAG_PLANES != 0,
+            compact_planes: flags & FLAG_COMPACT_PLANES != 0,
         }),
     };
     let f = CompactFields::new([w[0], w[1], w[2], w[3], hidden]);

@@ -6,6 +6,8 @@
 #[cfg(doc)]
 use super::Tree;
 use super::{Geometry, Plane, RawVertex, VertexFormat, VertexIndices, Vertices};
+#[cfg(feature = "compact-planes")]
+use crate::format::{compact_plane, plane_unit, rec, COMPACT_PLANE_LEN};
 use crate::format::{plane_at, RUN_LEN};
 /// One polygon of a [`Tree`].
 #[derive(Clone, Copy, Debug)]
@@ -218,12 +220,18 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
             self.g.polygon_run(self.id)
         };
         // A constant record length without the `plane-table` feature.
-        let len = if cfg!(feature = "plane-table") {
+        let len = if cfg!(any(feature = "plane-table", feature = "compact-planes")) {
             usize::from(self.g.plane_len)
         } else {
             RUN_LEN
         };
         let at = (r as usize).wrapping_mul(len);
+        #[cfg(feature = "compact-planes")]
+        if len == COMPACT_PLANE_LEN {
+            let entry = rec::<COMPACT_PLANE_LEN>(self.g.planes, r as usize);
+            let (normal, d) = compact_plane(&entry, plane_unit(self.g.half_extent));
+            return Plane { normal, d };
+        }
         Plane::from_record(plane_at(self.g.planes, at))
     }
 

@@ -3,7 +3,7 @@
 //! [`crate::reader`]). Each is linear in its section and allocates nothing.
 
 use super::{finite3_f32, Tree};
-use crate::format::EDGE_SOFT;
+use crate::format::{compact_plane_ok, EDGE_SOFT};
 use crate::format::{rd_f32x3, rd_u64, FormatError, VertexFormat, COMPACT_HIDDEN_SHIFT, NO_SWITCH};
 use crate::raster::proof::VertexBound;
 
@@ -104,12 +104,18 @@ impl Tree<'_> {
     /// field names the run holding it. With a plane table
     /// ([`crate::format::FLAG_PLANES`]): every table entry is finite, every
     /// run's plane index is below the table's length, and each polygon's
-    /// `run` field is its run's plane index.
+    /// `run` field is its run's plane index; compact entries
+    /// ([`crate::format::FLAG_COMPACT_PLANES`]) well formed instead of
+    /// finite.
     pub(super) fn check_runs(&self) -> Result<(), FormatError> {
         let runs = self.w.runs;
         let table_len = self.plane_table_len();
         for i in 0..table_len {
-            if !self.w.table_plane(i).is_finite() {
+            if runs.is_compact() {
+                if !compact_plane_ok(&runs.compact_entry(i)) {
+                    return Err(FormatError::BadPlane(i));
+                }
+            } else if !self.w.table_plane(i).is_finite() {
                 return Err(FormatError::NonFinite("plane table"));
             }
         }
@@ -224,7 +230,8 @@ impl Tree<'_> {
                     return Err(FormatError::BadSwitch(k));
                 }
             }
-            if !self.w.switch_plane(k).is_finite() {
+            // Compact entries were checked with the table.
+            if !self.w.runs.is_compact() && !self.w.switch_plane(k).is_finite() {
                 return Err(FormatError::NonFinite("switch planes"));
             }
         }

@@ -6,12 +6,13 @@
 //! `crate::reader` for the no-panic contract).
 
 use super::Plane;
+use crate::format::COMPACT_PLANE_LEN;
 use crate::format::{
     le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, PLANE_LEN, RUN_LEN,
     SMALL_NODE_LEN, SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
-use crate::format::{FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
+use crate::format::{FLAG_COMPACT_PLANES, FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
 
 /// The run section as the walk reads it: [`RUN_LEN`]-byte records (plane,
 /// `u32` end), or with a plane table ([`FLAG_PLANES`]) [`TABLE_RUN_LEN`]-byte
@@ -28,17 +29,27 @@ pub(crate) struct Runs<'a> {
     /// bytes deeper and its frames with effects 0.6 % dearer).
     #[cfg(feature = "plane-table")]
     planes: &'a [[u8; PLANE_LEN]],
+    /// The compact plane table, empty without one (entries, like
+    /// `planes`).
+    #[cfg(feature = "compact-planes")]
+    compact_planes: &'a [[u8; COMPACT_PLANE_LEN]],
     /// Whether the runs index the plane table.
-    #[cfg(feature = "plane-table")]
+    #[cfg(any(feature = "plane-table", feature = "compact-planes"))]
     table: bool,
+    /// Whether the table's entries are compact ([`FLAG_COMPACT_PLANES`]).
+    #[cfg(all(feature = "plane-table", feature = "compact-planes"))]
+    compact: bool,
 }
 
 impl<'a> Runs<'a> {
     /// The runs `recs`, indexing the plane table `planes` if `table` (a
-    /// table is refused without the `plane-table` feature, before this).
+    /// table is refused without the `plane-table` feature, before this),
+    /// of compact entries if `compact`.
     #[inline]
-    pub(crate) fn new(recs: &'a [u8], planes: &'a [u8], table: bool) -> Runs<'a> {
-        #[cfg(not(feature = "plane-table"))]
+    pub(crate) fn new(recs: &'a [u8], planes: &'a [u8], table: bool, compact: bool) -> Runs<'a> {
+        #[cfg(not(all(feature = "plane-table", feature = "compact-planes")))]
+        let _ = compact;
+        #[cfg(not(any(feature = "plane-table", feature = "compact-planes")))]
         let _ = (planes, table);
         Runs {
             recs,
@@ -46,10 +57,55 @@ impl<'a> Runs<'a> {
             // table's length with one comparison (the section is a whole
             // number of entries, so nothing is dropped).
             #[cfg(feature = "plane-table")]
-            planes: bytemuck::try_cast_slice(planes).unwrap_or(&[]),
-            #[cfg(feature = "plane-table")]
+            planes: if compact {
+                &[]
+            } else {
+                bytemuck::try_cast_slice(planes).unwrap_or(&[])
+            },
+            #[cfg(feature = "compact-planes")]
+            compact_planes: if compact {
+                bytemuck::try_cast_slice(planes).unwrap_or(&[])
+            } else {
+                &[]
+            },
+            #[cfg(any(feature = "plane-table", feature = "compact-planes"))]
             table,
+            #[cfg(all(feature = "plane-table", feature = "compact-planes"))]
+            compact: table && compact,
         }
+    }
+
+    /// Whether the plane table's entries are compact: never without the
+    /// `compact-planes` feature, always with a table with it alone (the
+    /// reader then refuses `f32` tables), so that a firmware built for
+    /// one kind of entry has the walk of that kind only.
+    #[inline(always)]
+    pub(crate) fn is_compact(&self) -> bool {
+        #[cfg(all(feature = "compact-planes", feature = "plane-table"))]
+        return self.compact;
+        #[cfg(all(feature = "compact-planes", not(feature = "plane-table")))]
+        return self.is_table();
+        #[cfg(not(feature = "compact-planes"))]
+        false
+    }
+
+    /// Bytes of one plane table entry.
+    #[inline(always)]
+    pub(crate) fn plane_len(&self) -> usize {
+        if self.is_compact() {
+            COMPACT_PLANE_LEN
+        } else {
+            PLANE_LEN
+        }
+    }
+
+    /// Compact entry `i` of the table (zeros past its end).
+    #[inline(always)]
+    pub(crate) fn compact_entry(&self, i: u32) -> [u8; COMPACT_PLANE_LEN] {
+        self.compact_planes()
+            .get(i as usize)
+            .copied()
+            .unwrap_or([0; COMPACT_PLANE_LEN])
     }
 
     /// Whether the runs index a plane table: never without the
@@ -57,9 +113,9 @@ impl<'a> Runs<'a> {
     /// compiled out.
     #[inline(always)]
     pub(crate) fn is_table(&self) -> bool {
-        #[cfg(feature = "plane-table")]
+        #[cfg(any(feature = "plane-table", feature = "compact-planes"))]
         return self.table;
-        #[cfg(not(feature = "plane-table"))]
+        #[cfg(not(any(feature = "plane-table", feature = "compact-planes")))]
         false
     }
 
@@ -70,6 +126,25 @@ impl<'a> Runs<'a> {
         return self.planes;
         #[cfg(not(feature = "plane-table"))]
         &[]
+    }
+
+    /// The compact plane table's entries (none without one).
+    #[inline(always)]
+    pub(crate) fn compact_planes(&self) -> &'a [[u8; COMPACT_PLANE_LEN]] {
+        #[cfg(feature = "compact-planes")]
+        return self.compact_planes;
+        #[cfg(not(feature = "compact-planes"))]
+        &[]
+    }
+
+    /// The plane table's bytes, of either kind of entry.
+    #[inline(always)]
+    pub(crate) fn plane_bytes(&self) -> &'a [u8] {
+        if self.is_compact() {
+            self.compact_planes().as_flattened()
+        } else {
+            self.planes().as_flattened()
+        }
     }
 
     /// One past the last polygon of run `r < run_count`.
@@ -321,5 +396,13 @@ impl<'a> WalkData<'a> {
     #[inline]
     pub(crate) fn switch_plane(&self, k: u32) -> Plane {
         Plane::from_record(self.switch_record(k))
+    }
+
+    /// With compact planes: the table index of switch `k`'s plane (its
+    /// memo number) and its entry.
+    #[inline(always)]
+    pub(crate) fn switch_compact(&self, k: u32) -> (u32, [u8; COMPACT_PLANE_LEN]) {
+        let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
+        (i, self.runs.compact_entry(i))
     }
 }

@@ -386,6 +386,7 @@ pub fn run(a: &BuildArgs) -> CliResult {
             effects: Some(effects.bits()),
             up,
             crease_deg: a.crease,
+            compact_planes: a.planes == "compact",
             ..SerializeOptions::default()
         },
         &a.records,

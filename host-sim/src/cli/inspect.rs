@@ -183,8 +183,13 @@ pub fn info(a: &InfoArgs) -> CliResult {
     println!("switch nodes:      {}", t.switch_count());
     if t.has_plane_table() {
         println!(
-            "plane table:       {} planes, shared by the runs and the switches",
-            t.plane_table_len()
+            "plane table:       {} planes of {} bytes, shared by the runs and the switches",
+            t.plane_table_len(),
+            if t.has_compact_planes() {
+                fpt_nostd::format::COMPACT_PLANE_LEN
+            } else {
+                fpt_nostd::format::PLANE_LEN
+            }
         );
     } else if t.has_shared_planes() {
         println!(

@@ -165,6 +165,13 @@ pub struct BuildArgs {
     /// `narrow` and `compact` to `wide` when the fields do not fit.
     #[arg(long, default_value_t = build::default_records(), value_parser = ["narrow", "table", "compact", "wide"])]
     pub records: String,
+    /// Plane table entries (with `--records table`): `f32` (normal and
+    /// offset, 16 bytes) or `compact` (an `i16` normal and offset, 8
+    /// bytes: the planes rounded to about radius / 20,000, which can
+    /// change the facing of a polygon seen edge-on only). Other record
+    /// layouts keep their `f32` planes in the runs.
+    #[arg(long, default_value = "f32", value_parser = ["f32", "compact"])]
+    pub planes: String,
 }
 
 /// Arguments of `fpt polygons`.

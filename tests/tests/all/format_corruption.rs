@@ -128,17 +128,18 @@ proptest! {
         closed: bool,
         bsp: bool,
         format in 0usize..3,
-        records in 0usize..4,
+        records in 0usize..5,
         c in corruption(),
     ) {
         let t = random_tree(seed, n, closed, bsp, 1.0, DVec3::new(0.5, -2.0, 1.0));
         // Wide, compact and narrow records (shared switch planes), and the
-        // plane table.
+        // plane table, of f32 or compact entries.
         let opts = SerializeOptions {
             vertex_format: VertexFormat::ALL[format],
             compact: records > 0,
             narrow: records >= 2,
-            plane_table: records == 3,
+            plane_table: records >= 3,
+            compact_planes: records == 4,
             ..SerializeOptions::default()
         };
         let original = serialize(&t, &opts).unwrap();
@@ -434,5 +435,81 @@ fn plane_tables_are_validated() {
                 Some(FormatError::BadRuns)
             );
         }
+    }
+}
+
+#[test]
+fn compact_plane_tables_are_validated() {
+    use fpt_nostd::format::{FormatError, COMPACT_PLANE_LEN, FLAG_COMPACT_PLANES, FLAG_PLANES};
+    let reject = |bytes: &[u8], edit: &dyn Fn(&mut Vec<u8>)| {
+        let mut b = bytes.to_vec();
+        edit(&mut b);
+        fix_length_and_crc(&mut b);
+        Tree::from_bytes(&b).err()
+    };
+    for seed in 0..16 {
+        let t = random_tree(seed, 8, seed % 2 == 0, true, 1.0, DVec3::ZERO);
+        let opts = SerializeOptions {
+            plane_table: true,
+            compact_planes: true,
+            ..SerializeOptions::default()
+        };
+        let bytes = serialize(&t, &opts).unwrap();
+        let tree = Tree::from_bytes(&bytes).unwrap();
+        assert!(tree.has_plane_table() && tree.has_compact_planes());
+        let planes = tree.plane_table_len() as usize;
+        let table = section_start(&tree, "plane table");
+        assert_eq!(
+            section_start(&tree, "runs") - table,
+            (planes * COMPACT_PLANE_LEN).next_multiple_of(4)
+        );
+        // Every entry reads back as a unit plane (within 3·10⁻⁵).
+        for id in 0..tree.polygon_count() {
+            let n = tree.polygon(id).unwrap().plane().normal;
+            let len = n.iter().map(|c| c * c).sum::<f32>().sqrt();
+            assert!((len - 1.0).abs() < 6e-5);
+        }
+        // The compact flag needs the table.
+        let flags = Some(FormatError::BadHeader("flags"));
+        assert_eq!(reject(&bytes, &|b| b[12] &= !(FLAG_PLANES as u8)), flags);
+        // Without the flag, the sizes no longer add up.
+        assert_eq!(
+            reject(&bytes, &|b| b[12] &= !(FLAG_COMPACT_PLANES as u8)),
+            Some(FormatError::SectionSizes)
+        );
+        // A component of −32768, in the normal or the offset.
+        let last = table + (planes - 1) * COMPACT_PLANE_LEN;
+        for at in [0, 2, 4, 6] {
+            assert_eq!(
+                reject(&bytes, &|b| b[last + at..last + at + 2]
+                    .copy_from_slice(&i16::MIN.to_le_bytes())),
+                Some(FormatError::BadPlane(planes as u32 - 1))
+            );
+        }
+        // A normal whose largest component is not ±32767 (zero, halved).
+        assert_eq!(
+            reject(&bytes, &|b| b[table..table + 6].fill(0)),
+            Some(FormatError::BadPlane(0))
+        );
+        assert_eq!(
+            reject(&bytes, &|b| for k in 0..3 {
+                let at = table + 2 * k;
+                let c = i16::from_le_bytes([b[at], b[at + 1]]) / 2;
+                b[at..at + 2].copy_from_slice(&c.to_le_bytes());
+            }),
+            Some(FormatError::BadPlane(0))
+        );
+        // Another well-formed offset is a valid file (another order).
+        let mut b = bytes.clone();
+        b[table + 6..table + 8].copy_from_slice(&32767i16.to_le_bytes());
+        fix_length_and_crc(&mut b);
+        assert!(exercise(&b));
+        // A half extent whose plane unit is not finite.
+        let he = fpt_nostd::format::header::HALF_EXTENT;
+        assert_eq!(
+            reject(&bytes, &|b| b[he..he + 4]
+                .copy_from_slice(&f32::MAX.to_le_bytes())),
+            Some(FormatError::BadHeader("half_extent"))
+        );
     }
 }

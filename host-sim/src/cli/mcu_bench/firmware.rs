@@ -163,7 +163,8 @@ pub(super) const MEASURE_RAM_KIB: u32 = 1024;
 /// features are off: the benchmark binary needs neither `full` nor
 /// `band`, and what they turn on for the frame set's trees would cost the
 /// walk of a tree that does not need it): `plane-table` for a tree with a
-/// shared plane table, `large-trees` for one without small walk records
+/// shared plane table of `f32` entries, `compact-planes` for one of
+/// compact entries, `large-trees` for one without small walk records
 /// (each feature costs every walk).
 fn tree_features(tree: &std::path::Path) -> Vec<&'static str> {
     let bytes = std::fs::read(tree).unwrap_or_default();
@@ -172,14 +173,19 @@ fn tree_features(tree: &std::path::Path) -> Vec<&'static str> {
         return args;
     };
     let features = [
-        (t.has_plane_table(), "plane-table"),
+        (
+            t.has_plane_table() && !t.has_compact_planes(),
+            "plane-table",
+        ),
+        (t.has_compact_planes(), "compact-planes"),
         (!t.has_small_records(), "large-trees"),
     ];
     let wanted: Vec<&str> = features.iter().filter(|f| f.0).map(|f| f.1).collect();
     match wanted.as_slice() {
         [] => {}
         [one] => args.extend(["--features", one]),
-        _ => args.extend(["--features", "plane-table large-trees"]),
+        ["plane-table", _] => args.extend(["--features", "plane-table large-trees"]),
+        _ => args.extend(["--features", "compact-planes large-trees"]),
     }
     args
 }
