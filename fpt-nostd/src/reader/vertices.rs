@@ -88,7 +88,7 @@ impl VertexDecoder<'_> {
     }
 
     /// Vertex `v`, relative to the origin, decoded to `f32` (a q16 tree's
-    /// as stored for a decoder made so: [`VertexDecoder::q16_as_stored`]).
+    /// as stored for a decoder made so: `VertexDecoder::q16_as_stored`).
     #[inline]
     pub fn get(&self, v: usize) -> [f32; 3] {
         match self.f32s.get(v) {
