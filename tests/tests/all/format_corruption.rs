@@ -195,12 +195,6 @@ fn polygon_section(tree: &Tree<'_>) -> usize {
 #[test]
 fn compact_records_are_validated() {
     use fpt_nostd::format::{FormatError, HEADER_LEN};
-    let reject = |bytes: &[u8], edit: &dyn Fn(&mut Vec<u8>)| {
-        let mut b = bytes.to_vec();
-        edit(&mut b);
-        fix_length_and_crc(&mut b);
-        Tree::from_bytes(&b).err()
-    };
     let mut out_of_range = 0;
     for seed in 0..16 {
         let mut t = random_tree(seed, 8, seed % 2 == 0, false, 1.0, DVec3::ZERO);
@@ -265,12 +259,6 @@ fn compact_records_are_validated() {
 #[test]
 fn narrow_records_and_shared_planes_are_validated() {
     use fpt_nostd::format::{FormatError, FLAG_COMPACT, HEADER_LEN};
-    let reject = |bytes: &[u8], edit: &dyn Fn(&mut Vec<u8>)| {
-        let mut b = bytes.to_vec();
-        edit(&mut b);
-        fix_length_and_crc(&mut b);
-        Tree::from_bytes(&b).err()
-    };
     let mut spare_bits = 0;
     for seed in 0..16 {
         // BSP trees: every node a switch, so there are switch records.
@@ -356,15 +344,18 @@ fn narrow_records_and_shared_planes_are_validated() {
     assert!(spare_bits > 0, "no tree left a spare bit in its records");
 }
 
+/// The error `bytes` edited by `edit` (its length and crc fixed up) load
+/// with, if any.
+fn reject(bytes: &[u8], edit: &dyn Fn(&mut Vec<u8>)) -> Option<fpt_nostd::format::FormatError> {
+    let mut b = bytes.to_vec();
+    edit(&mut b);
+    fix_length_and_crc(&mut b);
+    Tree::from_bytes(&b).err()
+}
+
 #[test]
 fn plane_tables_are_validated() {
     use fpt_nostd::format::{FormatError, FLAG_NARROW, PLANE_LEN, TABLE_RUN_LEN};
-    let reject = |bytes: &[u8], edit: &dyn Fn(&mut Vec<u8>)| {
-        let mut b = bytes.to_vec();
-        edit(&mut b);
-        fix_length_and_crc(&mut b);
-        Tree::from_bytes(&b).err()
-    };
     for seed in 0..16 {
         // BSP trees: every node a switch, so there are switch records.
         let t = random_tree(seed, 8, seed % 2 == 0, true, 1.0, DVec3::ZERO);
@@ -441,12 +432,6 @@ fn plane_tables_are_validated() {
 #[test]
 fn compact_plane_tables_are_validated() {
     use fpt_nostd::format::{FormatError, COMPACT_PLANE_LEN, FLAG_COMPACT_PLANES, FLAG_PLANES};
-    let reject = |bytes: &[u8], edit: &dyn Fn(&mut Vec<u8>)| {
-        let mut b = bytes.to_vec();
-        edit(&mut b);
-        fix_length_and_crc(&mut b);
-        Tree::from_bytes(&b).err()
-    };
     for seed in 0..16 {
         let t = random_tree(seed, 8, seed % 2 == 0, true, 1.0, DVec3::ZERO);
         let opts = SerializeOptions {
