@@ -318,6 +318,14 @@ pub fn up_axis_for(name: &str, mesh: &Path) -> Result<UpAxis, CliError> {
 pub fn run(a: &BuildArgs) -> CliResult {
     let method = parse_method(&a.method)?;
     let vertex_format = parse_vertex_format(&a.vertex_format)?;
+    // Checked before the build, which can take minutes: compact entries
+    // exist only in a plane table, and silently writing 16-byte planes
+    // would hide that the option did nothing.
+    if a.planes == "compact" && a.records != "table" {
+        return Err(cli_err!(
+            "--planes compact needs --records table (compact planes are plane table entries)"
+        ));
+    }
     let up = up_axis_for(&a.up, &a.mesh)?;
     let color = match &a.color {
         Some(c) => Some(super::render::parse_rgb("--color", c)?),

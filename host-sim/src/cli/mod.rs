@@ -168,8 +168,9 @@ pub struct BuildArgs {
     /// Plane table entries (with `--records table`): `f32` (normal and
     /// offset, 16 bytes) or `compact` (an `i16` normal and offset, 8
     /// bytes: the planes rounded to about radius / 20,000, which can
-    /// change the facing of a polygon seen edge-on only). Other record
-    /// layouts keep their `f32` planes in the runs.
+    /// change the facing of a polygon seen edge-on only). `compact`
+    /// without `--records table` is an error: other record layouts keep
+    /// their `f32` planes in the runs.
     #[arg(long, default_value = "f32", value_parser = ["f32", "compact"])]
     pub planes: String,
 }

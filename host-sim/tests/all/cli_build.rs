@@ -112,6 +112,11 @@ fn bad_input_is_one_error_line_and_no_file() {
         ("unknown option", good.clone(), vec!["--frobnicate"]),
         ("bad seed", good.clone(), vec!["--seed", "-1"]),
         ("closed and open", good.clone(), vec!["--closed", "--open"]),
+        (
+            "compact planes without a table",
+            good.clone(),
+            vec!["--planes", "compact", "--records", "narrow"],
+        ),
     ];
     for (what, mesh, extra) in cases {
         let out_tree = tmp(&format!("out-{}.fpt", what.replace(' ', "-")));
