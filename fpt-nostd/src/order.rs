@@ -88,6 +88,26 @@
 use core::cell::Cell;
 use core::fmt;
 
+/// Evaluates `$body` with `$R` the [`class::RunRecord`] layout of the
+/// runs `$runs`: the one test of the layout that each entry into the walk
+/// makes, each layout's walk then compiled on its own (without the
+/// `plane-table` and `compact-planes` features the tests are constants and
+/// only the narrow walk is compiled).
+macro_rules! by_layout {
+    ($runs:expr, $R:ident => $body:expr) => {
+        if $runs.is_compact() {
+            type $R = $crate::order::class::CompactRun;
+            $body
+        } else if $runs.is_table() {
+            type $R = $crate::order::class::TableRun;
+            $body
+        } else {
+            type $R = $crate::order::class::InlineRun;
+            $body
+        }
+    };
+}
+
 mod class;
 
 pub(crate) use class::MEMO;
@@ -95,9 +115,7 @@ pub(crate) use class::MEMO;
 use crate::format::NO_SWITCH;
 use crate::reader::{Plane, PolygonRef, Tree, WalkData};
 pub use class::Class;
-#[cfg(feature = "compact-planes")]
-use class::CompactRun;
-use class::{Cursor, Facing, InlineRun, Pick, RunRecord, Seg, TableRun};
+use class::{Cursor, Facing, Pick, RunRecord, Seg};
 
 /// A view, in the model's coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -546,19 +564,9 @@ impl<'a, const N: usize> Order<'a, N> {
     /// class, [`Iterator::next`] returns the rest of that class.
     #[inline(never)]
     pub fn next_range(&mut self) -> Option<core::ops::Range<u32>> {
-        // One test of the run layout a call, each layout's walk compiled
-        // on its own (see `class::RunRecord`): a table tree's walk then
-        // costs a narrow tree's (without the `plane-table` feature the
-        // test is a constant and only the narrow walk is compiled).
-        #[cfg(feature = "compact-planes")]
-        if self.w.runs.is_compact() {
-            return self.next_range_as::<CompactRun>();
-        }
-        if self.w.runs.is_table() {
-            self.next_range_as::<TableRun>()
-        } else {
-            self.next_range_as::<InlineRun>()
-        }
+        // One test of the run layout a call (see `by_layout`): a table
+        // tree's walk then costs a narrow tree's.
+        by_layout!(self.w.runs, R => self.next_range_as::<R>())
     }
 
     /// [`Order::next_range`] over the run records of layout `R`.
@@ -664,17 +672,7 @@ impl<'a, const N: usize> Iterator for Order<'a, N> {
     fn next(&mut self) -> Option<Class<'a>> {
         // What is left of the current class first (nothing, unless
         // `next_range` stopped inside it).
-        let advanced = |o: &mut Self| {
-            #[cfg(feature = "compact-planes")]
-            if o.w.runs.is_compact() {
-                return o.advance::<CompactRun>();
-            }
-            if o.w.runs.is_table() {
-                o.advance::<TableRun>()
-            } else {
-                o.advance::<InlineRun>()
-            }
-        };
+        let advanced = |o: &mut Self| by_layout!(o.w.runs, R => o.advance::<R>());
         if !self.at.pending(&self.w.runs, &self.face) && !advanced(self) {
             return None;
         }

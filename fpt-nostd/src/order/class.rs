@@ -143,15 +143,7 @@ impl Seg {
     /// The runs `runs` of a bunch.
     #[inline(always)]
     pub(super) fn new(w: &WalkData<'_>, runs: (u32, u32), pick: Pick) -> Seg {
-        #[cfg(feature = "compact-planes")]
-        if w.runs.is_compact() {
-            return Self::new_as::<CompactRun>(w, runs, pick);
-        }
-        if w.runs.is_table() {
-            Self::new_as::<TableRun>(w, runs, pick)
-        } else {
-            Self::new_as::<InlineRun>(w, runs, pick)
-        }
+        by_layout!(w.runs, R => Self::new_as::<R>(w, runs, pick))
     }
 
     /// [`Seg::new`] over the run records of layout `R`.
@@ -183,15 +175,7 @@ impl Seg {
     /// The polygon ids of the next run that passes, and moves past it.
     #[inline(always)]
     fn take(&mut self, runs: &Runs<'_>, face: &Facing<'_>) -> Option<(u32, u32)> {
-        #[cfg(feature = "compact-planes")]
-        if runs.is_compact() {
-            return self.take_as::<CompactRun>(runs, face);
-        }
-        if runs.is_table() {
-            self.take_as::<TableRun>(runs, face)
-        } else {
-            self.take_as::<InlineRun>(runs, face)
-        }
+        by_layout!(runs, R => self.take_as::<R>(runs, face))
     }
 
     /// [`Seg::take`] over the run records of layout `R`.
@@ -398,8 +382,19 @@ impl RunRecord for InlineRun {
     }
 }
 
-// `TableRun::split` reads a record as one little-endian word.
+// `table_record` reads a record as one little-endian word.
 const _: () = assert!(tr::END == 0 && tr::PLANE == 2 && TABLE_RUN_LEN == 4);
+
+/// The first [`TABLE_RUN_LEN`]-byte record of `recs`: its end, its plane
+/// table index, and the records after it. One load for both halves
+/// (`tr::END` the low, `tr::PLANE` the high): two halfword loads and a
+/// shift were 4 more instructions a run test.
+#[inline(always)]
+fn table_record(recs: &[u8]) -> Option<(u32, u32, &[u8])> {
+    let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
+    let w = u32::from_le_bytes(*r);
+    Some((w & 0xFFFF, w >> 16, rest))
+}
 
 /// Records of [`TABLE_RUN_LEN`] bytes: a `u16` end and a `u16` index into
 /// the plane table, which is also the memo's number of the plane (a plane
@@ -427,12 +422,7 @@ impl RunRecord for TableRun {
         runs: &Runs<'a>,
         _run: u32,
     ) -> Option<(u32, u32, &'a [u8; 16], &'a [u8])> {
-        let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
-        // One load for both halves (`tr::END` the low, `tr::PLANE` the
-        // high): two halfword loads and a shift were 4 more instructions a
-        // run test.
-        let w = u32::from_le_bytes(*r);
-        let (end, i) = (w & 0xFFFF, w >> 16);
+        let (end, i, rest) = table_record(recs)?;
         Some((end, i, table_plane(runs.planes(), i), rest))
     }
 
@@ -446,9 +436,7 @@ impl RunRecord for TableRun {
         _run: u32,
         face: &Facing<'_>,
     ) -> Option<(u32, bool, &'a [u8])> {
-        let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
-        let w = u32::from_le_bytes(*r);
-        let (end, i) = (w & 0xFFFF, w >> 16);
+        let (end, i, rest) = table_record(recs)?;
         let backward = match runs.planes().get(i as usize) {
             Some(plane) => face.backward_at(i, plane),
             None => false,
@@ -465,10 +453,11 @@ impl RunRecord for TableRun {
 /// [`TableRun`]'s records over a table of compact entries
 /// ([`crate::format::FLAG_COMPACT_PLANES`]): the entry is converted to the
 /// facing test's factors as it is read.
-#[cfg(feature = "compact-planes")]
+/// Without the `compact-planes` feature no tree has such a table
+/// ([`Runs::is_compact`] is then the constant false), and this layout's
+/// walk is never compiled.
 pub(super) struct CompactRun;
 
-#[cfg(feature = "compact-planes")]
 impl RunRecord for CompactRun {
     #[inline(always)]
     fn records<'a>(runs: &Runs<'a>, run: u32, run_end: u32) -> &'a [u8] {
@@ -477,7 +466,7 @@ impl RunRecord for CompactRun {
 
     #[inline(always)]
     fn end(runs: &Runs<'_>, r: u32) -> u32 {
-        runs.table_end(r)
+        TableRun::end(runs, r)
     }
 
     type Plane<'a> = [f32; 4];
@@ -488,9 +477,7 @@ impl RunRecord for CompactRun {
         runs: &Runs<'a>,
         _run: u32,
     ) -> Option<(u32, u32, [f32; 4], &'a [u8])> {
-        let (r, rest) = recs.split_first_chunk::<TABLE_RUN_LEN>()?;
-        let w = u32::from_le_bytes(*r);
-        let (end, i) = (w & 0xFFFF, w >> 16);
+        let (end, i, rest) = table_record(recs)?;
         Some((end, i, compact_side(&runs.compact_entry(i)), rest))
     }
 
