@@ -100,8 +100,9 @@
 //! 23) with small walk records, one of them with the plane table
 //! (`small_table_twocubes_static`), one dynamic with `q16` vertices and the
 //! depth cue, dither and outline effects, one (session 25,
-//! `small_table_compact_twocubes_bsp_q16`, not fuzzed yet) a BSP tree
-//! with `q16` vertices and a table of compact planes; the seed meshes one OBJ,
+//! `small_table_compact_twocubes_bsp_q16`; `tree_walk` then ran 151 s
+//! from the 20 seeds, 1.88 M runs, nothing found) a BSP tree with `q16`
+//! vertices and a table of compact planes; the seed meshes one OBJ,
 //! OFF, ASCII STL and ASCII PLY each. Of the `tree_walk` corpus after the
 //! first run, 99 inputs are valid trees (walked) and the other 107 are
 //! rejected with every one of the 15 kinds of [`FormatError`] between them.
@@ -264,7 +265,6 @@ impl<'a> Tree<'a> {
         }
 
         let flags = rd_u32(bytes, h::FLAGS);
-        // A plane table only with the `plane-table` feature.
         // A plane table only with the feature of its kind of entries.
         let planes = if cfg!(any(feature = "plane-table", feature = "compact-planes")) {
             FLAG_PLANES

@@ -347,7 +347,7 @@ impl<'a> WalkData<'a> {
     pub(crate) fn switch_inline(&self, k: u32, base: u32) -> (u32, &'a [u8; SWITCH_LEN]) {
         let no = base.wrapping_add(k);
         if self.shared {
-            let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
+            let i = self.switch_ref(k);
             (
                 no,
                 plane_at(self.runs.recs, (i as usize).wrapping_mul(RUN_LEN)),
@@ -360,11 +360,18 @@ impl<'a> WalkData<'a> {
         }
     }
 
+    /// The plane record or table entry that shared switch record `k`
+    /// names ([`SWITCH_REF_LEN`] bytes; 0 past the end).
+    #[inline(always)]
+    fn switch_ref(&self, k: u32) -> u32 {
+        le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0)
+    }
+
     /// [`WalkData::switch_at`] with a plane table (whose files always
     /// have shared switch planes, [`FLAG_NARROW`]).
     #[inline(always)]
     pub(crate) fn switch_table(&self, k: u32) -> (u32, &'a [u8; SWITCH_LEN]) {
-        let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
+        let i = self.switch_ref(k);
         (i, table_plane(self.runs.planes(), i))
     }
 
@@ -402,7 +409,7 @@ impl<'a> WalkData<'a> {
     /// memo number) and its entry.
     #[inline(always)]
     pub(crate) fn switch_compact(&self, k: u32) -> (u32, [u8; COMPACT_PLANE_LEN]) {
-        let i = le_u32(&rec::<SWITCH_REF_LEN>(self.switches, k as usize), 0);
+        let i = self.switch_ref(k);
         (i, self.runs.compact_entry(i))
     }
 }
