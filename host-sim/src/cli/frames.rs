@@ -102,14 +102,17 @@ fn scene(name: &str) -> Result<Scene, CliError> {
 /// trees are what `fpt build` writes), the default effects of the scene's
 /// kind. Deterministic.
 pub fn scene_tree(name: &str) -> Result<Vec<u8>, CliError> {
-    scene_tree_with(name, &SerializeOptions::default())
+    let mut trees = scene_tree_with(name, &[SerializeOptions::default()])?;
+    Ok(trees.remove(0))
 }
 
-/// [`scene_tree`] written with `opts`.
-fn scene_tree_with(name: &str, opts: &SerializeOptions) -> Result<Vec<u8>, CliError> {
+/// [`scene_tree`] written with each of `opts`, the tree built once.
+fn scene_tree_with(name: &str, opts: &[SerializeOptions]) -> Result<Vec<Vec<u8>>, CliError> {
     let s = scene(name)?;
     let tree = build(s.polygons, s.closed, METHOD, DEFAULT_SEED, &mut NoProgress);
-    serialize(&tree, opts).map_err(|e| cli_err!("{name}: {e}"))
+    opts.iter()
+        .map(|o| serialize(&tree, o).map_err(|e| cli_err!("{name}: {e}")))
+        .collect()
 }
 
 /// The file name of the accuracy scene's tree in `f`
@@ -122,10 +125,9 @@ pub fn accuracy_tree_file(f: VertexFormat) -> String {
 /// The accuracy scene's trees in every vertex encoding, built now with
 /// the study's pinned options ([`tree_options`]).
 pub fn accuracy_trees() -> Result<Vec<(VertexFormat, Vec<u8>)>, CliError> {
-    VertexFormat::ALL
-        .into_iter()
-        .map(|f| Ok((f, scene_tree_with(ACCURACY_SCENE, &tree_options(f))?)))
-        .collect()
+    let opts = VertexFormat::ALL.map(tree_options);
+    let trees = scene_tree_with(ACCURACY_SCENE, &opts)?;
+    Ok(VertexFormat::ALL.into_iter().zip(trees).collect())
 }
 
 /// Reads the accuracy scene's trees from `dir`.
