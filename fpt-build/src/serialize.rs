@@ -56,7 +56,7 @@ use fpt_nostd::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT};
 use fpt_nostd::format::{EDGE_LEN, FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 use fpt_nostd::format::{FLAG_COMPACT_PLANES, FLAG_PLANES, TABLE_RUN_LEN};
 use fpt_nostd::format::{FLAG_NARROW, NARROW_LEN, SWITCH_REF_LEN};
-use fpt_nostd::format::{FLAG_SMALL, SMALL_MAX_RUNS, SMALL_MAX_SWITCHES};
+use fpt_nostd::format::{FLAG_RUN_OFFSETS, FLAG_SMALL, SMALL_MAX_RUNS, SMALL_MAX_SWITCHES};
 use glam::DVec3;
 
 use crate::edges::{edge_kinds, hidden_edges, FaceKey, DEFAULT_CREASE_DEG};
@@ -565,6 +565,7 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     })?;
     let Plan {
         layout,
+        run_offsets,
         table,
         switch_refs,
         extra_planes,
@@ -595,7 +596,8 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
                 Some(_) => FLAG_PLANES,
                 None => 0,
             }
-            | if counts.small { FLAG_SMALL } else { 0 },
+            | if counts.small { FLAG_SMALL } else { 0 }
+            | if run_offsets { FLAG_RUN_OFFSETS } else { 0 },
     );
     put_u32(&mut out, effects);
     out.extend_from_slice(&[
@@ -652,14 +654,24 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     out.resize(s.vertices, 0);
     out.extend_from_slice(&vertex_bytes);
     out.resize(s.polygons, 0);
-    for (((&id, &first), &run), &mask) in order.iter().zip(&first_index).zip(&run_of).zip(&hidden) {
+    for (i, (((&id, &first), &run), &mask)) in order
+        .iter()
+        .zip(&first_index)
+        .zip(&run_of)
+        .zip(&hidden)
+        .enumerate()
+    {
         let p = &tree.polygons[id as usize];
         let start = out.len();
         match &layout {
             Some(l) => {
                 let colour = l.colour_index[&p.color];
-                // With a plane table, the run field is the run's plane.
-                let run = table.as_ref().map_or(run, |t| t.run_plane[run as usize]);
+                // The run offset; else with a plane table, the run's plane.
+                let run = if run_offsets {
+                    count_u32(i)? - run
+                } else {
+                    table.as_ref().map_or(run, |t| t.run_plane[run as usize])
+                };
                 let r = l.pack([first, run, p.source, colour], mask).to_le_bytes();
                 let len = l
                     .narrow

@@ -27,6 +27,8 @@
 //!   plane unit), every run's and
 //!   switch's plane index below the table's length, and each polygon's
 //!   run field its run's plane index;
+//! - run offsets ([`crate::format::FLAG_RUN_OFFSETS`], only with narrow
+//!   records): each polygon's run field is its id less its run's index;
 //! - small walk records ([`crate::format::FLAG_SMALL`]; only these
 //!   without the `large-trees` feature): at most 65,535 runs and 32,767
 //!   switches, and a switch field of −1 or an index;
@@ -119,7 +121,7 @@ use crate::format::{
 use crate::format::{plane_unit, COMPACT_PLANE_LEN, FLAG_COMPACT_PLANES};
 use crate::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT, FLAG_NARROW, SWITCH_REF_LEN};
 use crate::format::{FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
-use crate::format::{FLAG_PLANES, PLANE_LEN, TABLE_RUN_LEN};
+use crate::format::{FLAG_PLANES, FLAG_RUN_OFFSETS, PLANE_LEN, TABLE_RUN_LEN};
 use crate::format::{FLAG_SMALL, SMALL_MAX_RUNS, SMALL_MAX_SWITCHES, SMALL_NODE_LEN};
 
 /// A plane `normal · (x − origin) + d = 0`, relative to the tree's origin.
@@ -282,7 +284,8 @@ impl<'a> Tree<'a> {
             | FLAG_COMPACT
             | FLAG_NARROW
             | planes
-            | FLAG_SMALL;
+            | FLAG_SMALL
+            | FLAG_RUN_OFFSETS;
         // Without the `large-trees` feature, only small walk records: the
         // walk then reads one layout.
         let large = cfg!(feature = "large-trees");
@@ -291,6 +294,7 @@ impl<'a> Tree<'a> {
             || (flags & FLAG_NARROW != 0 && flags & FLAG_COMPACT == 0)
             || (flags & FLAG_PLANES != 0 && flags & FLAG_NARROW == 0)
             || (flags & FLAG_COMPACT_PLANES != 0 && flags & FLAG_PLANES == 0)
+            || (flags & FLAG_RUN_OFFSETS != 0 && flags & FLAG_NARROW == 0)
             || (f32_table && !cfg!(feature = "plane-table"))
         {
             return Err(FormatError::BadHeader("flags"));
@@ -433,6 +437,8 @@ impl<'a> Tree<'a> {
             indices: s.indices,
             planes: if table { runs.plane_bytes() } else { runs.recs },
             plane_len: if table { plane_len } else { RUN_LEN } as u8,
+            run_offsets: flags & FLAG_RUN_OFFSETS != 0,
+            runs: s.runs,
             polygon_count: counts.polygons,
             index_count: counts.indices,
             format,
@@ -517,6 +523,12 @@ impl<'a> Tree<'a> {
     /// ([`FLAG_NARROW`]).
     pub fn has_shared_planes(&self) -> bool {
         self.w.shared
+    }
+
+    /// Whether the polygon records' run fields are run offsets, `id −
+    /// run` ([`FLAG_RUN_OFFSETS`]: narrower records).
+    pub fn has_run_offsets(&self) -> bool {
+        self.g.run_offsets
     }
 
     /// Whether the bunch offsets and node records are small ones

@@ -32,6 +32,9 @@ pub(super) struct PlanInput<'a> {
 pub(super) struct Plan {
     /// The compact layout (`None`: 16-byte records).
     pub(super) layout: Option<CompactLayout>,
+    /// Whether the records' run fields are run offsets
+    /// ([`fpt_nostd::format::FLAG_RUN_OFFSETS`]).
+    pub(super) run_offsets: bool,
     /// The plane table ([`fpt_nostd::format::FLAG_PLANES`]).
     pub(super) table: Option<PlaneTable>,
     /// The switch records with shared planes: plane record or table
@@ -75,20 +78,30 @@ impl Plan {
     fn with(input: &PlanInput<'_>, table: Option<PlaneTable>) -> Result<Plan, SerializeError> {
         let o = input.opts;
         let planes = table.as_ref().map_or(input.runs.len(), |t| t.len);
-        let layout = o
-            .compact
-            .then(|| {
-                let (tree, order) = (input.tree, input.order);
-                compact_layout(
-                    tree,
-                    order,
-                    input.first_index,
-                    planes,
-                    input.hidden,
-                    o.narrow,
-                )
-            })
-            .flatten();
+        let layout_for = |values: usize| {
+            o.compact
+                .then(|| {
+                    let (tree, order) = (input.tree, input.order);
+                    compact_layout(
+                        tree,
+                        order,
+                        input.first_index,
+                        values,
+                        input.hidden,
+                        o.narrow,
+                    )
+                })
+                .flatten()
+        };
+        // Narrow records hold run offsets (`id − run`, from 0 to the
+        // polygons less the runs: every run has a polygon) when the
+        // layout stays narrow with them; it cannot be narrow without
+        // them then either, their field being the narrower.
+        let offsets = input.order.len().saturating_sub(input.runs.len()) + 1;
+        let (layout, run_offsets) = match layout_for(offsets) {
+            Some(l) if o.narrow && l.narrow.is_some() => (Some(l), true),
+            _ => (layout_for(planes), false),
+        };
         let narrow = layout.as_ref().is_some_and(|l| l.narrow.is_some());
         if table.is_some() && !narrow {
             return Plan::with(input, None);
@@ -119,6 +132,7 @@ impl Plan {
         .ok_or(SerializeError::TooLarge)?;
         Ok(Plan {
             layout,
+            run_offsets,
             table,
             switch_refs,
             extra_planes,
@@ -254,7 +268,8 @@ pub(super) fn bits(max: u32) -> u8 {
 
 /// The narrowest compact layout for the file polygons `order` (with their
 /// index ranges and masks as computed for the file, and a run field that
-/// takes `planes` values: the runs, or the entries of a plane table), or
+/// takes `planes` values: the run offsets, the runs, or the entries of a
+/// plane table), or
 /// `None` when the fields need more than the 56 bits below the mask.
 fn compact_layout(
     tree: &FpTree,

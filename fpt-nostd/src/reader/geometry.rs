@@ -7,8 +7,8 @@
 use super::{PolygonRef, Tree};
 use super::{RawVertex, VertexDecoder, VertexFormat, VertexIndices};
 use crate::format::{
-    polygon as pg, rd, rd_f32x3, rd_i16, rd_i32, rd_u16, rd_u32, rd_u64, rd_u8, COLOUR_LEN,
-    EDGE_LEN, HEADER_LEN, LAYOUT_LEN, Q16_MAX,
+    polygon as pg, rd, rd_f32x3, rd_i16, rd_i32, rd_u16, rd_u32, rd_u64, rd_u8, table_run as tr,
+    COLOUR_LEN, EDGE_LEN, HEADER_LEN, LAYOUT_LEN, Q16_MAX, RUN_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
 use crate::format::{FLAG_COMPACT, FLAG_NARROW, FLAG_PLANES};
@@ -45,6 +45,13 @@ pub(super) struct Geometry<'a> {
     /// Bytes of one entry of `planes` (the plane at its start), 8 for
     /// compact entries ([`crate::format::FLAG_COMPACT_PLANES`]).
     pub(super) plane_len: u8,
+    /// Whether a polygon's run field is `id − run`
+    /// ([`crate::format::FLAG_RUN_OFFSETS`]): its plane is then found
+    /// through its run's record (see [`Geometry::plane_index`]).
+    pub(super) run_offsets: bool,
+    /// Start of the run records in `bytes` (read for a run's plane index
+    /// with run offsets and a plane table).
+    pub(super) runs: usize,
 
     pub(super) polygon_count: u32,
     pub(super) index_count: u32,
@@ -265,6 +272,32 @@ impl<'a> Geometry<'a> {
     #[inline]
     pub(super) fn polygon_run(&self, id: u32) -> u32 {
         self.polygon_field(id, 1, pg::RUN)
+    }
+
+    /// The index of polygon `id`'s plane in `planes` (its entry there is
+    /// `plane_len` bytes from the index times that), from its run field
+    /// `field`: the field itself, or with run offsets its run `id −
+    /// field`, or that run's plane index with a plane table. Any value on
+    /// a corrupt file (a read out of range is 0); validation checks that
+    /// every polygon's gives its run's plane.
+    #[inline(always)]
+    pub(super) fn plane_index(&self, id: u32, field: u32) -> u32 {
+        if !self.run_offsets {
+            return field;
+        }
+        let run = id.wrapping_sub(field);
+        // A constant `RUN_LEN` without the plane-table features: no table.
+        let table = cfg!(any(feature = "plane-table", feature = "compact-planes"))
+            && usize::from(self.plane_len) != RUN_LEN;
+        if table {
+            let at = (run as usize).wrapping_mul(TABLE_RUN_LEN);
+            u32::from(rd_u16(
+                self.bytes,
+                self.runs.wrapping_add(at).wrapping_add(tr::PLANE),
+            ))
+        } else {
+            run
+        }
     }
 
     /// The first_index field of polygon `id`.

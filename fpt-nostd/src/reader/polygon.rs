@@ -215,7 +215,7 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
     #[inline]
     pub(crate) fn plane(&self) -> Plane {
         let r = if self.g.compact {
-            self.g.field_of(self.rec, 1)
+            self.g.plane_index(self.id, self.g.field_of(self.rec, 1))
         } else {
             self.g.polygon_run(self.id)
         };

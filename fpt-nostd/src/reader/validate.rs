@@ -104,7 +104,9 @@ impl Tree<'_> {
     /// field names the run holding it. With a plane table
     /// ([`crate::format::FLAG_PLANES`]): every table entry is finite, every
     /// run's plane index is below the table's length, and each polygon's
-    /// `run` field is its run's plane index; compact entries
+    /// `run` field is its run's plane index (with run offsets,
+    /// [`crate::format::FLAG_RUN_OFFSETS`], it is the polygon's id less
+    /// its run's index, whatever the planes); compact entries
     /// ([`crate::format::FLAG_COMPACT_PLANES`]) well formed instead of
     /// finite.
     pub(super) fn check_runs(&self) -> Result<(), FormatError> {
@@ -139,7 +141,16 @@ impl Tree<'_> {
                 return Err(FormatError::BadRuns);
             }
             for p in start..end {
-                if self.g.polygon_run(p) != named {
+                // With run offsets the field is `p − r` (then always
+                // `named` through `plane_index`, which is what is checked:
+                // the field must give this run exactly).
+                let field = self.g.polygon_run(p);
+                let ok = if self.g.run_offsets {
+                    p.checked_sub(field) == Some(r)
+                } else {
+                    field == named
+                };
+                if !ok {
                     return Err(FormatError::BadRuns);
                 }
             }

@@ -211,13 +211,18 @@ pub fn info(a: &InfoArgs) -> CliResult {
     println!("bytes per polygon: {per_polygon}");
     if t.is_compact() {
         println!(
-            "polygon records:   {}, {} bytes each, {} colours in the table",
+            "polygon records:   {}, {} bytes each{}, {} colours in the table",
             if t.has_shared_planes() {
                 "narrow"
             } else {
                 "compact"
             },
             t.record_len(),
+            if t.has_run_offsets() {
+                " (run offsets)"
+            } else {
+                ""
+            },
             t.colour_count()
         );
     } else {

@@ -344,6 +344,74 @@ fn narrow_records_and_shared_planes_are_validated() {
     assert!(spare_bits > 0, "no tree left a spare bit in its records");
 }
 
+#[test]
+fn run_offsets_are_validated() {
+    use fpt_nostd::format::{FormatError, FLAG_RUN_OFFSETS, HEADER_LEN};
+    let mut nonzero = 0;
+    for seed in 0..16 {
+        let t = random_tree(seed, 8, seed % 2 == 0, seed % 3 == 0, 1.0, DVec3::ZERO);
+        for table in [false, true] {
+            let opts = SerializeOptions {
+                plane_table: table,
+                ..SerializeOptions::default()
+            };
+            let bytes = serialize(&t, &opts).unwrap();
+            let tree = Tree::from_bytes(&bytes).unwrap();
+            assert!(tree.has_run_offsets() && tree.has_shared_planes());
+            let (w0, w1) = (
+                u32::from(bytes[HEADER_LEN]),
+                u32::from(bytes[HEADER_LEN + 1]),
+            );
+            let len = tree.record_len();
+            let polys = polygon_section(&tree);
+            let field = |b: &[u8], p: usize| {
+                let mut r = [0u8; 8];
+                r[..len].copy_from_slice(&b[polys + len * p..polys + len * (p + 1)]);
+                (u64::from_le_bytes(r) >> w0) as u32 & ((1u32 << w1) - 1)
+            };
+            // The last polygon's offset is the polygons less the runs.
+            let last = tree.polygon_count() as usize - 1;
+            let offset = tree.polygon_count() - tree.run_count();
+            assert_eq!(field(&bytes, last), offset);
+            nonzero += usize::from(offset > 0);
+            // Any other offset names another run (or none): rejected.
+            for p in [0, last] {
+                let other = field(&bytes, p) ^ 1;
+                if w1 == 0 || other >= 1 << w1 {
+                    continue;
+                }
+                let edit = |b: &mut Vec<u8>| {
+                    let at = polys + len * p;
+                    let mut r = [0u8; 8];
+                    r[..len].copy_from_slice(&b[at..at + len]);
+                    let v = u64::from_le_bytes(r) ^ 1 << w0;
+                    b[at..at + len].copy_from_slice(&v.to_le_bytes()[..len]);
+                };
+                assert_eq!(
+                    reject(&bytes, &edit),
+                    Some(FormatError::BadRuns),
+                    "{seed} {p}"
+                );
+            }
+        }
+        // The flag needs narrow records.
+        let wide = SerializeOptions {
+            compact: false,
+            narrow: false,
+            plane_table: false,
+            ..SerializeOptions::default()
+        };
+        let bytes = serialize(&t, &wide).unwrap();
+        assert!(!Tree::from_bytes(&bytes).unwrap().has_run_offsets());
+        let bit = (FLAG_RUN_OFFSETS >> 8) as u8;
+        assert_eq!(
+            reject(&bytes, &|b| b[13] |= bit),
+            Some(FormatError::BadHeader("flags"))
+        );
+    }
+    assert!(nonzero > 0, "no tree had a run of several polygons");
+}
+
 /// The error `bytes` edited by `edit` (its length and crc fixed up) load
 /// with, if any.
 fn reject(bytes: &[u8], edit: &dyn Fn(&mut Vec<u8>)) -> Option<fpt_nostd::format::FormatError> {
