@@ -666,11 +666,11 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
         match &layout {
             Some(l) => {
                 let colour = l.colour_index[&p.color];
-                // The run offset; else with a plane table, the run's plane.
+                // With a plane table, the run offset.
                 let run = if run_offsets {
                     count_u32(i)? - run
                 } else {
-                    table.as_ref().map_or(run, |t| t.run_plane[run as usize])
+                    run
                 };
                 let r = l.pack([first, run, p.source, colour], mask).to_le_bytes();
                 let len = l

@@ -31,7 +31,7 @@
 //! | 4 | `u16` | version | [`VERSION`] (3; version 2 had no renderer capacities and a 96-byte header, version 1 required byte 15 of a polygon to be 0) |
 //! | 6 | `u16` | header_len | [`HEADER_LEN`] (112) |
 //! | 8 | `u32` | file_len | total length of the file in bytes, CRC included |
-//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; bit 5 [`FLAG_PLANES`] (only with bit 4): a shared plane table and 4-byte runs; bit 6 [`FLAG_SMALL`]: `u16` bunch offsets and 8-byte node records; bit 7 [`FLAG_COMPACT_PLANES`] (only with bit 5): 8-byte plane table entries; bit 8 [`FLAG_RUN_OFFSETS`] (only with bit 4): a polygon's run field is `id − run`; other bits must be 0 |
+//! | 12 | `u32` | flags | bit 0 [`FLAG_CLOSED`]: closed volume (back faces culled); bit 1 [`FLAG_EDGES`]: the edge section is present; bit 2 [`FLAG_NORMALS`]: the normal section is present; bit 3 [`FLAG_COMPACT`]: compact polygon records, with the layout and colour sections; bit 4 [`FLAG_NARROW`] (only with bit 3): narrow records and shared switch planes; bit 5 [`FLAG_PLANES`] (only with bit 4): a shared plane table and 4-byte runs; bit 6 [`FLAG_SMALL`]: `u16` bunch offsets and 8-byte node records; bit 7 [`FLAG_COMPACT_PLANES`] (only with bit 5): 8-byte plane table entries; bit 8 [`FLAG_RUN_OFFSETS`] (exactly with bit 5): a polygon's run field is `id − run`; other bits must be 0 |
 //! | 16 | `u32` | effects | the scene's declared effects, [`crate::effects::Effects`] bits (unknown bits ignored); not checked by the reader |
 //! | 20 | `u8` | vertex_format | [`VertexFormat`] code: 0 `f32`, 1 `q16`, 2 `q32` |
 //! | 21 | `u8` | shift | `q32` only: fixed-point shift, `0..=126`; 0 for the other formats |
@@ -141,16 +141,15 @@
 //! width, the bits above them zero (else [`FormatError::BadColour`]).
 //! A curved model's triangles need 5 to 7 bytes instead of 8.
 //!
-//! **Run offsets** (flag [`FLAG_RUN_OFFSETS`], only with [`FLAG_NARROW`];
-//! written since session 26): the run field of polygon `id` holds
-//! `id − r`, `r` the run holding it, instead of `r` (or, with a plane
-//! table, `r`'s plane index). The field only repeats what the runs' ends
-//! say, and `id − r` never decreases and stays below the number of
-//! polygons that share a run with an earlier one: 0 to 7 bits on the
-//! shared curved models, where nearly every polygon is a run of its own,
-//! instead of the 10 to 15 bits of a run or plane index; a curved model's
-//! record is 4 to 6 bytes. A reader finds the polygon's plane as its
-//! run's (one more read, of the run record, with a plane table).
+//! **Run offsets** (flag [`FLAG_RUN_OFFSETS`], exactly with
+//! [`FLAG_PLANES`]; session 26): with a plane table the run field of
+//! polygon `id` holds `id − r`, `r` the run holding it. The field only
+//! repeats what the runs' ends say, and `id − r` never decreases and
+//! stays below the number of polygons that share a run with an earlier
+//! one: 0 to 10 bits on the shared models (0 to 7 on the curved ones,
+//! where nearly every polygon is a run of its own), instead of the 10 to
+//! 15 bits of a plane index; a curved model's record is 4 to 6 bytes. A
+//! reader finds the polygon's plane index in its run's record.
 //!
 //! **Shared switch planes**: a switch's plane is nearly always the plane of
 //! some run (a feudal switch is a polygon's plane). The run section holds
@@ -182,13 +181,13 @@
 //!   index of its plane (below `P`); there are no extra plane records;
 //! * a **switch record** (4 bytes) is the index of its plane's entry
 //!   (below `P`);
-//! * a polygon's **run field** holds its run's plane index (the run is
-//!   found from the ids: the walk never needs it), so its width is that
-//!   of the table's indices.
+//! * a polygon's **run field** holds its run offset (see **Run offsets** above; files of
+//!   sessions 21 to 25 held the run's plane index there: they lack
+//!   [`FLAG_RUN_OFFSETS`], and a reader of this version refuses them).
 //!
 //! `Tree::from_bytes` checks every entry finite
 //! ([`FormatError::NonFinite`]`("plane table")`), every run's plane index
-//! below `P` and every polygon's field equal to its run's plane index
+//! below `P` and every polygon's run offset naming its run
 //! ([`FormatError::BadRuns`]), every switch index below `P`
 //! ([`FormatError::BadSwitch`]). A walk with a facing memo (cores without
 //! an FPU) numbers the planes by their table index, so a plane shared by
@@ -365,10 +364,10 @@ pub const SWITCH_REF_LEN: usize = 4;
 /// (`u16` end, `u16` plane index), and a polygon's run field and a
 /// switch record hold plane indices.
 pub const FLAG_PLANES: u32 = 1 << 5;
-/// Header flag (with [`FLAG_NARROW`] only): a polygon record's run field
-/// holds `id − run`, how many polygons before it share a run with an
-/// earlier one (0 for every polygon of a curved model whose polygons are
-/// runs of their own), instead of its run's index or plane index: a
+/// Header flag (set exactly when [`FLAG_PLANES`] is): a polygon record's
+/// run field holds `id − run`, how many polygons before it share a run
+/// with an earlier one (0 for every polygon of a curved model whose
+/// polygons are runs of their own), instead of its run's plane index: a
 /// narrower field. The polygon's plane is its run's.
 pub const FLAG_RUN_OFFSETS: u32 = 1 << 8;
 /// Length of one plane table entry ([`FLAG_PLANES`]): normal, offset.

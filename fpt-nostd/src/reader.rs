@@ -25,10 +25,10 @@
 //!   the `plane-table` feature): every entry finite (compact entries,
 //!   [`crate::format::FLAG_COMPACT_PLANES`]: well formed, with a finite
 //!   plane unit), every run's and
-//!   switch's plane index below the table's length, and each polygon's
-//!   run field its run's plane index;
-//! - run offsets ([`crate::format::FLAG_RUN_OFFSETS`], only with narrow
-//!   records): each polygon's run field is its id less its run's index;
+//!   switch's plane index below the table's length;
+//! - run offsets ([`crate::format::FLAG_RUN_OFFSETS`], exactly with the
+//!   plane table): each polygon's run field is its id less its run's
+//!   index;
 //! - small walk records ([`crate::format::FLAG_SMALL`]; only these
 //!   without the `large-trees` feature): at most 65,535 runs and 32,767
 //!   switches, and a switch field of −1 or an index;
@@ -294,7 +294,7 @@ impl<'a> Tree<'a> {
             || (flags & FLAG_NARROW != 0 && flags & FLAG_COMPACT == 0)
             || (flags & FLAG_PLANES != 0 && flags & FLAG_NARROW == 0)
             || (flags & FLAG_COMPACT_PLANES != 0 && flags & FLAG_PLANES == 0)
-            || (flags & FLAG_RUN_OFFSETS != 0 && flags & FLAG_NARROW == 0)
+            || (flags & FLAG_PLANES != 0) != (flags & FLAG_RUN_OFFSETS != 0)
             || (f32_table && !cfg!(feature = "plane-table"))
         {
             return Err(FormatError::BadHeader("flags"));
@@ -437,7 +437,6 @@ impl<'a> Tree<'a> {
             indices: s.indices,
             planes: if table { runs.plane_bytes() } else { runs.recs },
             plane_len: if table { plane_len } else { RUN_LEN } as u8,
-            run_offsets: flags & FLAG_RUN_OFFSETS != 0,
             runs: s.runs,
             polygon_count: counts.polygons,
             index_count: counts.indices,
@@ -528,7 +527,7 @@ impl<'a> Tree<'a> {
     /// Whether the polygon records' run fields are run offsets, `id −
     /// run` ([`FLAG_RUN_OFFSETS`]: narrower records).
     pub fn has_run_offsets(&self) -> bool {
-        self.g.run_offsets
+        self.flags & FLAG_RUN_OFFSETS != 0
     }
 
     /// Whether the bunch offsets and node records are small ones

@@ -93,15 +93,14 @@ impl Plan {
                 })
                 .flatten()
         };
-        // Narrow records hold run offsets (`id − run`, from 0 to the
-        // polygons less the runs: every run has a polygon) when the
-        // layout stays narrow with them; it cannot be narrow without
-        // them then either, their field being the narrower.
-        let offsets = input.order.len().saturating_sub(input.runs.len()) + 1;
-        let (layout, run_offsets) = match layout_for(offsets) {
-            Some(l) if o.narrow && l.narrow.is_some() => (Some(l), true),
-            _ => (layout_for(planes), false),
-        };
+        // With the table the records hold run offsets (`id − run`, from
+        // 0 to the polygons less the runs: every run has a polygon).
+        let run_offsets = table.is_some();
+        let layout = layout_for(if run_offsets {
+            input.order.len().saturating_sub(input.runs.len()) + 1
+        } else {
+            planes
+        });
         let narrow = layout.as_ref().is_some_and(|l| l.narrow.is_some());
         if table.is_some() && !narrow {
             return Plan::with(input, None);

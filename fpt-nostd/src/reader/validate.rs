@@ -104,9 +104,8 @@ impl Tree<'_> {
     /// field names the run holding it. With a plane table
     /// ([`crate::format::FLAG_PLANES`]): every table entry is finite, every
     /// run's plane index is below the table's length, and each polygon's
-    /// `run` field is its run's plane index (with run offsets,
-    /// [`crate::format::FLAG_RUN_OFFSETS`], it is the polygon's id less
-    /// its run's index, whatever the planes); compact entries
+    /// `run` field is the polygon's id less its run's index (run offsets,
+    /// [`crate::format::FLAG_RUN_OFFSETS`]); compact entries
     /// ([`crate::format::FLAG_COMPACT_PLANES`]) well formed instead of
     /// finite.
     pub(super) fn check_runs(&self) -> Result<(), FormatError> {
@@ -123,34 +122,28 @@ impl Tree<'_> {
         }
         let mut start = 0u32;
         for r in 0..self.counts.runs {
-            // What a polygon of the run names: the run, or its plane.
-            let named = if runs.is_table() {
-                let i = runs.plane_index(r);
-                if i >= table_len {
+            // What a polygon of the run holds: its offset from the run
+            // with a plane table (see `Geometry::plane_index`), else the
+            // run.
+            if runs.is_table() {
+                if runs.plane_index(r) >= table_len {
                     return Err(FormatError::BadRuns);
                 }
-                i
-            } else {
-                if !self.w.run_plane(r).is_finite() {
-                    return Err(FormatError::NonFinite("run planes"));
-                }
-                r
-            };
+            } else if !self.w.run_plane(r).is_finite() {
+                return Err(FormatError::NonFinite("run planes"));
+            }
             let end = self.w.run_end(r);
             if end <= start || end > self.counts.polygons {
                 return Err(FormatError::BadRuns);
             }
             for p in start..end {
-                // With run offsets the field is `p − r` (then always
-                // `named` through `plane_index`, which is what is checked:
-                // the field must give this run exactly).
                 let field = self.g.polygon_run(p);
-                let ok = if self.g.run_offsets {
-                    p.checked_sub(field) == Some(r)
+                let run = if runs.is_table() {
+                    p.checked_sub(field)
                 } else {
-                    field == named
+                    Some(field)
                 };
-                if !ok {
+                if run != Some(r) {
                     return Err(FormatError::BadRuns);
                 }
             }

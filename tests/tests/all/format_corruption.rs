@@ -347,67 +347,70 @@ fn narrow_records_and_shared_planes_are_validated() {
 #[test]
 fn run_offsets_are_validated() {
     use fpt_nostd::format::{FormatError, FLAG_RUN_OFFSETS, HEADER_LEN};
+    let flags = Some(FormatError::BadHeader("flags"));
+    let bit = (FLAG_RUN_OFFSETS >> 8) as u8;
     let mut nonzero = 0;
-    for seed in 0..16 {
-        let t = random_tree(seed, 8, seed % 2 == 0, seed % 3 == 0, 1.0, DVec3::ZERO);
-        for table in [false, true] {
-            let opts = SerializeOptions {
-                plane_table: table,
-                ..SerializeOptions::default()
-            };
-            let bytes = serialize(&t, &opts).unwrap();
-            let tree = Tree::from_bytes(&bytes).unwrap();
-            assert!(tree.has_run_offsets() && tree.has_shared_planes());
-            let (w0, w1) = (
-                u32::from(bytes[HEADER_LEN]),
-                u32::from(bytes[HEADER_LEN + 1]),
-            );
-            let len = tree.record_len();
-            let polys = polygon_section(&tree);
-            let field = |b: &[u8], p: usize| {
-                let mut r = [0u8; 8];
-                r[..len].copy_from_slice(&b[polys + len * p..polys + len * (p + 1)]);
-                (u64::from_le_bytes(r) >> w0) as u32 & ((1u32 << w1) - 1)
-            };
-            // The last polygon's offset is the polygons less the runs.
-            let last = tree.polygon_count() as usize - 1;
-            let offset = tree.polygon_count() - tree.run_count();
-            assert_eq!(field(&bytes, last), offset);
-            nonzero += usize::from(offset > 0);
-            // Any other offset names another run (or none): rejected.
-            for p in [0, last] {
-                let other = field(&bytes, p) ^ 1;
-                if w1 == 0 || other >= 1 << w1 {
-                    continue;
-                }
-                let edit = |b: &mut Vec<u8>| {
-                    let at = polys + len * p;
-                    let mut r = [0u8; 8];
-                    r[..len].copy_from_slice(&b[at..at + len]);
-                    let v = u64::from_le_bytes(r) ^ 1 << w0;
-                    b[at..at + len].copy_from_slice(&v.to_le_bytes()[..len]);
-                };
-                assert_eq!(
-                    reject(&bytes, &edit),
-                    Some(FormatError::BadRuns),
-                    "{seed} {p}"
-                );
-            }
-        }
-        // The flag needs narrow records.
-        let wide = SerializeOptions {
-            compact: false,
-            narrow: false,
-            plane_table: false,
+    // Random trees (no two polygons coplanar: every run one polygon) and
+    // the vise scene (coplanar faces: runs of several polygons).
+    let vise = host_sim::scenes::vise();
+    let vise = host_sim::build::build(
+        vise.polygons,
+        vise.closed,
+        host_sim::tree::Method::Static,
+        host_sim::build::DEFAULT_SEED,
+        &mut host_sim::build::NoProgress,
+    );
+    let random =
+        (0..16).map(|seed| random_tree(seed, 8, seed % 2 == 0, seed % 3 == 0, 1.0, DVec3::ZERO));
+    for (seed, t) in random.chain(std::iter::once(vise)).enumerate() {
+        // Without the table, no run offsets, and the flag is refused.
+        let narrow = serialize(&t, &SerializeOptions::default()).unwrap();
+        let tree = Tree::from_bytes(&narrow).unwrap();
+        assert!(!tree.has_plane_table() && !tree.has_run_offsets());
+        assert_eq!(reject(&narrow, &|b| b[13] |= bit), flags);
+        let opts = SerializeOptions {
+            plane_table: true,
             ..SerializeOptions::default()
         };
-        let bytes = serialize(&t, &wide).unwrap();
-        assert!(!Tree::from_bytes(&bytes).unwrap().has_run_offsets());
-        let bit = (FLAG_RUN_OFFSETS >> 8) as u8;
-        assert_eq!(
-            reject(&bytes, &|b| b[13] |= bit),
-            Some(FormatError::BadHeader("flags"))
+        let bytes = serialize(&t, &opts).unwrap();
+        let tree = Tree::from_bytes(&bytes).unwrap();
+        assert!(tree.has_plane_table() && tree.has_run_offsets());
+        // A table without the flag: a file of sessions 21 to 25.
+        assert_eq!(reject(&bytes, &|b| b[13] &= !bit), flags);
+        let (w0, w1) = (
+            u32::from(bytes[HEADER_LEN]),
+            u32::from(bytes[HEADER_LEN + 1]),
         );
+        let len = tree.record_len();
+        let polys = polygon_section(&tree);
+        let field = |b: &[u8], p: usize| {
+            let mut r = [0u8; 8];
+            r[..len].copy_from_slice(&b[polys + len * p..polys + len * (p + 1)]);
+            (u64::from_le_bytes(r) >> w0) as u32 & ((1u32 << w1) - 1)
+        };
+        // The last polygon's offset is the polygons less the runs.
+        let last = tree.polygon_count() as usize - 1;
+        let offset = tree.polygon_count() - tree.run_count();
+        assert_eq!(field(&bytes, last), offset);
+        if w1 == 0 {
+            continue;
+        }
+        nonzero += 1;
+        // Another offset names another run (or none): rejected.
+        for p in [0, last] {
+            let edit = |b: &mut Vec<u8>| {
+                let at = polys + len * p;
+                let mut r = [0u8; 8];
+                r[..len].copy_from_slice(&b[at..at + len]);
+                let v = u64::from_le_bytes(r) ^ 1 << w0;
+                b[at..at + len].copy_from_slice(&v.to_le_bytes()[..len]);
+            };
+            assert_eq!(
+                reject(&bytes, &edit),
+                Some(FormatError::BadRuns),
+                "{seed} {p}"
+            );
+        }
     }
     assert!(nonzero > 0, "no tree had a run of several polygons");
 }
@@ -474,26 +477,8 @@ fn plane_tables_are_validated() {
                 .copy_from_slice(&f32::INFINITY.to_le_bytes())),
             Some(FormatError::NonFinite("plane table"))
         );
-        // A polygon's run field must be its run's plane: the records of
-        // polygon 0 name plane 0 (the first run's), so naming another
-        // plane (when the width leaves room) is rejected.
-        if planes > 1 {
-            let polys = polygon_section(&tree);
-            let w = &bytes[fpt_nostd::format::HEADER_LEN..];
-            let (first, width) = (u32::from(w[0]), u32::from(w[1]));
-            let mut r = [0u8; 8];
-            let len = tree.record_len();
-            r[..len].copy_from_slice(&bytes[polys..polys + len]);
-            let rec = u64::from_le_bytes(r);
-            let field = (rec >> first) & ((1 << width) - 1);
-            assert_eq!(field, 0, "polygon 0 is in run 0, whose plane is entry 0");
-            let bad = rec | 1 << first;
-            assert_eq!(
-                reject(&bytes, &|b| b[polys..polys + len]
-                    .copy_from_slice(&bad.to_le_bytes()[..len])),
-                Some(FormatError::BadRuns)
-            );
-        }
+        // A polygon's run offset naming another run: see
+        // `run_offsets_are_validated`.
     }
 }
 
