@@ -343,7 +343,7 @@ impl Seg {
                 }
             } else if first != NONE {
                 // Used up with the runs before it: tested, never emitted.
-                self.run = run;
+                self.run = R::run_after(self.run_end, rest, run);
                 self.start = end;
                 return Some((first, start));
             }
@@ -406,6 +406,17 @@ pub(super) trait RunRecord {
     /// The memo's number and the record of the plane of switch `k`
     /// (`base`: the number of switch record 0 without a table).
     fn switch_at<'a>(w: &WalkData<'a>, k: u32, base: u32) -> (u32, Self::Plane<'a>);
+
+    /// The run after a scan's last test, whose records after it are
+    /// `rest` (of the runs up to `run_end`), `counted` by the scan.
+    /// Counted by default; a layout whose test needs no run number
+    /// derives it from `rest` instead, so that its scan keeps no counter
+    /// (a register in a loop that spilled).
+    #[inline(always)]
+    fn run_after(run_end: u32, rest: &[u8], counted: u32) -> u32 {
+        let _ = (run_end, rest);
+        counted
+    }
 }
 
 /// Records of [`RUN_LEN`] bytes: the plane, then a `u32` end.
@@ -508,6 +519,12 @@ impl RunRecord for TableRun {
     fn switch_at<'a>(w: &WalkData<'a>, k: u32, _base: u32) -> (u32, &'a [u8; 16]) {
         w.switch_table(k)
     }
+
+    /// The memo numbers its planes by their index: no counter.
+    #[inline(always)]
+    fn run_after(run_end: u32, rest: &[u8], _counted: u32) -> u32 {
+        run_end.wrapping_sub((rest.len() / TABLE_RUN_LEN) as u32)
+    }
 }
 
 /// [`TableRun`]'s records over a table of compact entries
@@ -545,6 +562,11 @@ impl RunRecord for CompactRun {
     fn switch_at<'a>(w: &WalkData<'a>, k: u32, _base: u32) -> (u32, CompactPlane) {
         let (i, entry) = w.switch_compact(k);
         (i, CompactPlane::of(&entry))
+    }
+
+    #[inline(always)]
+    fn run_after(run_end: u32, rest: &[u8], counted: u32) -> u32 {
+        TableRun::run_after(run_end, rest, counted)
     }
 }
 
