@@ -13,8 +13,10 @@
 //! offset (10 bytes) would remove only the offset's half of that error.
 //!
 //! The facing test is `m · a + e · (u · w) > 0`: the walk scales the view's
-//! `w` by `u` once ([`compact_side`] gives the four converted factors), so
-//! a test costs four conversions more than an `f32` plane's.
+//! `w` by `u` and puts `a` and `u · w` in fixed point once a walk, then
+//! tests each entry's four `i16` as an exact `i64` sum of products, without
+//! converting them (`order::class`, `CompactPlane`; session 26).
+//! [`compact_side`] gives the four factors converted to `f32`.
 //!
 //! Well-formed entries (checked at load, else
 //! [`super::FormatError::BadPlane`]): no component −32768 and `|m|`
