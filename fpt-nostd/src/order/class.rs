@@ -103,22 +103,22 @@ impl<'m> Facing<'m> {
 }
 
 /// `[a₀, a₁, a₂, w]` in fixed point, for the facing test of compact
-/// entries: each times the power of two `2^s` that brings the largest
-/// magnitude into `[2^29, 2^30)`, truncated (`as`: saturating, NaN 0;
-/// never a panic). With the entry's `i16` factors the test is then an
-/// exact `i64` sum of four products (`smull`, `smlal` on a Cortex-M4)
-/// instead of four `i16 → f32` conversions and four float operations:
-/// the view is rounded to 2⁻²⁹ of its largest component, finer than an
-/// `f32` test's own rounding (2⁻²⁴ of each product), so the two agree
-/// but on near-ties (a plane edge-on within that), which either calls
-/// forward or backward.
+/// entries ([`CompactPlane`]): each times the power of two `2^s` that
+/// brings the largest magnitude into `[2^28, 2^29)`, truncated (`as`:
+/// saturating, NaN 0; never a panic). With the entry's `i16` factors the
+/// test is then integer products and sums (`smmul`, `smmla` on a
+/// Cortex-M4) instead of four `i16 → f32` conversions and four float
+/// operations: the view is rounded to 2⁻²⁸ of its largest component and
+/// each product to 2⁻²⁸ of the largest, finer than an `f32` test's own
+/// rounding (2⁻²⁴ of each product), so the two agree but on near-ties (a
+/// plane edge-on within that), which either calls forward or backward.
 #[cfg(feature = "compact-planes")]
 fn fixed_view(v: [f32; 4]) -> [i32; 4] {
     let max = v.iter().fold(0u32, |m, x| m.max(x.to_bits() & 0x7FFF_FFFF));
     // The exponent of the largest magnitude (NaN and infinity 128,
     // zero and subnormals −127), the scale 2^s kept a normal f32.
     let e = ((max >> 23) & 0xFF) as i32 - 127;
-    let s = (29 - e).clamp(-126, 127);
+    let s = (28 - e).clamp(-126, 127);
     let scale = f32::from_bits(((s + 127) as u32) << 23);
     v.map(|x| (x * scale) as i32)
 }
@@ -164,10 +164,22 @@ impl FacingPlane for CompactPlane {
     fn backward(self, face: &Facing<'_>) -> bool {
         let [w0, w1] = self.0;
         let f = face.fixed();
-        // The halves sign-extended (`as i16`), each product exact in i64
-        // (|m| < 2^15, |f| < 2^31): no rounding, no overflow.
-        let p = |m: u32, f: i32| i64::from(m as i16) * i64::from(f);
-        p(w0, f[0]) + p(w0 >> 16, f[1]) + p(w1, f[2]) + p(w1 >> 16, f[3]) > 0
+        // Each `i16` in the high half of a word (`m · 2^16`: the high one
+        // masked, the low one shifted up, no sign extension), times its
+        // factor, the high word of the product (`smmul`, `smmla`: one
+        // accumulator register, not the two of an `i64` sum): `⌊m · f /
+        // 2^16⌋`, below 2^28 in magnitude (|m| ≤ 2^15, |f| < 2^29), the
+        // sum below 2^30. Each floor is at most the exact term, so a sum
+        // of exact value 0 or less stays 0 or less (forward, as a tie
+        // must be); an error under 4 · 2^16 of terms up to 2^44 decides
+        // the sign otherwise.
+        let p = |m: u32, f: i32| ((i64::from(m as i32) * i64::from(f)) >> 32) as i32;
+        let hi = 0xFFFF_0000;
+        p(w0 << 16, f[0])
+            .wrapping_add(p(w0 & hi, f[1]))
+            .wrapping_add(p(w1 << 16, f[2]))
+            .wrapping_add(p(w1 & hi, f[3]))
+            > 0
     }
 }
 
