@@ -108,10 +108,13 @@ impl<'m> Facing<'m> {
 /// saturating, NaN 0; never a panic). With the entry's `i16` factors the
 /// test is then integer products and sums (`smmul`, `smmla` on a
 /// Cortex-M4) instead of four `i16 → f32` conversions and four float
-/// operations: the view is rounded to 2⁻²⁸ of its largest component and
-/// each product to 2⁻²⁸ of the largest, finer than an `f32` test's own
-/// rounding (2⁻²⁴ of each product), so the two agree but on near-ties (a
-/// plane edge-on within that), which either calls forward or backward.
+/// operations. The view is rounded to 2⁻²⁸ of its largest factor `M`
+/// (of |a| and |u · w|) and each product floored to 2¹⁶ units: the test's
+/// value is off by less than `M / 512` (with `m` up to 32767), a plane
+/// moved by less than `M · 2⁻²⁴`, as an `f32` test's rounding moves it
+/// for an eye as far as `u` (and far below the entry's own rounding,
+/// `u / 65534`): the two agree but on near-ties (a plane edge-on within
+/// that), which either calls forward or backward.
 #[cfg(feature = "compact-planes")]
 fn fixed_view(v: [f32; 4]) -> [i32; 4] {
     let max = v.iter().fold(0u32, |m, x| m.max(x.to_bits() & 0x7FFF_FFFF));
@@ -154,7 +157,7 @@ pub(super) struct CompactPlane([u32; 2]);
 impl CompactPlane {
     /// The entry `r`.
     #[inline(always)]
-    fn of(r: &[u8; COMPACT_PLANE_LEN]) -> CompactPlane {
+    pub(super) fn of(r: &[u8; COMPACT_PLANE_LEN]) -> CompactPlane {
         CompactPlane([le_u32(r, 0), le_u32(r, 4)])
     }
 }
