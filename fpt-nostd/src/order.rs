@@ -497,14 +497,21 @@ impl<'a, const N: usize> Order<'a, N> {
         let bj = fj.wrapping_add(1);
         let (near, far) = if down { (bj, fj) } else { (fj, bj) };
         let a = self.w.bunch(near);
+        // Both bunches empty is the common case, made cheap: a closed
+        // volume's class is one bunch, tested alone (the far one neither
+        // read nor tested as empty).
         let b = if self.closed {
+            if a.0 >= a.1 {
+                return false;
+            }
             (0, 0)
         } else {
-            self.w.bunch(far)
+            let b = self.w.bunch(far);
+            if a.0 >= a.1 && b.0 >= b.1 {
+                return false;
+            }
+            b
         };
-        if a.0 >= a.1 && b.0 >= b.1 {
-            return false; // both bunches empty: the common case, made cheap
-        }
         self.begin::<R>(a, Pick::Backward, b)
     }
 
