@@ -462,7 +462,7 @@ impl<'a, const N: usize> Order<'a, N> {
         // Branch-free: the frame is written in any case and kept by moving
         // the length, since whether a child is empty is data the branch
         // predictor cannot guess (about half the children of a BSP tree).
-        let keep = n.level_count != 0 || n.switch != NO_SWITCH;
+        let keep = !n.empty;
         // Validation bounds the depth by N, so there is always room; were
         // there none, the subtree would be skipped rather than panic.
         if let Some(slot) = self.stack.get_mut(self.len) {

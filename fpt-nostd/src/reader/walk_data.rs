@@ -12,8 +12,8 @@ const _: () =
     assert!(nd::SMALL_SWITCH == nd::LEVEL_COUNT + 2 && SMALL_NODE_LEN == nd::LEVEL_COUNT + 4);
 
 use crate::format::{
-    le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, PLANE_LEN, RUN_LEN,
-    SMALL_NODE_LEN, SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
+    le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, NO_SWITCH, PLANE_LEN,
+    RUN_LEN, SMALL_NODE_LEN, SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
 use crate::format::{FLAG_COMPACT_PLANES, FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
@@ -219,6 +219,10 @@ pub(crate) struct NodeRec {
     pub first_bunch: u32,
     pub level_count: u32,
     pub switch: u32,
+    /// No levels and no switch (an empty leaf): one comparison of a small
+    /// node's second word (both fields tested apart were five
+    /// instructions).
+    pub empty: bool,
 }
 
 /// The sections the walk reads for every view, each sliced to exactly its
@@ -275,13 +279,16 @@ impl<'a> WalkData<'a> {
                 // Sign-extended (the high half, shifted down arithmetically):
                 // −1 is NO_SWITCH.
                 switch: ((w as i32) >> 16) as u32,
+                empty: w == 0xFFFF_0000,
             }
         } else {
             let r = rec::<NODE_LEN>(self.nodes, i as usize);
+            let (level_count, switch) = (le_u32(&r, nd::LEVEL_COUNT), le_u32(&r, nd::SWITCH));
             NodeRec {
                 first_bunch: le_u32(&r, nd::FIRST_BUNCH),
-                level_count: le_u32(&r, nd::LEVEL_COUNT),
-                switch: le_u32(&r, nd::SWITCH),
+                level_count,
+                switch,
+                empty: level_count == 0 && switch == NO_SWITCH,
             }
         }
     }
