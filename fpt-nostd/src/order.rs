@@ -500,18 +500,16 @@ impl<'a, const N: usize> Order<'a, N> {
         // Both bunches empty is the common case, made cheap: a closed
         // volume's class is one bunch, tested alone (the far one neither
         // read nor tested as empty).
-        let b = if self.closed {
+        if self.closed {
             if a.0 >= a.1 {
                 return false;
             }
-            (0, 0)
-        } else {
-            let b = self.w.bunch(far);
-            if a.0 >= a.1 && b.0 >= b.1 {
-                return false;
-            }
-            b
-        };
+            return self.begin_one::<R>(a, Pick::Backward);
+        }
+        let b = self.w.bunch(far);
+        if a.0 >= a.1 && b.0 >= b.1 {
+            return false;
+        }
         self.begin::<R>(a, Pick::Backward, b)
     }
 
@@ -525,6 +523,16 @@ impl<'a, const N: usize> Order<'a, N> {
             Seg::new_as::<R>(&self.w, a, pick),
             Seg::new_as::<R>(&self.w, b, Pick::Forward),
         ];
+        self.at.start_walk::<R>(&self.w.runs, &self.face, segs)
+    }
+
+    /// [`Order::begin`] of a class of one bunch (a closed volume's level
+    /// and on-plane bunch, the prelude): compiled apart, the second
+    /// segment a constant, so that neither its start, its scan nor its
+    /// arguments cost the most common class anything.
+    #[inline(never)]
+    fn begin_one<R: RunRecord>(&mut self, a: (u32, u32), pick: Pick) -> bool {
+        let segs = [Seg::new_as::<R>(&self.w, a, pick), Seg::EMPTY];
         self.at.start_walk::<R>(&self.w.runs, &self.face, segs)
     }
 
@@ -558,7 +566,7 @@ impl<'a, const N: usize> Order<'a, N> {
         } else {
             Pick::All
         };
-        self.begin::<R>(runs, pick, (0, 0))
+        self.begin_one::<R>(runs, pick)
     }
 
     /// The next range of polygon ids back to front, whole runs where it
@@ -601,7 +609,7 @@ impl<'a, const N: usize> Order<'a, N> {
         }
         if self.prelude_runs != 0 {
             let runs = (0, core::mem::take(&mut self.prelude_runs));
-            if self.begin::<R>(runs, Pick::Forward, (0, 0)) {
+            if self.begin_one::<R>(runs, Pick::Forward) {
                 return true;
             }
         }
