@@ -14,8 +14,9 @@
 //!
 //! The facing test is `m · a + e · (u · w) > 0`: the walk scales the view's
 //! `w` by `u` and puts `a` and `u · w` in fixed point once a walk, then
-//! tests each entry's four `i16` as an exact `i64` sum of products, without
-//! converting them (`order::class`, `CompactPlane`; session 26).
+//! tests each entry's four `i16` with integer products and sums, without
+//! converting them (`order::class`, `CompactPlane` and `fixed_view`: off
+//! by less than `M / 512`, a near-tie; session 26).
 //! [`compact_side`] gives the four factors converted to `f32`.
 //!
 //! Well-formed entries (checked at load, else
