@@ -462,7 +462,7 @@ impl<'a, const N: usize> Order<'a, N> {
         // Branch-free: the frame is written in any case and kept by moving
         // the length, since whether a child is empty is data the branch
         // predictor cannot guess (about half the children of a BSP tree).
-        let keep = n.level_count != 0 || n.switch != NO_SWITCH;
+        let keep = !n.empty;
         // Validation bounds the depth by N, so there is always room; were
         // there none, the subtree would be skipped rather than panic.
         if let Some(slot) = self.stack.get_mut(self.len) {
@@ -497,13 +497,18 @@ impl<'a, const N: usize> Order<'a, N> {
         let bj = fj.wrapping_add(1);
         let (near, far) = if down { (bj, fj) } else { (fj, bj) };
         let a = self.w.bunch(near);
-        let b = if self.closed {
-            (0, 0)
-        } else {
-            self.w.bunch(far)
-        };
+        // Both bunches empty is the common case, made cheap: a closed
+        // volume's class is one bunch, tested alone (the far one neither
+        // read nor tested as empty).
+        if self.closed {
+            if a.0 >= a.1 {
+                return false;
+            }
+            return self.begin_one::<R>(a, Pick::Backward);
+        }
+        let b = self.w.bunch(far);
         if a.0 >= a.1 && b.0 >= b.1 {
-            return false; // both bunches empty: the common case, made cheap
+            return false;
         }
         self.begin::<R>(a, Pick::Backward, b)
     }
@@ -518,6 +523,16 @@ impl<'a, const N: usize> Order<'a, N> {
             Seg::new_as::<R>(&self.w, a, pick),
             Seg::new_as::<R>(&self.w, b, Pick::Forward),
         ];
+        self.at.start_walk::<R>(&self.w.runs, &self.face, segs)
+    }
+
+    /// [`Order::begin`] of a class of one bunch (a closed volume's level
+    /// and on-plane bunch, the prelude): compiled apart, the second
+    /// segment a constant, so that neither its start, its scan nor its
+    /// arguments cost the most common class anything.
+    #[inline(never)]
+    fn begin_one<R: RunRecord>(&mut self, a: (u32, u32), pick: Pick) -> bool {
+        let segs = [Seg::new_as::<R>(&self.w, a, pick), Seg::EMPTY];
         self.at.start_walk::<R>(&self.w.runs, &self.face, segs)
     }
 
@@ -551,7 +566,7 @@ impl<'a, const N: usize> Order<'a, N> {
         } else {
             Pick::All
         };
-        self.begin::<R>(runs, pick, (0, 0))
+        self.begin_one::<R>(runs, pick)
     }
 
     /// The next range of polygon ids back to front, whole runs where it
@@ -594,7 +609,7 @@ impl<'a, const N: usize> Order<'a, N> {
         }
         if self.prelude_runs != 0 {
             let runs = (0, core::mem::take(&mut self.prelude_runs));
-            if self.begin::<R>(runs, Pick::Forward, (0, 0)) {
+            if self.begin_one::<R>(runs, Pick::Forward) {
                 return true;
             }
         }

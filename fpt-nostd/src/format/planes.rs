@@ -13,8 +13,11 @@
 //! offset (10 bytes) would remove only the offset's half of that error.
 //!
 //! The facing test is `m · a + e · (u · w) > 0`: the walk scales the view's
-//! `w` by `u` once ([`compact_side`] gives the four converted factors), so
-//! a test costs four conversions more than an `f32` plane's.
+//! `w` by `u` and puts `a` and `u · w` in fixed point once a walk, then
+//! tests each entry's four `i16` with integer products and sums, without
+//! converting them (`order::class`, `CompactPlane` and `fixed_view`: off
+//! by less than `M / 512`, a near-tie; session 26).
+//! [`compact_side`] gives the four factors converted to `f32`.
 //!
 //! Well-formed entries (checked at load, else
 //! [`super::FormatError::BadPlane`]): no component −32768 and `|m|`

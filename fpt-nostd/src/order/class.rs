@@ -10,8 +10,8 @@ use core::cell::Cell;
 use core::ops::Range;
 
 use super::LocalView;
-use crate::format::{compact_side, le_f32, le_u32, plane_at, run as rn, table_run as tr};
-use crate::format::{RUN_LEN, TABLE_RUN_LEN};
+use crate::format::{le_f32, le_u32, plane_at, run as rn, table_run as tr};
+use crate::format::{COMPACT_PLANE_LEN, RUN_LEN, TABLE_RUN_LEN};
 use crate::raster::shade::HAS_FPU;
 use crate::reader::{table_plane, PolygonRef, Runs, Tree, WalkData};
 
@@ -40,6 +40,9 @@ pub(crate) const MEMO: bool = !HAS_FPU || cfg!(test);
 pub(super) struct Facing<'m> {
     a: [f32; 3],
     w: f32,
+    /// `a` and `w` in fixed point for compact entries ([`fixed_view`]).
+    #[cfg(feature = "compact-planes")]
+    fixed: [i32; 4],
     memo: &'m [Cell<u32>],
 }
 
@@ -53,7 +56,23 @@ impl<'m> Facing<'m> {
             LocalView::Parallel(d) => ([-d[0], -d[1], -d[2]], 0.0),
             LocalView::Eye(e) => (e, scale),
         };
-        Facing { a, w, memo }
+        Facing {
+            a,
+            w,
+            #[cfg(feature = "compact-planes")]
+            fixed: fixed_view([a[0], a[1], a[2], w]),
+            memo,
+        }
+    }
+
+    /// [`Facing::fixed`] (zeros without the `compact-planes` feature,
+    /// where no tree has compact entries).
+    #[inline(always)]
+    fn fixed(&self) -> [i32; 4] {
+        #[cfg(feature = "compact-planes")]
+        return self.fixed;
+        #[cfg(not(feature = "compact-planes"))]
+        [0; 4]
     }
 
     /// [`Facing::backward`] of plane number `i` (runs first, then switch
@@ -79,37 +98,91 @@ impl<'m> Facing<'m> {
     /// Whether the plane `r` is backward.
     #[inline(always)]
     pub(super) fn backward<P: FacingPlane>(&self, r: P) -> bool {
-        let [n0, n1, n2, d] = r.factors();
-        let a = self.a;
-        n0 * a[0] + n1 * a[1] + n2 * a[2] + d * self.w > 0.0
+        r.backward(self)
     }
 }
 
-/// A plane as the facing test reads it: `n` and `d` of `n · a + d · w`.
-pub(super) trait FacingPlane: Copy {
-    /// `[n₀, n₁, n₂, d]`.
-    fn factors(self) -> [f32; 4];
+/// `[a₀, a₁, a₂, w]` in fixed point, for the facing test of compact
+/// entries ([`CompactPlane`]): each times the power of two `2^s` that
+/// brings the largest magnitude into `[2^28, 2^29)`, truncated (`as`:
+/// saturating, NaN 0; never a panic). With the entry's `i16` factors the
+/// test is then integer products and sums (`smmul`, `smmla` on a
+/// Cortex-M4) instead of four `i16 → f32` conversions and four float
+/// operations. The view is rounded to 2⁻²⁸ of its largest factor `M`
+/// (of |a| and |u · w|) and each product floored to 2¹⁶ units: the test's
+/// value is off by less than `M / 512` (with `m` up to 32767), a plane
+/// moved by less than `M · 2⁻²⁴`, as an `f32` test's rounding moves it
+/// for an eye as far as `u` (and far below the entry's own rounding,
+/// `u / 65534`): the two agree but on near-ties (a plane edge-on within
+/// that), which either calls forward or backward.
+#[cfg(feature = "compact-planes")]
+fn fixed_view(v: [f32; 4]) -> [i32; 4] {
+    let max = v.iter().fold(0u32, |m, x| m.max(x.to_bits() & 0x7FFF_FFFF));
+    // The exponent of the largest magnitude (NaN and infinity 128,
+    // zero and subnormals −127), the scale 2^s kept a normal f32.
+    let e = ((max >> 23) & 0xFF) as i32 - 127;
+    let s = (28 - e).clamp(-126, 127);
+    let scale = f32::from_bits(((s + 127) as u32) << 23);
+    v.map(|x| (x * scale) as i32)
 }
 
-/// A plane stored at the start of a record: `f32` normal and offset.
+/// A plane as the facing test reads it.
+pub(super) trait FacingPlane: Copy {
+    /// Whether it is backward for `face`.
+    fn backward(self, face: &Facing<'_>) -> bool;
+}
+
+/// A plane stored at the start of a record: `f32` normal `n` and offset
+/// `d`, backward when `n · a + d · w > 0`.
 impl<const L: usize> FacingPlane for &[u8; L] {
     #[inline(always)]
-    fn factors(self) -> [f32; 4] {
-        [
+    fn backward(self, face: &Facing<'_>) -> bool {
+        let [n0, n1, n2, d] = [
             le_f32(self, 0),
             le_f32(self, 4),
             le_f32(self, 8),
             le_f32(self, 12),
-        ]
+        ];
+        let a = face.a;
+        n0 * a[0] + n1 * a[1] + n2 * a[2] + d * face.w > 0.0
     }
 }
 
-/// A compact table entry, converted ([`compact_side`]): the same sign as
-/// its unit plane's.
-impl FacingPlane for [f32; 4] {
+/// A compact table entry as its two little-endian words (`m₀, m₁` and
+/// `m₂, e` as `i16`): backward when `m · a + e · (u · w) > 0`, the same
+/// sign as its unit plane's, tested in fixed point ([`fixed_view`]).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct CompactPlane([u32; 2]);
+
+impl CompactPlane {
+    /// The entry `r`.
     #[inline(always)]
-    fn factors(self) -> [f32; 4] {
-        self
+    pub(super) fn of(r: &[u8; COMPACT_PLANE_LEN]) -> CompactPlane {
+        CompactPlane([le_u32(r, 0), le_u32(r, 4)])
+    }
+}
+
+impl FacingPlane for CompactPlane {
+    #[inline(always)]
+    fn backward(self, face: &Facing<'_>) -> bool {
+        let [w0, w1] = self.0;
+        let f = face.fixed();
+        // Each `i16` in the high half of a word (`m · 2^16`: the high one
+        // masked, the low one shifted up, no sign extension), times its
+        // factor, the high word of the product (`smmul`, `smmla`: one
+        // accumulator register, not the two of an `i64` sum): `⌊m · f /
+        // 2^16⌋`, below 2^28 in magnitude (|m| ≤ 2^15, |f| < 2^29), the
+        // sum below 2^30. Each floor is at most the exact term, so a sum
+        // of exact value 0 or less stays 0 or less (forward, as a tie
+        // must be); an error under 4 · 2^16 of terms up to 2^44 decides
+        // the sign otherwise.
+        let p = |m: u32, f: i32| ((i64::from(m as i32) * i64::from(f)) >> 32) as i32;
+        let hi = 0xFFFF_0000;
+        p(w0 << 16, f[0])
+            .wrapping_add(p(w0 & hi, f[1]))
+            .wrapping_add(p(w1 << 16, f[2]))
+            .wrapping_add(p(w1 & hi, f[3]))
+            > 0
     }
 }
 
@@ -267,31 +340,33 @@ impl Seg {
         let mut recs = R::records(runs, self.run, self.run_end);
         let mut start = self.start;
         let mut run = self.run;
-        // The first passing run's start, once one passed.
-        let mut first: Option<u32> = None;
+        // The first passing run's start, once one passed, else `NONE`:
+        // one register (an `Option` was two, and with a table's base and
+        // length one more than the loop had, spilled to the stack). No run
+        // starts at `NONE` (a start is at most the polygon count).
+        const NONE: u32 = u32::MAX;
+        let mut first = NONE;
         // Record by record off the front (a length test each), rather than
         // `chunks_exact`, whose set-up divides the length: a class has one
         // or two runs, mostly.
         while let Some((end, backward, rest)) = R::test(recs, runs, run, face) {
             recs = rest;
-            let passes = backward == want;
             run = run.wrapping_add(1);
-            match (passes, first) {
-                (true, None) => first = Some(start),
-                (false, Some(from)) => {
-                    // Used up with the runs before it: tested, never
-                    // emitted.
-                    self.run = run;
-                    self.start = end;
-                    return Some((from, start));
+            if backward == want {
+                if first == NONE {
+                    first = start;
                 }
-                _ => {}
+            } else if first != NONE {
+                // Used up with the runs before it: tested, never emitted.
+                self.run = R::run_after(self.run_end, rest, run);
+                self.start = end;
+                return Some((first, start));
             }
             start = end;
         }
         self.run = self.run_end;
         self.start = start;
-        first.map(|from| (from, start))
+        (first != NONE).then_some((first, start))
     }
 
     /// Polygons left (an upper bound on what passes).
@@ -346,6 +421,17 @@ pub(super) trait RunRecord {
     /// The memo's number and the record of the plane of switch `k`
     /// (`base`: the number of switch record 0 without a table).
     fn switch_at<'a>(w: &WalkData<'a>, k: u32, base: u32) -> (u32, Self::Plane<'a>);
+
+    /// The run after a scan's last test, whose records after it are
+    /// `rest` (of the runs up to `run_end`), `counted` by the scan.
+    /// Counted by default; a layout whose test needs no run number
+    /// derives it from `rest` instead, so that its scan keeps no counter
+    /// (a register in a loop that spilled).
+    #[inline(always)]
+    fn run_after(run_end: u32, rest: &[u8], counted: u32) -> u32 {
+        let _ = (run_end, rest);
+        counted
+    }
 }
 
 /// Records of [`RUN_LEN`] bytes: the plane, then a `u32` end.
@@ -448,6 +534,12 @@ impl RunRecord for TableRun {
     fn switch_at<'a>(w: &WalkData<'a>, k: u32, _base: u32) -> (u32, &'a [u8; 16]) {
         w.switch_table(k)
     }
+
+    /// The memo numbers its planes by their index: no counter.
+    #[inline(always)]
+    fn run_after(run_end: u32, rest: &[u8], _counted: u32) -> u32 {
+        run_end.wrapping_sub((rest.len() / TABLE_RUN_LEN) as u32)
+    }
 }
 
 /// [`TableRun`]'s records over a table of compact entries
@@ -469,22 +561,27 @@ impl RunRecord for CompactRun {
         TableRun::end(runs, r)
     }
 
-    type Plane<'a> = [f32; 4];
+    type Plane<'a> = CompactPlane;
 
     #[inline(always)]
     fn split<'a>(
         recs: &'a [u8],
         runs: &Runs<'a>,
         _run: u32,
-    ) -> Option<(u32, u32, [f32; 4], &'a [u8])> {
+    ) -> Option<(u32, u32, CompactPlane, &'a [u8])> {
         let (end, i, rest) = table_record(recs)?;
-        Some((end, i, compact_side(&runs.compact_entry(i)), rest))
+        Some((end, i, CompactPlane::of(&runs.compact_entry(i)), rest))
     }
 
     #[inline(always)]
-    fn switch_at<'a>(w: &WalkData<'a>, k: u32, _base: u32) -> (u32, [f32; 4]) {
+    fn switch_at<'a>(w: &WalkData<'a>, k: u32, _base: u32) -> (u32, CompactPlane) {
         let (i, entry) = w.switch_compact(k);
-        (i, compact_side(&entry))
+        (i, CompactPlane::of(&entry))
+    }
+
+    #[inline(always)]
+    fn run_after(run_end: u32, rest: &[u8], counted: u32) -> u32 {
+        TableRun::run_after(run_end, rest, counted)
     }
 }
 

@@ -395,3 +395,62 @@ fn a_memo_changes_no_order() {
         }
     }
 }
+
+#[cfg(feature = "compact-planes")]
+#[test]
+fn a_compact_entrys_fixed_point_test_is_its_f32_test_but_on_near_ties() {
+    // The walk tests a compact entry in fixed point (class::CompactPlane);
+    // the exact sign of `m · a + e · w` (f64) must agree with it whenever
+    // the value is farther from 0 than the fixed point's error (below
+    // `M / 512`, `M` the largest of |a| and |w|, class::fixed_view), and an
+    // exact tie (0) must be forward.
+    use crate::format::compact_side;
+    let mut state = 0x0dd_ba11_cafe_f00du64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let scales = [1e-3f32, 1.0, 37.5, 1e4, 3e7];
+    for i in 0..50_000 {
+        let mut entry = [0u8; 8];
+        for k in 0..4 {
+            // Every i16 but −32768, and often a small one or zero.
+            let r = next();
+            let v = match r % 4 {
+                0 => 0,
+                1 => (r >> 8) as i16 % 8,
+                _ => ((r >> 8) as i16).max(-32767),
+            };
+            entry[2 * k..2 * k + 2].copy_from_slice(&v.to_le_bytes());
+        }
+        let s = scales[(next() % 5) as usize];
+        let mut coord = || ((next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0) as f32 * s;
+        let v = [coord(), coord(), coord()];
+        let view = if i % 2 == 0 {
+            LocalView::Parallel(v)
+        } else {
+            LocalView::Eye(v)
+        };
+        let unit = [0.5f32, 1.0, 173.2][(next() % 3) as usize];
+        let face = class::Facing::of(&view, &[], unit);
+        let got = face.backward(class::CompactPlane::of(&entry));
+        let m = compact_side(&entry).map(f64::from);
+        let (a, w) = match view {
+            LocalView::Parallel(d) => (d.map(|x| -f64::from(x)), 0.0),
+            LocalView::Eye(e) => (e.map(f64::from), f64::from(unit)),
+        };
+        let terms = [m[0] * a[0], m[1] * a[1], m[2] * a[2], m[3] * w];
+        let sum: f64 = terms.iter().sum();
+        let big = a
+            .iter()
+            .chain([w].iter())
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        if sum == 0.0 {
+            assert!(!got, "a tie is forward: {entry:?} {view:?}");
+        } else if sum.abs() > big / 256.0 {
+            assert_eq!(got, sum > 0.0, "{entry:?} {view:?} {unit}");
+        }
+    }
+}

@@ -7,9 +7,13 @@
 
 use super::Plane;
 use crate::format::COMPACT_PLANE_LEN;
+// `WalkData::node` reads a small node's level count and switch as one word.
+const _: () =
+    assert!(nd::SMALL_SWITCH == nd::LEVEL_COUNT + 2 && SMALL_NODE_LEN == nd::LEVEL_COUNT + 4);
+
 use crate::format::{
-    le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, PLANE_LEN, RUN_LEN,
-    SMALL_NODE_LEN, SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
+    le_u32, node as nd, plane_at, rec, run as rn, table_run as tr, NODE_LEN, NO_SWITCH, PLANE_LEN,
+    RUN_LEN, SMALL_NODE_LEN, SWITCH_LEN, SWITCH_REF_LEN, TABLE_RUN_LEN,
 };
 #[cfg(doc)]
 use crate::format::{FLAG_COMPACT_PLANES, FLAG_NARROW, FLAG_PLANES, FLAG_SMALL};
@@ -215,6 +219,10 @@ pub(crate) struct NodeRec {
     pub first_bunch: u32,
     pub level_count: u32,
     pub switch: u32,
+    /// No levels and no switch (an empty leaf): one comparison of a small
+    /// node's second word (both fields tested apart were five
+    /// instructions).
+    pub empty: bool,
 }
 
 /// The sections the walk reads for every view, each sliced to exactly its
@@ -262,20 +270,25 @@ impl<'a> WalkData<'a> {
     pub(crate) fn node(&self, i: u32) -> NodeRec {
         if self.small() {
             let r = rec::<SMALL_NODE_LEN>(self.nodes, i as usize);
-            let levels = u16::from_le_bytes([r[nd::LEVEL_COUNT], r[nd::LEVEL_COUNT + 1]]);
-            let switch = i16::from_le_bytes([r[nd::SMALL_SWITCH], r[nd::SMALL_SWITCH + 1]]);
+            // Both `u16` fields of the second word from one read of it
+            // (two-byte reads of the copy were put together byte by byte).
+            let w = le_u32(&r, nd::LEVEL_COUNT);
             NodeRec {
                 first_bunch: le_u32(&r, nd::FIRST_BUNCH),
-                level_count: u32::from(levels),
-                // Sign-extended: −1 is NO_SWITCH, as one load makes it.
-                switch: i32::from(switch) as u32,
+                level_count: w & 0xFFFF,
+                // Sign-extended (the high half, shifted down arithmetically):
+                // −1 is NO_SWITCH.
+                switch: ((w as i32) >> 16) as u32,
+                empty: w == 0xFFFF_0000,
             }
         } else {
             let r = rec::<NODE_LEN>(self.nodes, i as usize);
+            let (level_count, switch) = (le_u32(&r, nd::LEVEL_COUNT), le_u32(&r, nd::SWITCH));
             NodeRec {
                 first_bunch: le_u32(&r, nd::FIRST_BUNCH),
-                level_count: le_u32(&r, nd::LEVEL_COUNT),
-                switch: le_u32(&r, nd::SWITCH),
+                level_count,
+                switch,
+                empty: level_count == 0 && switch == NO_SWITCH,
             }
         }
     }
