@@ -205,12 +205,13 @@
 //! ([`FormatError::BadHeader`]`("half_extent")`). Read only with
 //! fpt-nostd's `compact-planes` feature (alone, it refuses `f32` tables,
 //! and the walk has no `f32` table path). The walk tests
-//! `m · a + e · (u · w) > 0` on the converted integers (`u · w` once a
-//! walk); the builder's order was computed on the exact
+//! `m · a + e · (u · w) > 0` on the integers, the view in fixed point
+//! once a walk (see `format/planes.rs`); the builder's order was computed
+//! on the exact
 //! planes, which the rounded ones can contradict only for an eye within
 //! about `radius / 20,000` of the plane, where the polygon is edge-on (the
 //! error analysis is in `format/planes.rs`, the measured pictures in
-//! `docs/tree-format.md`, "Session 25").
+//! `docs/tree-format-sessions.md`, "Session 25").
 //!
 //! ## Vertex index list (`index_count` entries of `index_size` bytes)
 //!
