@@ -7,7 +7,9 @@
 //! least the bounding radius, so every plane through the model fits):
 //! the plane is `m · x + e · u = 0` (`x` relative to the origin, as every
 //! stored plane). Its normal is within `√3 / 65534` of the exact one and
-//! of length 1 within 3·10⁻⁵ (lighting reads it as it is, times 1/32767),
+//! of length 1 within 3·10⁻⁵ (lighting reads it as it is: halved and
+//! rounded, the Q14 of the normal times 1/32767, see
+//! [`crate::raster::Normal`]),
 //! its offset within `u / 65534` (`radius · √3 / 65534` at most): the
 //! plane moves by about `radius / 20,000` at the bounding sphere. An `i32`
 //! offset (10 bytes) would remove only the offset's half of that error.
@@ -39,9 +41,10 @@ pub fn plane_unit(half_extent: [f32; 3]) -> f32 {
     SQRT_3 * half_extent[0].max(half_extent[1]).max(half_extent[2])
 }
 
-/// The four `i16` of an entry.
+/// The four `i16` of the entry at the start of `r`: `[m₀, m₁, m₂, e]`
+/// (lighting reads the normal as these integers).
 #[inline(always)]
-fn fields<const L: usize>(r: &[u8; L]) -> [i16; 4] {
+pub fn compact_fields<const L: usize>(r: &[u8; L]) -> [i16; 4] {
     let w0 = le_u32(r, 0);
     let w1 = le_u32(r, 4);
     [w0 as i16, (w0 >> 16) as i16, w1 as i16, (w1 >> 16) as i16]
@@ -51,7 +54,7 @@ fn fields<const L: usize>(r: &[u8; L]) -> [i16; 4] {
 /// the facing test's factors, with `w` scaled by the plane unit.
 #[inline(always)]
 pub fn compact_side<const L: usize>(r: &[u8; L]) -> [f32; 4] {
-    fields(r).map(f32::from)
+    compact_fields(r).map(f32::from)
 }
 
 /// The normal (unit within 3·10⁻⁵) and offset of the entry at the start
@@ -68,7 +71,7 @@ pub fn compact_plane<const L: usize>(r: &[u8; L], unit: f32) -> ([f32; 3], f32) 
 /// Whether the entry at the start of `r` is well formed (see the module
 /// docs).
 pub fn compact_plane_ok<const L: usize>(r: &[u8; L]) -> bool {
-    let f = fields(r);
+    let f = compact_fields(r);
     let len2: i64 = f[..3].iter().map(|&c| i64::from(c) * i64::from(c)).sum();
     f.iter().all(|&c| c != i16::MIN) && (32766 * 32766..=32768 * 32768).contains(&len2)
 }
