@@ -11,7 +11,7 @@ use core::ops::Range;
 
 use super::LocalView;
 use crate::format::{compact_side, le_f32, le_u32, plane_at, run as rn, table_run as tr};
-use crate::format::{RUN_LEN, TABLE_RUN_LEN};
+use crate::format::{COMPACT_PLANE_LEN, RUN_LEN, TABLE_RUN_LEN};
 use crate::raster::shade::HAS_FPU;
 use crate::reader::{table_plane, PolygonRef, Runs, Tree, WalkData};
 
@@ -104,12 +104,17 @@ impl<const L: usize> FacingPlane for &[u8; L] {
     }
 }
 
-/// A compact table entry, converted ([`compact_side`]): the same sign as
-/// its unit plane's.
-impl FacingPlane for [f32; 4] {
+/// A compact table entry as stored, converted ([`compact_side`]) only
+/// when a test needs its factors: the same sign as its unit plane's. (A
+/// plane whose facing the memo holds converts nothing: four software
+/// conversions a run fewer on a core without an FPU.)
+#[derive(Clone, Copy, Debug)]
+pub(super) struct CompactEntry([u8; COMPACT_PLANE_LEN]);
+
+impl FacingPlane for CompactEntry {
     #[inline(always)]
     fn factors(self) -> [f32; 4] {
-        self
+        compact_side(&self.0)
     }
 }
 
@@ -469,22 +474,22 @@ impl RunRecord for CompactRun {
         TableRun::end(runs, r)
     }
 
-    type Plane<'a> = [f32; 4];
+    type Plane<'a> = CompactEntry;
 
     #[inline(always)]
     fn split<'a>(
         recs: &'a [u8],
         runs: &Runs<'a>,
         _run: u32,
-    ) -> Option<(u32, u32, [f32; 4], &'a [u8])> {
+    ) -> Option<(u32, u32, CompactEntry, &'a [u8])> {
         let (end, i, rest) = table_record(recs)?;
-        Some((end, i, compact_side(&runs.compact_entry(i)), rest))
+        Some((end, i, CompactEntry(runs.compact_entry(i)), rest))
     }
 
     #[inline(always)]
-    fn switch_at<'a>(w: &WalkData<'a>, k: u32, _base: u32) -> (u32, [f32; 4]) {
+    fn switch_at<'a>(w: &WalkData<'a>, k: u32, _base: u32) -> (u32, CompactEntry) {
         let (i, entry) = w.switch_compact(k);
-        (i, compact_side(&entry))
+        (i, CompactEntry(entry))
     }
 }
 
