@@ -205,47 +205,89 @@ fn unit_from_f32_slow(v: [f32; 3]) -> Option<[Fx14; 3]> {
     unit_from_ints(v.map(|c| (c * scale) as i64))
 }
 
-/// The normal a face is lit by, as the tree stores it: lighting rounds
-/// either form to a Q14 unit vector in integers on every target, so the
-/// two give the same picture for the same plane (see [`Normal::Compact`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Normal {
-    /// An `f32` vector of any length (a 16-byte plane's unit normal).
-    F32([f32; 3]),
-    /// An integer vector of any length; a compact plane table entry's
-    /// unit normal times 32767 ([`crate::format::FLAG_COMPACT_PLANES`])
-    /// takes a short path: each component `c` halved and rounded, halves
-    /// away from zero, which is `c · 2^14 / 32767` rounded (the Q14 of the
-    /// entry's `f32` normal `c · (1 / 32767)`, with no float operation:
-    /// four software-float routines a face on a core without an FPU).
-    Compact([i16; 3]),
+/// The normal a face is lit by, as the tree stores it: an `f32` vector
+/// ([`Normal::from_f32`], a 16-byte plane's) or an integer one
+/// ([`Normal::from_compact`], a compact plane entry's). Lighting rounds
+/// either to a Q14 unit vector in integers, on every target alike.
+///
+/// Held as the components' bit patterns and a mark of the form, not as an
+/// enum: the renderer's intensity memo keys on exactly these four words,
+/// so a face's shading takes no branch on the form until a memo miss (an
+/// enum's match cost an `f32` tree's Cortex-M4F frame about 1 %).
+/// Equality is of the bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Normal {
+    /// `f32` patterns, or `i16` sign-extended.
+    bits: [u32; 3],
+    /// 0 for `f32`, [`COMPACT_KEY`] for integers: what the memo adds to
+    /// an entry's intensity word.
+    mark: u32,
 }
 
 impl Normal {
-    /// The normal pointing the other way (exact in both forms; a
-    /// well-formed compact entry has no component −32768).
+    /// An `f32` vector of any length (a 16-byte plane's unit normal).
     #[inline(always)]
-    pub fn flipped(self) -> Normal {
-        match self {
-            Normal::F32(n) => Normal::F32(n.map(|c| -c)),
-            Normal::Compact(m) => Normal::Compact(m.map(i16::wrapping_neg)),
+    pub fn from_f32(n: [f32; 3]) -> Normal {
+        Normal {
+            bits: n.map(f32::to_bits),
+            mark: 0,
         }
     }
 
-    /// As `f32`: a compact one as the reader decodes its plane
-    /// ([`crate::format::compact_plane`], each component times
+    /// An integer vector of any length. A compact plane table entry's unit
+    /// normal times 32767 ([`crate::format::FLAG_COMPACT_PLANES`]) takes
+    /// a short path: each component `c` halved and rounded, halves away
+    /// from zero, which is `c · 2^14 / 32767` rounded exactly, with no
+    /// float operation (the entry decoded to `f32` and rounded cost four
+    /// software-float routines a face on a core without an FPU).
+    #[inline(always)]
+    pub fn from_compact(m: [i16; 3]) -> Normal {
+        Normal {
+            bits: m.map(|c| i32::from(c) as u32),
+            mark: COMPACT_KEY,
+        }
+    }
+
+    /// The `f32` vector, if it is one.
+    #[inline(always)]
+    pub fn as_f32(self) -> Option<[f32; 3]> {
+        (self.mark == 0).then(|| self.bits.map(f32::from_bits))
+    }
+
+    /// The integer vector, if it is one.
+    #[inline(always)]
+    pub fn as_compact(self) -> Option<[i16; 3]> {
+        (self.mark != 0).then(|| self.bits.map(|b| b as i16))
+    }
+
+    /// The normal pointing the other way: exact in both forms (the sign
+    /// bit of an `f32`; an `i16` other than −32768, which no well-formed
+    /// compact entry has, negated; −32768 stays).
+    #[inline(always)]
+    pub fn flipped(self) -> Normal {
+        match self.as_compact() {
+            None => Normal {
+                bits: self.bits.map(|b| b ^ 0x8000_0000),
+                mark: 0,
+            },
+            Some(m) => Normal::from_compact(m.map(i16::wrapping_neg)),
+        }
+    }
+
+    /// As `f32`: an integer one as the reader decodes a compact plane
+    /// ([`crate::format::compact_plane`]: each component times
     /// `1 / 32767`).
     pub fn to_f32(self) -> [f32; 3] {
-        match self {
-            Normal::F32(n) => n,
-            Normal::Compact(m) => m.map(|c| f32::from(c) * (1.0 / 32767.0)),
+        match self.as_compact() {
+            None => self.bits.map(f32::from_bits),
+            Some(m) => m.map(|c| f32::from(c) * (1.0 / 32767.0)),
         }
     }
 }
 
 impl From<[f32; 3]> for Normal {
     fn from(n: [f32; 3]) -> Normal {
-        Normal::F32(n)
+        Normal::from_f32(n)
     }
 }
 
@@ -279,9 +321,9 @@ fn unit_from_compact(m: [i16; 3]) -> Option<[Fx14; 3]> {
 /// `n` as a Q14 unit vector; `None` for zero or non-finite.
 #[inline(always)]
 fn unit_of(n: Normal) -> Option<[Fx14; 3]> {
-    match n {
-        Normal::F32(v) => unit_from_f32(v),
-        Normal::Compact(m) => unit_from_compact(m),
+    match n.as_compact() {
+        None => unit_from_f32(n.bits.map(f32::from_bits)),
+        Some(m) => unit_from_compact(m),
     }
 }
 
@@ -361,10 +403,10 @@ impl Light {
     /// let m = [10_000i16, -20_000, 24_000]; // length 32,802: not a unit
     /// let unit = [10_922i16, -21_845, 21_845]; // length 32,767.3
     /// assert_eq!(
-    ///     l.intensity_of(Normal::Compact(unit)),
+    ///     l.intensity_of(Normal::from_compact(unit)),
     ///     l.intensity(unit.map(|c| f32::from(c) * (1.0 / 32767.0)))
     /// );
-    /// assert_eq!(l.intensity_of(Normal::Compact(m)), l.intensity_q(m.map(i32::from)));
+    /// assert_eq!(l.intensity_of(Normal::from_compact(m)), l.intensity_q(m.map(i32::from)));
     /// ```
     pub fn intensity_of(&self, normal: Normal) -> Fx14 {
         self.intensity_unit(unit_of(normal))
@@ -438,7 +480,7 @@ const MEMO: usize = if HAS_FPU { 8 } else { 0 };
 /// An empty memo entry's intensity: no intensity is above `2^14`.
 const NO_INTENSITY: u32 = u32::MAX;
 
-/// What marks an entry's intensity word as a [`Normal::Compact`] key:
+/// What marks an entry's intensity word as a [`Normal::from_compact`] key:
 /// above any intensity (at most `2^14`) and below [`NO_INTENSITY`], so
 /// that an `f32` key and an integer key with the same bits (a subnormal
 /// `f32` is a small integer's bit pattern) are different entries.
@@ -507,10 +549,7 @@ impl IntensityMemo {
     /// intensity word carries (0 or [`COMPACT_KEY`]).
     #[inline(always)]
     fn key(normal: Normal) -> ([u32; 3], u32) {
-        match normal {
-            Normal::F32(n) => (n.map(f32::to_bits), 0),
-            Normal::Compact(m) => (m.map(|c| i32::from(c) as u32), COMPACT_KEY),
-        }
+        (normal.bits, normal.mark)
     }
 
     /// The entry of `normal`'s bit patterns `b` (`None`: no memo).
@@ -749,15 +788,27 @@ mod tests {
             let qlen2: u32 = q.iter().map(|c| c.unsigned_abs().pow(2)).sum();
             assert!(qlen2.abs_diff(1 << 28) <= 1 << 16, "{m:?}");
             assert_eq!(unit_from_compact(m), Some(q.map(Fx14::from_raw)));
-            let f = Normal::Compact(m).to_f32();
-            let (lit, decoded) = (light.intensity_of(Normal::Compact(m)), light.intensity(f));
+            let f = Normal::from_compact(m).to_f32();
+            let (lit, decoded) = (
+                light.intensity_of(Normal::from_compact(m)),
+                light.intensity(f),
+            );
             assert!((lit.raw() - decoded.raw()).abs() <= 1, "{m:?}");
-            let back = Normal::Compact(m).flipped();
+            let back = Normal::from_compact(m).flipped();
             assert_eq!(back.to_f32(), f.map(|c| -c));
-            let Normal::Compact(b) = back else {
+            let Some(b) = back.as_compact() else {
                 panic!("{back:?}")
             };
             assert_eq!(unit_from_compact(b), Some(q.map(|c| Fx14::from_raw(-c))));
+        }
+        // An `f32` normal flips by its sign bits, as `-c` does.
+        for v in [[0.0f32, -0.0, 1.0], [0.6, -0.8, 1e-30]] {
+            let back = Normal::from_f32(v).flipped();
+            assert_eq!(
+                back.as_f32().map(|b| b.map(f32::to_bits)),
+                Some(v.map(|c| (-c).to_bits()))
+            );
+            assert_eq!(back.as_compact(), None);
         }
         // The extreme lengths of a well-formed entry, on an axis and off.
         for m in [
@@ -779,7 +830,7 @@ mod tests {
             [100, -200, 50],
         ] {
             assert_eq!(
-                light.intensity_of(Normal::Compact(m)),
+                light.intensity_of(Normal::from_compact(m)),
                 light.intensity_q(m.map(i32::from)),
                 "{m:?}"
             );
@@ -796,12 +847,12 @@ mod tests {
         let memo = IntensityMemo::EMPTY;
         let c = [200, 100, 50];
         let normals = [
-            Normal::Compact([0, 0, 32767]),
-            Normal::F32([0.0, 0.0, f32::from_bits(32767)]),
-            Normal::F32([0.0, 0.0, 1.0]),
-            Normal::Compact([0, 0, -32767]),
-            Normal::Compact([0, 19660, 26214]),
-            Normal::F32([0.0, f32::from_bits(19660), f32::from_bits(26214)]),
+            Normal::from_compact([0, 0, 32767]),
+            Normal::from_f32([0.0, 0.0, f32::from_bits(32767)]),
+            Normal::from_f32([0.0, 0.0, 1.0]),
+            Normal::from_compact([0, 0, -32767]),
+            Normal::from_compact([0, 19660, 26214]),
+            Normal::from_f32([0.0, f32::from_bits(19660), f32::from_bits(26214)]),
         ];
         for _ in 0..3 {
             for n in normals {

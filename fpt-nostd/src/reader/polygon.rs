@@ -252,9 +252,9 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         if self.g.plane_len == COMPACT_PLANE_LEN as u8 {
             let entry = rec::<COMPACT_PLANE_LEN>(self.g.planes, self.plane_index() as usize);
             let [m0, m1, m2, _] = compact_fields(&entry);
-            return Normal::Compact([m0, m1, m2]);
+            return Normal::from_compact([m0, m1, m2]);
         }
-        Normal::F32(self.plane().normal)
+        Normal::from_f32(self.plane().normal)
     }
 
     /// [`PolygonRef::vertex_indices`].

@@ -124,7 +124,7 @@ pub(crate) fn face_of(
             normal
         }
     } else {
-        Normal::F32([0.0; 3])
+        Normal::from_f32([0.0; 3])
     };
     Face {
         normal,
