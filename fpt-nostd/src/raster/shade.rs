@@ -212,15 +212,19 @@ fn unit_from_f32_slow(v: [f32; 3]) -> Option<[Fx14; 3]> {
 ///
 /// Held as the components' bit patterns and a mark of the form, not as an
 /// enum: the renderer's intensity memo keys on exactly these four words,
-/// so a face's shading takes no branch on the form until a memo miss (an
-/// enum's match cost an `f32` tree's Cortex-M4F frame about 1 %).
-/// Equality is of the bits.
+/// so a face's shading takes no branch on the form until a memo miss.
+/// Without the `compact-planes` feature there is no integer form and no
+/// mark: a [`Normal`] is the `f32` bits alone and lighting is the code it
+/// was before integer normals (with them compiled in, an `f32` tree's
+/// Cortex-M4F frame was about 1 % dearer: the mark kept, tested on a miss
+/// and subtracted on a hit). Equality is of the bits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Normal {
     /// `f32` patterns, or `i16` sign-extended.
     bits: [u32; 3],
     /// 0 for `f32`, [`COMPACT_KEY`] for integers: what the memo adds to
     /// an entry's intensity word.
+    #[cfg(feature = "compact-planes")]
     mark: u32,
 }
 
@@ -230,6 +234,7 @@ impl Normal {
     pub fn from_f32(n: [f32; 3]) -> Normal {
         Normal {
             bits: n.map(f32::to_bits),
+            #[cfg(feature = "compact-planes")]
             mark: 0,
         }
     }
@@ -240,6 +245,9 @@ impl Normal {
     /// from zero, which is `c · 2^14 / 32767` rounded exactly, with no
     /// float operation (the entry decoded to `f32` and rounded cost four
     /// software-float routines a face on a core without an FPU).
+    /// (Only with the `compact-planes` feature, whose trees have such
+    /// normals.)
+    #[cfg(feature = "compact-planes")]
     #[inline(always)]
     pub fn from_compact(m: [i16; 3]) -> Normal {
         Normal {
@@ -248,16 +256,27 @@ impl Normal {
         }
     }
 
+    /// The memo's mark of its form: 0 for `f32` (always, without the
+    /// `compact-planes` feature), [`COMPACT_KEY`] for integers.
+    #[inline(always)]
+    fn mark(self) -> u32 {
+        #[cfg(feature = "compact-planes")]
+        return self.mark;
+        #[cfg(not(feature = "compact-planes"))]
+        0
+    }
+
     /// The `f32` vector, if it is one.
     #[inline(always)]
     pub fn as_f32(self) -> Option<[f32; 3]> {
-        (self.mark == 0).then(|| self.bits.map(f32::from_bits))
+        (self.mark() == 0).then(|| self.bits.map(f32::from_bits))
     }
 
-    /// The integer vector, if it is one.
+    /// The integer vector, if it is one (never without the
+    /// `compact-planes` feature).
     #[inline(always)]
     pub fn as_compact(self) -> Option<[i16; 3]> {
-        (self.mark != 0).then(|| self.bits.map(|b| b as i16))
+        (self.mark() != 0).then(|| self.bits.map(|b| b as i16))
     }
 
     /// The normal pointing the other way: exact in both forms (the sign
@@ -265,13 +284,12 @@ impl Normal {
     /// compact entry has, negated; −32768 stays).
     #[inline(always)]
     pub fn flipped(self) -> Normal {
-        match self.as_compact() {
-            None => Normal {
-                bits: self.bits.map(|b| b ^ 0x8000_0000),
-                mark: 0,
-            },
-            Some(m) => Normal::from_compact(m.map(i16::wrapping_neg)),
-        }
+        let mut n = self;
+        n.bits = match self.as_compact() {
+            None => self.bits.map(|b| b ^ 0x8000_0000),
+            Some(m) => m.map(|c| i32::from(c.wrapping_neg()) as u32),
+        };
+        n
     }
 
     /// As `f32`: an integer one as the reader decodes a compact plane
@@ -398,6 +416,7 @@ impl Light {
     /// [`Light::intensity`] of a [`Normal`] in either form.
     ///
     /// ```
+    /// # #[cfg(feature = "compact-planes")] {
     /// use fpt_nostd::raster::{Light, Normal};
     /// let l = Light::new([1.0, 2.0, 2.0], 0.25, 0.75);
     /// let m = [10_000i16, -20_000, 24_000]; // length 32,802: not a unit
@@ -407,6 +426,7 @@ impl Light {
     ///     l.intensity(unit.map(|c| f32::from(c) * (1.0 / 32767.0)))
     /// );
     /// assert_eq!(l.intensity_of(Normal::from_compact(m)), l.intensity_q(m.map(i32::from)));
+    /// # }
     /// ```
     pub fn intensity_of(&self, normal: Normal) -> Fx14 {
         self.intensity_unit(unit_of(normal))
@@ -549,7 +569,7 @@ impl IntensityMemo {
     /// intensity word carries (0 or [`COMPACT_KEY`]).
     #[inline(always)]
     fn key(normal: Normal) -> ([u32; 3], u32) {
-        (normal.bits, normal.mark)
+        (normal.bits, normal.mark())
     }
 
     /// The entry of `normal`'s bit patterns `b` (`None`: no memo).
@@ -767,6 +787,7 @@ mod tests {
     /// short path: the components rounded one by one, and lit within a
     /// rounding unit of the `f32` normals they decode to; other lengths
     /// are normalised as integers. Flipping is exact.
+    #[cfg(feature = "compact-planes")]
     #[test]
     fn compact_normals_take_the_short_path() {
         let mut rng = crate::raster::tests::Rng(41);
@@ -841,6 +862,7 @@ mod tests {
     /// The memo gives what lighting gives, whichever form a normal comes
     /// in, with `f32` and compact normals of the same bits in turn (a
     /// subnormal `f32` is a small integer's pattern).
+    #[cfg(feature = "compact-planes")]
     #[test]
     fn memo_keys_both_forms_apart() {
         let light = Light::new([0.0, 0.6, 0.8], 0.25, 0.75);
