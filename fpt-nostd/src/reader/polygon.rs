@@ -246,7 +246,7 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
     /// stored (no conversion to `f32`: on a core without an FPU its four
     /// software conversions and products were a tenth of a frame, for a
     /// Q14 rounding that is exact in integers), else the plane's normal.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn normal(&self) -> Normal {
         #[cfg(feature = "compact-planes")]
         if self.g.plane_len == COMPACT_PLANE_LEN as u8 {
