@@ -803,7 +803,7 @@ mod tests {
         while seen < 200_000 {
             let v = [0; 3].map(|_| rng.float(-1.0, 1.0));
             let len = v.iter().map(|c| c * c).sum::<f32>().sqrt();
-            if !(len > 1e-3) {
+            if len <= 1e-3 {
                 continue;
             }
             let m = v.map(|c| libm::roundf(c / len * 32767.0) as i16);
