@@ -326,7 +326,9 @@ mod error;
 mod planes;
 mod sections;
 pub use error::FormatError;
-pub use planes::{compact_plane, compact_plane_ok, compact_side, plane_unit, COMPACT_PLANE_LEN};
+pub use planes::{
+    compact_fields, compact_plane, compact_plane_ok, compact_side, plane_unit, COMPACT_PLANE_LEN,
+};
 pub use sections::{Counts, Narrow, Records, Sections};
 
 /// The first four bytes of every tree file.

@@ -7,7 +7,9 @@
 //! least the bounding radius, so every plane through the model fits):
 //! the plane is `m · x + e · u = 0` (`x` relative to the origin, as every
 //! stored plane). Its normal is within `√3 / 65534` of the exact one and
-//! of length 1 within 3·10⁻⁵ (lighting reads it as it is, times 1/32767),
+//! of length 1 within 3·10⁻⁵ (lighting reads it as it is: halved and
+//! rounded, the Q14 of the normal times 1/32767, see
+//! [`crate::raster::Normal`]),
 //! its offset within `u / 65534` (`radius · √3 / 65534` at most): the
 //! plane moves by about `radius / 20,000` at the bounding sphere. An `i32`
 //! offset (10 bytes) would remove only the offset's half of that error.
@@ -24,6 +26,7 @@
 //! within 32766 to 32768 (what rounding a unit normal gives; never zero).
 
 use super::le_u32;
+use crate::raster::shade::HAS_FPU;
 
 /// Length of one compact plane table entry.
 pub const COMPACT_PLANE_LEN: usize = 8;
@@ -42,9 +45,10 @@ pub fn plane_unit(half_extent: [f32; 3]) -> f32 {
     SQRT_3 * half_extent[0].max(half_extent[1]).max(half_extent[2])
 }
 
-/// The four `i16` of an entry.
+/// The four `i16` of the entry at the start of `r`: `[m₀, m₁, m₂, e]`
+/// (lighting reads the normal as these integers).
 #[inline(always)]
-fn fields<const L: usize>(r: &[u8; L]) -> [i16; 4] {
+pub fn compact_fields<const L: usize>(r: &[u8; L]) -> [i16; 4] {
     let w0 = le_u32(r, 0);
     let w1 = le_u32(r, 4);
     [w0 as i16, (w0 >> 16) as i16, w1 as i16, (w1 >> 16) as i16]
@@ -54,7 +58,55 @@ fn fields<const L: usize>(r: &[u8; L]) -> [i16; 4] {
 /// the facing test's factors, with `w` scaled by the plane unit.
 #[inline(always)]
 pub fn compact_side<const L: usize>(r: &[u8; L]) -> [f32; 4] {
-    fields(r).map(f32::from)
+    compact_fields(r).map(f32_of_i16)
+}
+
+/// `c` as `f32` (exact: every `i16` is one), the bits the conversion
+/// gives. Without an FPU built from the integer's bits in line: the
+/// library's general `i32 → f32` routine (a call, a software count of
+/// leading zeros and a rounding step no `i16` needs) was four fifths of
+/// the conversion's cost, and the facing test converts four a plane.
+#[inline(always)]
+pub(crate) fn f32_of_i16(c: i16) -> f32 {
+    if HAS_FPU {
+        f32::from(c)
+    } else {
+        f32_of_i16_bits(c)
+    }
+}
+
+/// [`f32_of_i16`] in integers (a test compares it with `f32::from` for
+/// every `i16`). Out of line: in line at every conversion of every walk
+/// it made violin_case's compact tree 768 bytes too big for the
+/// Cortex-M0's flash.
+#[inline(never)]
+pub(super) fn f32_of_i16_bits(c: i16) -> f32 {
+    if c == 0 {
+        return 0.0;
+    }
+    let sign = u32::from(c as u16) << 16 & 0x8000_0000;
+    // |c| in 1..=32768 shifted until its top bit is bit 15; the exponent
+    // (biased) is 15 + 127 less the shift.
+    let mut m = u32::from(c.unsigned_abs());
+    let mut e = 15 + 127;
+    if m < 1 << 8 {
+        m <<= 8;
+        e -= 8;
+    }
+    if m < 1 << 12 {
+        m <<= 4;
+        e -= 4;
+    }
+    if m < 1 << 14 {
+        m <<= 2;
+        e -= 2;
+    }
+    if m < 1 << 15 {
+        m <<= 1;
+        e -= 1;
+    }
+    // The 15 bits below the top one are the fraction's first 15 of 23.
+    f32::from_bits(sign | e << 23 | (m << 8 & 0x7f_ffff))
 }
 
 /// The normal (unit within 3·10⁻⁵) and offset of the entry at the start
@@ -71,7 +123,7 @@ pub fn compact_plane<const L: usize>(r: &[u8; L], unit: f32) -> ([f32; 3], f32) 
 /// Whether the entry at the start of `r` is well formed (see the module
 /// docs).
 pub fn compact_plane_ok<const L: usize>(r: &[u8; L]) -> bool {
-    let f = fields(r);
+    let f = compact_fields(r);
     let len2: i64 = f[..3].iter().map(|&c| i64::from(c) * i64::from(c)).sum();
     f.iter().all(|&c| c != i16::MIN) && (32766 * 32766..=32768 * 32768).contains(&len2)
 }

@@ -217,3 +217,14 @@ fn compact_plane_table_is_half_as_long() {
     assert_eq!(s.runs, s.planes + 3 * super::COMPACT_PLANE_LEN);
     assert_eq!(t.file_len - s.file_len, 24);
 }
+
+/// The integer conversion of an `i16` to `f32` (what the facing test of
+/// a compact entry uses without an FPU) gives the bits of `f32::from` for
+/// every `i16`.
+#[test]
+fn i16_to_f32_in_integers_is_exact() {
+    for c in i16::MIN..=i16::MAX {
+        let want = f32::from(c).to_bits();
+        assert_eq!(super::planes::f32_of_i16_bits(c).to_bits(), want, "{c}");
+    }
+}

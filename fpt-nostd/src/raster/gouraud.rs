@@ -101,7 +101,7 @@ impl<P: Precision, E: Compiled> Renderer<P, E> {
                     .then_some((cue, ready.depth)),
             };
             // Two-sided lighting flipped the face's normal: flip its corners'.
-            let flip = p.plane().normal_dot(face.normal) < 0.0;
+            let flip = p.plane().normal_dot(face.normal.to_f32()) < 0.0;
             k.map(|i| match tree.corner_normal(p.id(), i) {
                 Some(n) => lit.corner(n, flip),
                 None => ready.rgb,

@@ -41,7 +41,7 @@
 //! let mut scratch = Scratch::<DefaultPrecision, 16>::new();
 //! let mut pixels = [0u16; 32 * 24];
 //! let mut fb = Rgb565Framebuffer::new(&mut pixels, 32, 24).unwrap();
-//! let face = Face { normal: [0.0, 0.0, 1.0], color: [255, 128, 0], id: 7, hidden_edges: 0 };
+//! let face = Face { normal: [0.0, 0.0, 1.0].into(), color: [255, 128, 0], id: 7, hidden_edges: 0 };
 //! // A triangle in clip space (the identity camera), counter-clockwise.
 //! let tri = [[-0.5, -0.5, 0.0], [0.5, -0.5, 0.0], [0.0, 0.5, 0.0]];
 //! let out = r.draw_polygon(&mut scratch, tri, &face, &mut fb);
@@ -87,6 +87,6 @@ pub use precision::{
 };
 pub use renderer::{Face, Outcome, RenderStats, Renderer, Scratch, SkipReason};
 pub use scan::{fill_polygon, FillRule, Paint, SpanBounds, SpanSink};
-pub use shade::{DepthCue, Light, ShadeMode};
+pub use shade::{DepthCue, Light, Normal, ShadeMode};
 pub use sink::{DrawTargetSink, IdBuffer};
 pub use transform::{ScreenPt, Viewport};

@@ -205,6 +205,146 @@ fn unit_from_f32_slow(v: [f32; 3]) -> Option<[Fx14; 3]> {
     unit_from_ints(v.map(|c| (c * scale) as i64))
 }
 
+/// The normal a face is lit by, as the tree stores it: an `f32` vector
+/// ([`Normal::from_f32`], a 16-byte plane's) or an integer one
+/// ([`Normal::from_compact`], a compact plane entry's). Lighting rounds
+/// either to a Q14 unit vector in integers, on every target alike.
+///
+/// Held as the components' bit patterns and a mark of the form, not as an
+/// enum: the renderer's intensity memo keys on exactly these four words,
+/// so a face's shading takes no branch on the form until a memo miss.
+/// Without the `compact-planes` feature there is no integer form and no
+/// mark: a [`Normal`] is the `f32` bits alone and lighting is the code it
+/// was before integer normals (with them compiled in, an `f32` tree's
+/// Cortex-M4F frame was about 1 % dearer: the mark kept, tested on a miss
+/// and subtracted on a hit). Equality is of the bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Normal {
+    /// `f32` patterns, or `i16` sign-extended.
+    bits: [u32; 3],
+    /// 0 for `f32`, [`COMPACT_KEY`] for integers: what the memo adds to
+    /// an entry's intensity word.
+    #[cfg(feature = "compact-planes")]
+    mark: u32,
+}
+
+impl Normal {
+    /// An `f32` vector of any length (a 16-byte plane's unit normal).
+    #[inline(always)]
+    pub fn from_f32(n: [f32; 3]) -> Normal {
+        Normal {
+            bits: n.map(f32::to_bits),
+            #[cfg(feature = "compact-planes")]
+            mark: 0,
+        }
+    }
+
+    /// An integer vector of any length. A compact plane table entry's unit
+    /// normal times 32767 ([`crate::format::FLAG_COMPACT_PLANES`]) takes
+    /// a short path: each component `c` halved and rounded, halves away
+    /// from zero, which is `c · 2^14 / 32767` rounded exactly, with no
+    /// float operation (the entry decoded to `f32` and rounded cost four
+    /// software-float routines a face on a core without an FPU).
+    /// (Only with the `compact-planes` feature, whose trees have such
+    /// normals.)
+    #[cfg(feature = "compact-planes")]
+    #[inline(always)]
+    pub fn from_compact(m: [i16; 3]) -> Normal {
+        Normal {
+            bits: m.map(|c| i32::from(c) as u32),
+            mark: COMPACT_KEY,
+        }
+    }
+
+    /// The memo's mark of its form: 0 for `f32` (always, without the
+    /// `compact-planes` feature), [`COMPACT_KEY`] for integers.
+    #[inline(always)]
+    fn mark(self) -> u32 {
+        #[cfg(feature = "compact-planes")]
+        return self.mark;
+        #[cfg(not(feature = "compact-planes"))]
+        0
+    }
+
+    /// The `f32` vector, if it is one.
+    #[inline(always)]
+    pub fn as_f32(self) -> Option<[f32; 3]> {
+        (self.mark() == 0).then(|| self.bits.map(f32::from_bits))
+    }
+
+    /// The integer vector, if it is one (never without the
+    /// `compact-planes` feature).
+    #[inline(always)]
+    pub fn as_compact(self) -> Option<[i16; 3]> {
+        (self.mark() != 0).then(|| self.bits.map(|b| b as i16))
+    }
+
+    /// The normal pointing the other way: exact in both forms (the sign
+    /// bit of an `f32`; an `i16` other than −32768, which no well-formed
+    /// compact entry has, negated; −32768 stays).
+    #[inline(always)]
+    pub fn flipped(self) -> Normal {
+        let mut n = self;
+        n.bits = match self.as_compact() {
+            None => self.bits.map(|b| b ^ 0x8000_0000),
+            Some(m) => m.map(|c| i32::from(c.wrapping_neg()) as u32),
+        };
+        n
+    }
+
+    /// As `f32`: an integer one as the reader decodes a compact plane
+    /// ([`crate::format::compact_plane`]: each component times
+    /// `1 / 32767`).
+    pub fn to_f32(self) -> [f32; 3] {
+        match self.as_compact() {
+            None => self.bits.map(f32::from_bits),
+            Some(m) => m.map(|c| f32::from(c) * (1.0 / 32767.0)),
+        }
+    }
+}
+
+impl From<[f32; 3]> for Normal {
+    fn from(n: [f32; 3]) -> Normal {
+        Normal::from_f32(n)
+    }
+}
+
+/// `c / 2` rounded, halves away from zero: for `|c| ≤ 32767` the same as
+/// `c · 2^14 / 32767` rounded (`c / 65534`, the difference, has `c`'s sign
+/// and is below ½ in magnitude, so it moves an exact half away from zero
+/// and nothing else across a rounding boundary).
+#[inline(always)]
+fn q14_of_compact(c: i16) -> i32 {
+    let c = i32::from(c);
+    // `c >> 31` is −1 for a negative `c`: `(c − 1) / 2` truncated is
+    // `c / 2` rounded away from zero, as `(c + 1) / 2` for a positive one.
+    (c + (c >> 31 | 1)) / 2
+}
+
+/// A compact normal as a Q14 unit vector; `None` for zero. A compact
+/// entry's unit normal (length 32766 to 32768) always takes the short
+/// path: its rounded components are within `√3 / 2` of half the entry's,
+/// so `|q|²` is within about 61,300 of `2^28`, inside the fast path's
+/// `2^16` (the test that also keeps out any other length).
+#[inline(always)]
+fn unit_from_compact(m: [i16; 3]) -> Option<[Fx14; 3]> {
+    let q = m.map(q14_of_compact);
+    let len2: u32 = q.iter().map(|c| c.unsigned_abs().pow(2)).sum();
+    if len2.abs_diff(1 << 28) <= 1 << 16 {
+        return Some(q.map(Fx14::from_raw));
+    }
+    unit_from_ints(m.map(i64::from))
+}
+
+/// `n` as a Q14 unit vector; `None` for zero or non-finite.
+#[inline(always)]
+fn unit_of(n: Normal) -> Option<[Fx14; 3]> {
+    match n.as_compact() {
+        None => unit_from_f32(n.bits.map(f32::from_bits)),
+        Some(m) => unit_from_compact(m),
+    }
+}
+
 impl Light {
     /// The ambient weight the project's pictures use: a quarter of a
     /// face's colour whatever its facing, so that faces turned away from
@@ -271,6 +411,25 @@ impl Light {
     /// `normal`; a zero or non-finite normal gets the ambient term.
     pub fn intensity(&self, normal: [f32; 3]) -> Fx14 {
         self.intensity_unit(unit_from_f32(normal))
+    }
+
+    /// [`Light::intensity`] of a [`Normal`] in either form.
+    ///
+    /// ```
+    /// # #[cfg(feature = "compact-planes")] {
+    /// use fpt_nostd::raster::{Light, Normal};
+    /// let l = Light::new([1.0, 2.0, 2.0], 0.25, 0.75);
+    /// let m = [10_000i16, -20_000, 24_000]; // length 32,802: not a unit
+    /// let unit = [10_922i16, -21_845, 21_845]; // length 32,767.3
+    /// assert_eq!(
+    ///     l.intensity_of(Normal::from_compact(unit)),
+    ///     l.intensity(unit.map(|c| f32::from(c) * (1.0 / 32767.0)))
+    /// );
+    /// assert_eq!(l.intensity_of(Normal::from_compact(m)), l.intensity_q(m.map(i32::from)));
+    /// # }
+    /// ```
+    pub fn intensity_of(&self, normal: Normal) -> Fx14 {
+        self.intensity_unit(unit_of(normal))
     }
 
     /// Like [`Light::intensity`] for a unit normal stored as `i8` times
@@ -341,18 +500,25 @@ const MEMO: usize = if HAS_FPU { 8 } else { 0 };
 /// An empty memo entry's intensity: no intensity is above `2^14`.
 const NO_INTENSITY: u32 = u32::MAX;
 
+/// What marks an entry's intensity word as a [`Normal::from_compact`] key:
+/// above any intensity (at most `2^14`) and below [`NO_INTENSITY`], so
+/// that an `f32` key and an integer key with the same bits (a subnormal
+/// `f32` is a small integer's bit pattern) are different entries.
+const COMPACT_KEY: u32 = 1 << 16;
+
 /// The light intensities of the last normals shaded, by their bits: a
 /// renderer's memo for [`IntensityMemo::shade`], so that a face whose
 /// normal was lit before takes the intensity back (a hash and four
 /// comparisons) instead of rounding, testing and lighting it again (about
 /// 70 instructions a face on a Cortex-M4F). Direct mapped (entry by a
 /// hash of the bits); [`IntensityMemo::EMPTY`] when the light changes.
-/// The same intensities as [`Light::intensity`]: a pure function of the
+/// The same intensities as [`Light::intensity_of`]: a pure function of the
 /// normal's bits and the light, which a renderer's memo never outlives.
 #[derive(Clone, Debug)]
 pub(crate) struct IntensityMemo {
-    /// The normal's three bit patterns, then its intensity (raw `Fx14`;
-    /// [`NO_INTENSITY`] when empty).
+    /// The normal's three bit patterns (a compact one's components
+    /// sign-extended), then its intensity (raw `Fx14`, plus
+    /// [`COMPACT_KEY`] for a compact normal; [`NO_INTENSITY`] when empty).
     entries: [Cell<[u32; 4]>; MEMO],
 }
 
@@ -378,7 +544,7 @@ impl IntensityMemo {
         &self,
         mode: ShadeMode,
         light: &Light,
-        normal: [f32; 3],
+        normal: Normal,
         color: [u8; 3],
     ) -> Rgb888 {
         let i = match mode {
@@ -395,14 +561,15 @@ impl IntensityMemo {
     /// intensity computed and kept. Out of line and cold.
     #[cold]
     #[inline(never)]
-    fn shade_miss(
-        &self,
-        mode: ShadeMode,
-        light: &Light,
-        normal: [f32; 3],
-        color: [u8; 3],
-    ) -> Rgb888 {
+    fn shade_miss(&self, mode: ShadeMode, light: &Light, normal: Normal, color: [u8; 3]) -> Rgb888 {
         shade_color(mode, color, self.intensity(light, normal))
+    }
+
+    /// The memo key of `normal`: its three bit patterns and the mark its
+    /// intensity word carries (0 or [`COMPACT_KEY`]).
+    #[inline(always)]
+    fn key(normal: Normal) -> ([u32; 3], u32) {
+        (normal.bits, normal.mark())
     }
 
     /// The entry of `normal`'s bit patterns `b` (`None`: no memo).
@@ -416,22 +583,32 @@ impl IntensityMemo {
 
     /// The intensity the memo holds for `normal`, if any.
     #[inline(always)]
-    fn hit(&self, normal: [f32; 3]) -> Option<Fx14> {
-        let b = normal.map(f32::to_bits);
+    fn hit(&self, normal: Normal) -> Option<Fx14> {
+        let (b, mark) = Self::key(normal);
         let [k0, k1, k2, i] = self.entry(b)?.get();
-        // Word by word (an array comparison is a `memcmp` call).
-        (k0 == b[0] && k1 == b[1] && k2 == b[2] && i != NO_INTENSITY)
-            .then(|| Fx14::from_raw(i as i32))
+        // Word by word (an array comparison is a `memcmp` call). An `f32`
+        // key's word is below the mark, a compact key's has it and
+        // `NO_INTENSITY` has bits above both.
+        let i = i.wrapping_sub(mark);
+        // Without integer normals, the test of an `f32` memo as it was
+        // (the register allocation of the walk's loop around it was 0.2 %
+        // of a Cortex-M4F frame dearer with the range test).
+        let held = if cfg!(feature = "compact-planes") {
+            i < COMPACT_KEY
+        } else {
+            i != NO_INTENSITY
+        };
+        (k0 == b[0] && k1 == b[1] && k2 == b[2] && held).then(|| Fx14::from_raw(i as i32))
     }
 
-    /// [`Light::intensity`] of a normal the memo does not hold, kept in
+    /// [`Light::intensity_of`] of a normal the memo does not hold, kept in
     /// its entry (evicting the entry's normal).
     #[inline(always)]
-    fn intensity(&self, light: &Light, normal: [f32; 3]) -> Fx14 {
-        let i = light.intensity(normal);
-        let b = normal.map(f32::to_bits);
+    fn intensity(&self, light: &Light, normal: Normal) -> Fx14 {
+        let i = light.intensity_of(normal);
+        let (b, mark) = Self::key(normal);
         if let Some(e) = self.entry(b) {
-            e.set([b[0], b[1], b[2], i.raw() as u32]);
+            e.set([b[0], b[1], b[2], i.raw() as u32 + mark]);
         }
         i
     }
@@ -584,6 +761,134 @@ mod tests {
         // Exactly half a unit goes away from zero.
         check(0.5 / 16384.0);
         check(-1.5 / 16384.0);
+    }
+
+    /// The integer Q14 of a compact component is the rounding of the
+    /// exact `c · 2^14 / 32767` (in `i64`), for every `i16` but −32768
+    /// (which validation refuses). The `f32` normal the reader decodes
+    /// (`c · (1 / 32767)`, what lighting rounded before) is off by a
+    /// rounding of its own: where the exact value is within about 10⁻³
+    /// of a half (`c` even, `|c|` near 32767, the quotient just below
+    /// a half), it lands one unit away from the exact rounding.
+    #[test]
+    fn compact_components_round_exactly() {
+        let mut off = 0;
+        for c in -32767..=32767i16 {
+            let q = q14_of_compact(c);
+            let n = i64::from(c) << 14;
+            let exact = (n.abs() * 2 + 32767) / (2 * 32767);
+            assert_eq!(i64::from(q), exact * n.signum(), "{c}");
+            let decoded = round_scaled(f32::from(c) * (1.0 / 32767.0), 14);
+            assert!((q - decoded).abs() <= 1, "{c}");
+            off += usize::from(q != decoded);
+        }
+        assert_eq!(off, OFF_BY_ONE);
+        assert_eq!(q14_of_compact(i16::MIN), -16384);
+    }
+
+    /// How many of the 65,535 components [`q14_of_compact`] rounds one
+    /// unit away from the decoded `f32` (see the test above).
+    const OFF_BY_ONE: usize = 32;
+
+    /// Well-formed compact normals (length 32766 to 32768) take the
+    /// short path: the components rounded one by one, and lit within a
+    /// rounding unit of the `f32` normals they decode to; other lengths
+    /// are normalised as integers. Flipping is exact.
+    #[cfg(feature = "compact-planes")]
+    #[test]
+    fn compact_normals_take_the_short_path() {
+        let mut rng = crate::raster::tests::Rng(41);
+        let light = Light::new([0.3, -0.5, 0.8], 0.25, 0.75);
+        let mut seen = 0;
+        while seen < 200_000 {
+            let v = [0; 3].map(|_| rng.float(-1.0, 1.0));
+            let len = v.iter().map(|c| c * c).sum::<f32>().sqrt();
+            if len <= 1e-3 {
+                continue;
+            }
+            let m = v.map(|c| libm::roundf(c / len * 32767.0) as i16);
+            let len2: i64 = m.iter().map(|&c| i64::from(c).pow(2)).sum();
+            if !(32766 * 32766..=32768 * 32768).contains(&len2) {
+                continue;
+            }
+            seen += 1;
+            let q = m.map(q14_of_compact);
+            let qlen2: u32 = q.iter().map(|c| c.unsigned_abs().pow(2)).sum();
+            assert!(qlen2.abs_diff(1 << 28) <= 1 << 16, "{m:?}");
+            assert_eq!(unit_from_compact(m), Some(q.map(Fx14::from_raw)));
+            let f = Normal::from_compact(m).to_f32();
+            let (lit, decoded) = (
+                light.intensity_of(Normal::from_compact(m)),
+                light.intensity(f),
+            );
+            assert!((lit.raw() - decoded.raw()).abs() <= 1, "{m:?}");
+            let back = Normal::from_compact(m).flipped();
+            assert_eq!(back.to_f32(), f.map(|c| -c));
+            let Some(b) = back.as_compact() else {
+                panic!("{back:?}")
+            };
+            assert_eq!(unit_from_compact(b), Some(q.map(|c| Fx14::from_raw(-c))));
+        }
+        // An `f32` normal flips by its sign bits, as `-c` does.
+        for v in [[0.0f32, -0.0, 1.0], [0.6, -0.8, 1e-30]] {
+            let back = Normal::from_f32(v).flipped();
+            assert_eq!(
+                back.as_f32().map(|b| b.map(f32::to_bits)),
+                Some(v.map(|c| (-c).to_bits()))
+            );
+            assert_eq!(back.as_compact(), None);
+        }
+        // The extreme lengths of a well-formed entry, on an axis and off.
+        for m in [
+            [32767i16, 0, 0],
+            [0, -32766, 0],
+            [18918, 18918, 18918],
+            [-18917, 18918, -18918],
+        ] {
+            assert_eq!(
+                unit_from_compact(m),
+                Some(m.map(|c| Fx14::from_raw(q14_of_compact(c))))
+            );
+        }
+        // Any other length: normalised (as `intensity_q`), zero: none.
+        for m in [
+            [0i16, 0, 1],
+            [3, 4, 0],
+            [-32768, -32768, -32768],
+            [100, -200, 50],
+        ] {
+            assert_eq!(
+                light.intensity_of(Normal::from_compact(m)),
+                light.intensity_q(m.map(i32::from)),
+                "{m:?}"
+            );
+        }
+        assert_eq!(unit_from_compact([0; 3]), None);
+    }
+
+    /// The memo gives what lighting gives, whichever form a normal comes
+    /// in, with `f32` and compact normals of the same bits in turn (a
+    /// subnormal `f32` is a small integer's pattern).
+    #[cfg(feature = "compact-planes")]
+    #[test]
+    fn memo_keys_both_forms_apart() {
+        let light = Light::new([0.0, 0.6, 0.8], 0.25, 0.75);
+        let memo = IntensityMemo::EMPTY;
+        let c = [200, 100, 50];
+        let normals = [
+            Normal::from_compact([0, 0, 32767]),
+            Normal::from_f32([0.0, 0.0, f32::from_bits(32767)]),
+            Normal::from_f32([0.0, 0.0, 1.0]),
+            Normal::from_compact([0, 0, -32767]),
+            Normal::from_compact([0, 19660, 26214]),
+            Normal::from_f32([0.0, f32::from_bits(19660), f32::from_bits(26214)]),
+        ];
+        for _ in 0..3 {
+            for n in normals {
+                let want = shade_color(ShadeMode::Lambert, c, light.intensity_of(n));
+                assert_eq!(memo.shade(ShadeMode::Lambert, &light, n, c), want, "{n:?}");
+            }
+        }
     }
 
     #[test]

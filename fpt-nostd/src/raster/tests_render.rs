@@ -59,7 +59,7 @@ fn ground(n: usize, extent: f32, rng: &mut Rng) -> Vec<Poly> {
             let id = out.len() as u32;
             let color = [(40 + 13 * i % 200) as u8, (60 + 29 * j % 190) as u8, 150];
             let face = |id| Face {
-                normal: [0.0, 1.0, 0.0],
+                normal: [0.0, 1.0, 0.0].into(),
                 color,
                 id,
                 hidden_edges: 0,
@@ -142,7 +142,7 @@ fn cube(c: [f32; 3], h: f32, first_id: u32) -> Vec<Poly> {
         .map(|(k, (n, q))| Poly {
             verts: q.to_vec(),
             face: Face {
-                normal: *n,
+                normal: (*n).into(),
                 color: [200, (40 * k) as u8, 90],
                 id: first_id + k as u32,
                 hidden_edges: 0,
@@ -309,7 +309,7 @@ fn polygon_behind_the_eye_draws_nothing() {
     let mut s = CountSink::new(W as i32, H as i32);
     let mut scratch = Scratch::<FixedPrecision<4>, 16>::new();
     let face = Face {
-        normal: e,
+        normal: e.into(),
         color: [255; 3],
         id: 0,
         hidden_edges: 0,
@@ -331,7 +331,7 @@ fn huge_triangle<P: Precision>(scale: f32, fov: f32) -> Vec<u32> {
     let mut s = CountSink::new(W as i32, H as i32);
     let cam = o.camera::<P::Math>(W as f32 / H as f32);
     let face = Face {
-        normal: [0.0, 0.0, 1.0],
+        normal: [0.0, 0.0, 1.0].into(),
         color: [1, 2, 3],
         id: 0,
         hidden_edges: 0,
@@ -530,10 +530,12 @@ fn shading_modes_and_id_buffer() {
         // Front faces only (the tree walk would cull the others).
         let eye =
             Orbit::new([0.0; 3], 0.7, 0.5, 6.0, 0.9).eye_direction::<super::precision::Libm>();
-        for p in polys
-            .iter()
-            .filter(|p| (0..3).map(|k| p.face.normal[k] * eye[k]).sum::<f32>() > 0.0)
-        {
+        for p in polys.iter().filter(|p| {
+            (0..3)
+                .map(|k| p.face.normal.to_f32()[k] * eye[k])
+                .sum::<f32>()
+                > 0.0
+        }) {
             r.draw_polygon(&mut scratch, p.verts.iter().copied(), &p.face, &mut fb);
             r.draw_polygon(&mut scratch, p.verts.iter().copied(), &p.face, &mut idb);
         }
@@ -552,7 +554,7 @@ fn shading_modes_and_id_buffer() {
                 let expect = super::shade::shade(
                     mode,
                     &Light::new([0.3, 1.0, 0.5], 0.2, 0.8),
-                    face.normal,
+                    face.normal.to_f32(),
                     face.color,
                 );
                 assert_eq!(c, expect);
@@ -572,7 +574,7 @@ fn capacity_and_non_finite_skips() {
     let mut s = CountSink::new(W as i32, H as i32);
     let mut scratch = Scratch::<FloatLibm<4>, 8>::new();
     let face = Face {
-        normal: [0.0, 1.0, 0.0],
+        normal: [0.0, 1.0, 0.0].into(),
         color: [9; 3],
         id: 1,
         hidden_edges: 0,

@@ -7,8 +7,9 @@
 use super::Tree;
 use super::{Geometry, Plane, RawVertex, VertexFormat, VertexIndices, Vertices};
 #[cfg(feature = "compact-planes")]
-use crate::format::{compact_plane, plane_unit, rec, COMPACT_PLANE_LEN};
+use crate::format::{compact_fields, compact_plane, plane_unit, rec, COMPACT_PLANE_LEN};
 use crate::format::{plane_at, RUN_LEN};
+use crate::raster::Normal;
 /// One polygon of a [`Tree`].
 #[derive(Clone, Copy, Debug)]
 pub struct PolygonRef<'a> {
@@ -227,16 +228,23 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         }
     }
 
-    /// [`PolygonRef::plane`].
-    #[inline]
-    pub(crate) fn plane(&self) -> Plane {
-        let r = if self.g.has_table() {
+    /// The index of its plane: a plane table entry's (read with the
+    /// record), else its run's.
+    #[inline(always)]
+    fn plane_index(&self) -> u32 {
+        if self.g.has_table() {
             self.table_plane
         } else if self.g.compact {
             self.g.field_of(self.rec, 1)
         } else {
             self.g.polygon_run(self.id)
-        };
+        }
+    }
+
+    /// [`PolygonRef::plane`].
+    #[inline]
+    pub(crate) fn plane(&self) -> Plane {
+        let r = self.plane_index();
         // A constant record length without the `plane-table` feature.
         let len = if cfg!(any(feature = "plane-table", feature = "compact-planes")) {
             usize::from(self.g.plane_len)
@@ -251,6 +259,21 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
             return Plane { normal, d };
         }
         Plane::from_record(plane_at(self.g.planes, at))
+    }
+
+    /// The normal lighting reads: a compact plane entry's integers as
+    /// stored (no conversion to `f32`: on a core without an FPU its four
+    /// software conversions and products were a tenth of a frame, for a
+    /// Q14 rounding that is exact in integers), else the plane's normal.
+    #[inline(always)]
+    pub(crate) fn normal(&self) -> Normal {
+        #[cfg(feature = "compact-planes")]
+        if self.g.plane_len == COMPACT_PLANE_LEN as u8 {
+            let entry = rec::<COMPACT_PLANE_LEN>(self.g.planes, self.plane_index() as usize);
+            let [m0, m1, m2, _] = compact_fields(&entry);
+            return Normal::from_compact([m0, m1, m2]);
+        }
+        Normal::from_f32(self.plane().normal)
     }
 
     /// [`PolygonRef::vertex_indices`].

@@ -6,7 +6,7 @@ use super::{cached, check_capacities, FaceIds, Frame, NoProbe, RenderError};
 use crate::effects::{Compiled, Effects};
 use crate::format::{EDGE_HIDDEN, EDGE_SOFT};
 use crate::order::LocalView;
-use crate::raster::{Camera, Face, Precision, RenderStats, Renderer, Scratch, SpanSink};
+use crate::raster::{Camera, Face, Normal, Precision, RenderStats, Renderer, Scratch, SpanSink};
 use crate::reader::{Plane, PolygonAt, Tree};
 
 /// Draws `tree` through `camera` into `sink`: derives the [`Frame`], sets
@@ -98,7 +98,8 @@ pub(crate) fn walk_effects<X: Compiled>(tree: &Tree<'_>, fx: Effects) -> WalkFx 
 }
 
 /// The face the rasterizer draws for polygon `p` of the walk: its colour,
-/// `id`, its outline mask, and the normal that lighting uses: with
+/// `id`, its outline mask, and the normal that lighting uses (a compact
+/// plane entry's integers as stored, see [`PolygonAt::normal`]): with
 /// `two_sided`, a face seen from behind is lit as if it faced the viewer.
 /// Without lighting the plane is not read at all (the normal is zero), so
 /// that lighting switched off costs what lighting compiled out does.
@@ -113,14 +114,17 @@ pub(crate) fn face_of(
     id: u32,
 ) -> Face {
     let normal = if fx.lit {
-        let plane = p.plane();
-        if fx.two_sided && !view.is_backward(&plane) {
-            plane.normal.map(|c| -c)
+        let normal = p.normal();
+        // The facing test on the plane as decoded, as before compact
+        // normals were lit as integers (an `f32` plane is read once: the
+        // two reads are inlined and merged).
+        if fx.two_sided && !view.is_backward(&p.plane()) {
+            normal.flipped()
         } else {
-            plane.normal
+            normal
         }
     } else {
-        [0.0; 3]
+        Normal::from_f32([0.0; 3])
     };
     Face {
         normal,

@@ -301,7 +301,7 @@ impl ZRenderer {
                 }
             }
             let face = Face {
-                normal,
+                normal: normal.into(),
                 color: p.color,
                 id: p.id,
                 hidden_edges: 0,

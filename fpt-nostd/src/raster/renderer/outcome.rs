@@ -3,11 +3,14 @@
 //! nothing panics, a polygon the scratch cannot hold is skipped and
 //! counted) and the frame's counters ([`RenderStats`]).
 
+use crate::raster::Normal;
+
 /// What a polygon looks like to the shader and the id buffer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Face {
-    /// Plane normal (any length; model space, pointing to the visible side).
-    pub normal: [f32; 3],
+    /// Plane normal (any length; model space, pointing to the visible
+    /// side): `f32`, or a compact plane entry's integers as stored.
+    pub normal: Normal,
     /// Base colour.
     pub color: [u8; 3],
     /// Polygon id (id buffers store `id + 1`).

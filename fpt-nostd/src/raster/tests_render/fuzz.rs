@@ -40,7 +40,7 @@ fn run_all<P: Precision>(cam: &Camera, polys: &[Vec<[f32; 3]>]) {
     for (k, v) in polys.iter().enumerate() {
         let mut s = CountSink::new(40, 30);
         let face = Face {
-            normal: v.first().copied().unwrap_or_default(),
+            normal: v.first().copied().unwrap_or_default().into(),
             color: [1; 3],
             id: k as u32,
             hidden_edges: 0,
