@@ -565,7 +565,6 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
     })?;
     let Plan {
         layout,
-        run_offsets,
         table,
         switch_refs,
         extra_planes,
@@ -591,13 +590,13 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
             } else {
                 0
             }
+            // A table's records hold run offsets.
             | match &table {
-                Some(t) if t.compact => FLAG_PLANES | FLAG_COMPACT_PLANES,
-                Some(_) => FLAG_PLANES,
+                Some(t) if t.compact => FLAG_PLANES | FLAG_RUN_OFFSETS | FLAG_COMPACT_PLANES,
+                Some(_) => FLAG_PLANES | FLAG_RUN_OFFSETS,
                 None => 0,
             }
-            | if counts.small { FLAG_SMALL } else { 0 }
-            | if run_offsets { FLAG_RUN_OFFSETS } else { 0 },
+            | if counts.small { FLAG_SMALL } else { 0 },
     );
     put_u32(&mut out, effects);
     out.extend_from_slice(&[
@@ -667,7 +666,7 @@ pub fn serialize(tree: &FpTree, opts: &SerializeOptions) -> Result<Vec<u8>, Seri
             Some(l) => {
                 let colour = l.colour_index[&p.color];
                 // With a plane table, the run offset.
-                let run = if run_offsets {
+                let run = if table.is_some() {
                     count_u32(i)? - run
                 } else {
                     run

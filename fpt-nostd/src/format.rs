@@ -326,6 +326,7 @@ mod error;
 mod planes;
 mod sections;
 pub use error::FormatError;
+pub(crate) use planes::INV_SCALE as COMPACT_INV_SCALE;
 pub use planes::{
     compact_fields, compact_plane, compact_plane_ok, compact_side, plane_unit, COMPACT_PLANE_LEN,
 };

@@ -32,10 +32,9 @@ pub(super) struct PlanInput<'a> {
 pub(super) struct Plan {
     /// The compact layout (`None`: 16-byte records).
     pub(super) layout: Option<CompactLayout>,
-    /// Whether the records' run fields are run offsets
+    /// The plane table ([`fpt_nostd::format::FLAG_PLANES`]); with it the
+    /// records' run fields are run offsets
     /// ([`fpt_nostd::format::FLAG_RUN_OFFSETS`]).
-    pub(super) run_offsets: bool,
-    /// The plane table ([`fpt_nostd::format::FLAG_PLANES`]).
     pub(super) table: Option<PlaneTable>,
     /// The switch records with shared planes: plane record or table
     /// indices (empty without).
@@ -49,8 +48,7 @@ pub(super) struct Plan {
 impl Plan {
     /// The records `input.opts` asks for; with a plane table, the smaller
     /// file of with and without it (the table needs narrow records, and
-    /// a file whose switch planes are mostly not run planes may need a
-    /// wider run field for the table's indices).
+    /// a file whose planes are nearly all distinct gains nothing from it).
     pub(super) fn new(input: &PlanInput<'_>) -> Result<Plan, SerializeError> {
         let o = input.opts;
         let table = (o.compact && o.narrow && o.plane_table)
@@ -77,30 +75,27 @@ impl Plan {
     /// The plan with `table` if the narrow records hold its indices.
     fn with(input: &PlanInput<'_>, table: Option<PlaneTable>) -> Result<Plan, SerializeError> {
         let o = input.opts;
-        let planes = table.as_ref().map_or(input.runs.len(), |t| t.len);
-        let layout_for = |values: usize| {
-            o.compact
-                .then(|| {
-                    let (tree, order) = (input.tree, input.order);
-                    compact_layout(
-                        tree,
-                        order,
-                        input.first_index,
-                        values,
-                        input.hidden,
-                        o.narrow,
-                    )
-                })
-                .flatten()
+        // The values of a record's run field: with the table run offsets
+        // (`id − run`, from 0 to the polygons less the runs: every run has
+        // a polygon, see `FLAG_RUN_OFFSETS`), else the run's index.
+        let run_values = match &table {
+            Some(_) => input.order.len().saturating_sub(input.runs.len()) + 1,
+            None => input.runs.len(),
         };
-        // With the table the records hold run offsets (`id − run`, from
-        // 0 to the polygons less the runs: every run has a polygon).
-        let run_offsets = table.is_some();
-        let layout = layout_for(if run_offsets {
-            input.order.len().saturating_sub(input.runs.len()) + 1
-        } else {
-            planes
-        });
+        let layout = o
+            .compact
+            .then(|| {
+                let (tree, order) = (input.tree, input.order);
+                compact_layout(
+                    tree,
+                    order,
+                    input.first_index,
+                    run_values,
+                    input.hidden,
+                    o.narrow,
+                )
+            })
+            .flatten();
         let narrow = layout.as_ref().is_some_and(|l| l.narrow.is_some());
         if table.is_some() && !narrow {
             return Plan::with(input, None);
@@ -131,7 +126,6 @@ impl Plan {
         .ok_or(SerializeError::TooLarge)?;
         Ok(Plan {
             layout,
-            run_offsets,
             table,
             switch_refs,
             extra_planes,
@@ -267,8 +261,7 @@ pub(super) fn bits(max: u32) -> u8 {
 
 /// The narrowest compact layout for the file polygons `order` (with their
 /// index ranges and masks as computed for the file, and a run field that
-/// takes `planes` values: the run offsets, the runs, or the entries of a
-/// plane table), or
+/// takes `planes` values: the run offsets or the runs), or
 /// `None` when the fields need more than the 56 bits below the mask.
 fn compact_layout(
     tree: &FpTree,

@@ -35,7 +35,7 @@ pub const COMPACT_PLANE_LEN: usize = 8;
 const SQRT_3: f32 = 1.732_050_8;
 
 /// `1 / 32767`: a compact normal's scale.
-const INV_SCALE: f32 = 1.0 / 32767.0;
+pub(crate) const INV_SCALE: f32 = 1.0 / 32767.0;
 
 /// The plane unit `u` of a file whose header half extent is
 /// `half_extent`: `√3` times its largest component (at least the

@@ -298,7 +298,7 @@ impl Normal {
     pub fn to_f32(self) -> [f32; 3] {
         match self.as_compact() {
             None => self.bits.map(f32::from_bits),
-            Some(m) => m.map(|c| f32::from(c) * (1.0 / 32767.0)),
+            Some(m) => m.map(|c| f32::from(c) * crate::format::COMPACT_INV_SCALE),
         }
     }
 }

@@ -120,12 +120,12 @@ impl Tree<'_> {
                 return Err(FormatError::NonFinite("plane table"));
             }
         }
+        // What a polygon of a run holds: its offset from the run with a
+        // plane table (see `Geometry::plane_index`), else the run.
+        let table = runs.is_table();
         let mut start = 0u32;
         for r in 0..self.counts.runs {
-            // What a polygon of the run holds: its offset from the run
-            // with a plane table (see `Geometry::plane_index`), else the
-            // run.
-            if runs.is_table() {
+            if table {
                 if runs.plane_index(r) >= table_len {
                     return Err(FormatError::BadRuns);
                 }
@@ -138,7 +138,7 @@ impl Tree<'_> {
             }
             for p in start..end {
                 let field = self.g.polygon_run(p);
-                let run = if runs.is_table() {
+                let run = if table {
                     p.checked_sub(field)
                 } else {
                     Some(field)
