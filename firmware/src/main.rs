@@ -106,19 +106,22 @@ mod target {
     ///   three scenes (bench_city, 9,845 words) needs for one walk;
     /// * `band` on the Cortex-M0: none (its 16 KiB hold the band buffer,
     ///   the renderer and the stack; it walks the tree once per band);
-    /// * `full`: the 3.4 KiB the 112.5 KiB frame and the renderer (whose
-    ///   vertex capacity is 99, what the house's tree needs, and whose
-    ///   memo of light intensities takes 128 bytes since session 20: 900
-    ///   words before) leave, a vertex cache. Every scene has more vertices than that (vise
-    ///   1,195, house 2,039, `bench_city` 3,405), so it is a tagged cache:
-    ///   256 direct-mapped entries in 512 of the words, which catch nearly
-    ///   all the reuse of the walk's order (`fpt_nostd::raster::vcache`).
+    /// * `full`: 3 KiB of the 15.5 KiB the 112.5 KiB frame leaves beside
+    ///   the renderer (whose vertex capacity is 99, what the house's tree
+    ///   needs, and whose memo of light intensities takes 128 bytes), a
+    ///   vertex cache. Every scene has more vertices than that (vise
+    ///   883, house 1,986, `bench_city` 3,096), so it is a tagged cache:
+    ///   256 direct-mapped entries in 512 of the words (the largest power
+    ///   of two that fits), which catch nearly all the reuse of the walk's
+    ///   order (`fpt_nostd::raster::vcache`). It was 868 words until
+    ///   session 27, the same 256 entries: the rest is the stack's margin,
+    ///   which the compact-planes walk needs (its stack is 176 B deeper).
     #[cfg(all(feature = "band", not(fpt_armv6m)))]
     pub const MEMORY_WORDS: usize = 10 * 1024;
     #[cfg(all(feature = "band", fpt_armv6m))]
     pub const MEMORY_WORDS: usize = 0;
     #[cfg(feature = "full")]
-    pub const MEMORY_WORDS: usize = 868;
+    pub const MEMORY_WORDS: usize = 768;
 
     static MEMORY: ConstStaticCell<[u32; MEMORY_WORDS]> = ConstStaticCell::new([0; MEMORY_WORDS]);
 

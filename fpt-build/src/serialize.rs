@@ -112,8 +112,8 @@ impl Default for SerializeOptions {
             crease_deg: DEFAULT_CREASE_DEG,
             compact: true,
             narrow: true,
-            plane_table: false,
-            compact_planes: false,
+            plane_table: true,
+            compact_planes: true,
         }
     }
 }

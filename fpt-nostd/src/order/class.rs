@@ -167,21 +167,19 @@ impl FacingPlane for CompactPlane {
     fn backward(self, face: &Facing<'_>) -> bool {
         let [w0, w1] = self.0;
         let f = face.fixed();
-        // Each `i16` in the high half of a word (`m · 2^16`: the high one
-        // masked, the low one shifted up, no sign extension), times its
-        // factor, the high word of the product (`smmul`, `smmla`: one
-        // accumulator register, not the two of an `i64` sum): `⌊m · f /
-        // 2^16⌋`, below 2^28 in magnitude (|m| ≤ 2^15, |f| < 2^29), the
-        // sum below 2^30. Each floor is at most the exact term, so a sum
-        // of exact value 0 or less stays 0 or less (forward, as a tie
-        // must be); an error under 4 · 2^16 of terms up to 2^44 decides
-        // the sign otherwise.
-        let p = |m: u32, f: i32| ((i64::from(m as i32) * i64::from(f)) >> 32) as i32;
-        let hi = 0xFFFF_0000;
-        p(w0 << 16, f[0])
-            .wrapping_add(p(w0 & hi, f[1]))
-            .wrapping_add(p(w1 << 16, f[2]))
-            .wrapping_add(p(w1 & hi, f[3]))
+        // Each `i16` of a word times its factor, the product's bits 16
+        // to 47 (`smulwb`, `smlawt`: a word times the bottom or top half
+        // of another, accumulated, one instruction a term with no halves
+        // extracted): `⌊m · f / 2^16⌋`, below 2^28 in magnitude (|m| ≤
+        // 2^15, |f| < 2^29), the sum below 2^30. Each floor is at most the
+        // exact term, so a sum of exact value 0 or less stays 0 or less
+        // (forward, as a tie must be); an error under 4 · 2^16 of terms up
+        // to 2^44 decides the sign otherwise.
+        let p = |f: i32, m: u32| ((i64::from(f) * i64::from(m as i16)) >> 16) as i32;
+        p(f[0], w0)
+            .wrapping_add(p(f[1], w0 >> 16))
+            .wrapping_add(p(f[2], w1))
+            .wrapping_add(p(f[3], w1 >> 16))
             > 0
     }
 }

@@ -210,23 +210,28 @@ fn unit_from_f32_slow(v: [f32; 3]) -> Option<[Fx14; 3]> {
 /// ([`Normal::from_compact`], a compact plane entry's). Lighting rounds
 /// either to a Q14 unit vector in integers, on every target alike.
 ///
-/// Held as the components' bit patterns and a mark of the form, not as an
-/// enum: the renderer's intensity memo keys on exactly these four words,
-/// so a face's shading takes no branch on the form until a memo miss.
-/// Without the `compact-planes` feature there is no integer form and no
-/// mark: a [`Normal`] is the `f32` bits alone and lighting is the code it
-/// was before integer normals (with them compiled in, an `f32` tree's
-/// Cortex-M4F frame was about 1 % dearer: the mark kept, tested on a miss
-/// and subtracted on a hit). Equality is of the bits.
+/// Held as three words and no tag, not as an enum: the renderer's
+/// intensity memo keys on exactly these words, so a face's shading takes
+/// no branch on the form until a memo miss. An `f32` vector is its three
+/// bit patterns; an integer one is its first two components packed in
+/// one word, the third in the next (low half) and [`COMPACT_MARK`], a NaN
+/// pattern, in the last, where a finite `f32` never has it. (A fourth
+/// word for the form, kept and tested by the memo, cost the Cortex-M4F
+/// frame of every tree 1.4 % with the `compact-planes` feature compiled
+/// in; session 27.) So an `f32` vector whose third component has the bits
+/// `0xFFFF_FFFF` (a NaN, which no file's plane has: validation refuses
+/// them) is taken for an integer one. Without the `compact-planes` feature
+/// there is no integer form. Equality is of the words.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Normal {
-    /// `f32` patterns, or `i16` sign-extended.
+    /// `f32` patterns, or `m₀ | m₁ << 16`, `m₂` (low half) and
+    /// [`COMPACT_MARK`].
     bits: [u32; 3],
-    /// 0 for `f32`, [`COMPACT_KEY`] for integers: what the memo adds to
-    /// an entry's intensity word.
-    #[cfg(feature = "compact-planes")]
-    mark: u32,
 }
+
+/// The last word of an integer [`Normal`]: a NaN pattern (all ones), which
+/// no finite `f32` has.
+const COMPACT_MARK: u32 = u32::MAX;
 
 impl Normal {
     /// An `f32` vector of any length (a 16-byte plane's unit normal).
@@ -234,8 +239,6 @@ impl Normal {
     pub fn from_f32(n: [f32; 3]) -> Normal {
         Normal {
             bits: n.map(f32::to_bits),
-            #[cfg(feature = "compact-planes")]
-            mark: 0,
         }
     }
 
@@ -250,33 +253,40 @@ impl Normal {
     #[cfg(feature = "compact-planes")]
     #[inline(always)]
     pub fn from_compact(m: [i16; 3]) -> Normal {
+        let h = m.map(|c| u32::from(c as u16));
+        Normal::from_entry_words(h[0] | h[1] << 16, h[2])
+    }
+
+    /// The normal of a compact plane entry whose first two little-endian
+    /// words are `w0` (`m₀, m₁`) and `w1` (`m₂, e`): no unpacking.
+    #[cfg(feature = "compact-planes")]
+    #[inline(always)]
+    pub(crate) fn from_entry_words(w0: u32, w1: u32) -> Normal {
         Normal {
-            bits: m.map(|c| i32::from(c) as u32),
-            mark: COMPACT_KEY,
+            bits: [w0, w1 & 0xFFFF, COMPACT_MARK],
         }
     }
 
-    /// The memo's mark of its form: 0 for `f32` (always, without the
-    /// `compact-planes` feature), [`COMPACT_KEY`] for integers.
+    /// Whether it is an integer vector (never without the
+    /// `compact-planes` feature).
     #[inline(always)]
-    fn mark(self) -> u32 {
-        #[cfg(feature = "compact-planes")]
-        return self.mark;
-        #[cfg(not(feature = "compact-planes"))]
-        0
+    fn is_compact(self) -> bool {
+        cfg!(feature = "compact-planes") && self.bits[2] == COMPACT_MARK
     }
 
     /// The `f32` vector, if it is one.
     #[inline(always)]
     pub fn as_f32(self) -> Option<[f32; 3]> {
-        (self.mark() == 0).then(|| self.bits.map(f32::from_bits))
+        (!self.is_compact()).then(|| self.bits.map(f32::from_bits))
     }
 
     /// The integer vector, if it is one (never without the
     /// `compact-planes` feature).
     #[inline(always)]
     pub fn as_compact(self) -> Option<[i16; 3]> {
-        (self.mark() != 0).then(|| self.bits.map(|b| b as i16))
+        let [w0, w1, _] = self.bits;
+        self.is_compact()
+            .then_some([w0 as i16, (w0 >> 16) as i16, w1 as i16])
     }
 
     /// The normal pointing the other way: exact in both forms (the sign
@@ -284,12 +294,13 @@ impl Normal {
     /// compact entry has, negated; −32768 stays).
     #[inline(always)]
     pub fn flipped(self) -> Normal {
-        let mut n = self;
-        n.bits = match self.as_compact() {
-            None => self.bits.map(|b| b ^ 0x8000_0000),
-            Some(m) => m.map(|c| i32::from(c.wrapping_neg()) as u32),
-        };
-        n
+        #[cfg(feature = "compact-planes")]
+        if let Some(m) = self.as_compact() {
+            return Normal::from_compact(m.map(i16::wrapping_neg));
+        }
+        Normal {
+            bits: self.bits.map(|b| b ^ 0x8000_0000),
+        }
     }
 
     /// As `f32`: an integer one as the reader decodes a compact plane
@@ -500,12 +511,6 @@ const MEMO: usize = if HAS_FPU { 8 } else { 0 };
 /// An empty memo entry's intensity: no intensity is above `2^14`.
 const NO_INTENSITY: u32 = u32::MAX;
 
-/// What marks an entry's intensity word as a [`Normal::from_compact`] key:
-/// above any intensity (at most `2^14`) and below [`NO_INTENSITY`], so
-/// that an `f32` key and an integer key with the same bits (a subnormal
-/// `f32` is a small integer's bit pattern) are different entries.
-const COMPACT_KEY: u32 = 1 << 16;
-
 /// The light intensities of the last normals shaded, by their bits: a
 /// renderer's memo for [`IntensityMemo::shade`], so that a face whose
 /// normal was lit before takes the intensity back (a hash and four
@@ -516,9 +521,8 @@ const COMPACT_KEY: u32 = 1 << 16;
 /// normal's bits and the light, which a renderer's memo never outlives.
 #[derive(Clone, Debug)]
 pub(crate) struct IntensityMemo {
-    /// The normal's three bit patterns (a compact one's components
-    /// sign-extended), then its intensity (raw `Fx14`, plus
-    /// [`COMPACT_KEY`] for a compact normal; [`NO_INTENSITY`] when empty).
+    /// The normal's three words, then its intensity (raw `Fx14`;
+    /// [`NO_INTENSITY`] when empty).
     entries: [Cell<[u32; 4]>; MEMO],
 }
 
@@ -565,17 +569,10 @@ impl IntensityMemo {
         shade_color(mode, color, self.intensity(light, normal))
     }
 
-    /// The memo key of `normal`: its three bit patterns and the mark its
-    /// intensity word carries (0 or [`COMPACT_KEY`]).
-    #[inline(always)]
-    fn key(normal: Normal) -> ([u32; 3], u32) {
-        (normal.bits, normal.mark())
-    }
-
-    /// The entry of `normal`'s bit patterns `b` (`None`: no memo).
+    /// The entry of `normal`'s words `b` (`None`: no memo).
     #[inline(always)]
     fn entry(&self, b: [u32; 3]) -> Option<&Cell<[u32; 4]>> {
-        // A multiplicative hash of the three patterns; its top bits pick
+        // A multiplicative hash of the three words; its top bits pick
         // the entry (the axis normals ±1, 0 land in distinct entries).
         let h = (b[0] ^ b[1].rotate_left(11) ^ b[2].rotate_left(22)).wrapping_mul(0x9E37_79B1);
         self.entries.get((h >> 29) as usize % MEMO.max(1))
@@ -584,21 +581,12 @@ impl IntensityMemo {
     /// The intensity the memo holds for `normal`, if any.
     #[inline(always)]
     fn hit(&self, normal: Normal) -> Option<Fx14> {
-        let (b, mark) = Self::key(normal);
+        let b = normal.bits;
         let [k0, k1, k2, i] = self.entry(b)?.get();
-        // Word by word (an array comparison is a `memcmp` call). An `f32`
-        // key's word is below the mark, a compact key's has it and
-        // `NO_INTENSITY` has bits above both.
-        let i = i.wrapping_sub(mark);
-        // Without integer normals, the test of an `f32` memo as it was
-        // (the register allocation of the walk's loop around it was 0.2 %
-        // of a Cortex-M4F frame dearer with the range test).
-        let held = if cfg!(feature = "compact-planes") {
-            i < COMPACT_KEY
-        } else {
-            i != NO_INTENSITY
-        };
-        (k0 == b[0] && k1 == b[1] && k2 == b[2] && held).then(|| Fx14::from_raw(i as i32))
+        // Word by word (an array comparison is a `memcmp` call). The two
+        // forms' keys differ in their words (see `Normal`).
+        (k0 == b[0] && k1 == b[1] && k2 == b[2] && i != NO_INTENSITY)
+            .then(|| Fx14::from_raw(i as i32))
     }
 
     /// [`Light::intensity_of`] of a normal the memo does not hold, kept in
@@ -606,9 +594,9 @@ impl IntensityMemo {
     #[inline(always)]
     fn intensity(&self, light: &Light, normal: Normal) -> Fx14 {
         let i = light.intensity_of(normal);
-        let (b, mark) = Self::key(normal);
+        let b = normal.bits;
         if let Some(e) = self.entry(b) {
-            e.set([b[0], b[1], b[2], i.raw() as u32 + mark]);
+            e.set([b[0], b[1], b[2], i.raw() as u32]);
         }
         i
     }
@@ -867,7 +855,7 @@ mod tests {
     }
 
     /// The memo gives what lighting gives, whichever form a normal comes
-    /// in, with `f32` and compact normals of the same bits in turn (a
+    /// in, with `f32` and compact normals of the same words in turn (a
     /// subnormal `f32` is a small integer's pattern).
     #[cfg(feature = "compact-planes")]
     #[test]
@@ -882,6 +870,8 @@ mod tests {
             Normal::from_compact([0, 0, -32767]),
             Normal::from_compact([0, 19660, 26214]),
             Normal::from_f32([0.0, f32::from_bits(19660), f32::from_bits(26214)]),
+            // The packed words of the one before, in an `f32` normal.
+            Normal::from_f32([f32::from_bits(19660 << 16), f32::from_bits(26214), 1.0]),
         ];
         for _ in 0..3 {
             for n in normals {

@@ -7,7 +7,7 @@
 use super::Tree;
 use super::{Geometry, Plane, RawVertex, VertexFormat, VertexIndices, Vertices};
 #[cfg(feature = "compact-planes")]
-use crate::format::{compact_fields, compact_plane, plane_unit, rec, COMPACT_PLANE_LEN};
+use crate::format::{compact_plane, le_u32, plane_unit, rec, COMPACT_PLANE_LEN};
 use crate::format::{plane_at, RUN_LEN};
 use crate::raster::Normal;
 /// One polygon of a [`Tree`].
@@ -270,8 +270,7 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
         #[cfg(feature = "compact-planes")]
         if self.g.plane_len == COMPACT_PLANE_LEN as u8 {
             let entry = rec::<COMPACT_PLANE_LEN>(self.g.planes, self.plane_index() as usize);
-            let [m0, m1, m2, _] = compact_fields(&entry);
-            return Normal::from_compact([m0, m1, m2]);
+            return Normal::from_entry_words(le_u32(&entry, 0), le_u32(&entry, 4));
         }
         Normal::from_f32(self.plane().normal)
     }

@@ -321,7 +321,7 @@ pub fn run(a: &BuildArgs) -> CliResult {
     // Checked before the build, which can take minutes: compact entries
     // exist only in a plane table, and silently writing 16-byte planes
     // would hide that the option did nothing.
-    if a.planes == "compact" && a.records != "table" {
+    if a.planes.as_deref() == Some("compact") && a.records != "table" {
         return Err(cli_err!(
             "--planes compact needs --records table (compact planes are plane table entries)"
         ));
@@ -394,7 +394,11 @@ pub fn run(a: &BuildArgs) -> CliResult {
             effects: Some(effects.bits()),
             up,
             crease_deg: a.crease,
-            compact_planes: a.planes == "compact",
+            // Unless told, a table's entries are the default's.
+            compact_planes: match a.planes.as_deref() {
+                Some(p) => p == "compact",
+                None => SerializeOptions::default().compact_planes,
+            },
             ..SerializeOptions::default()
         },
         &a.records,

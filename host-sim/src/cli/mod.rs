@@ -157,8 +157,8 @@ pub struct BuildArgs {
     /// Polygon records: `narrow` (bit fields in as few bytes as they need,
     /// a colour table, and switch planes shared with the 20-byte runs),
     /// `table` (narrow records, and every distinct plane stored once in a
-    /// table that 4-byte runs and the switches index: smaller files, a
-    /// dearer walk), `compact` (8 bytes a polygon and a colour table,
+    /// table that 4-byte runs and the switches index: smaller files, the
+    /// default), `compact` (8 bytes a polygon and a colour table,
     /// as files of sessions 10–16) or `wide` (16 bytes, as files written
     /// before compact records existed); for comparisons and older
     /// readers. `table` falls back to `narrow` beyond 65,535 polygons,
@@ -170,9 +170,10 @@ pub struct BuildArgs {
     /// bytes: the planes rounded to about radius / 20,000, which can
     /// change the facing of a polygon seen edge-on only). `compact`
     /// without `--records table` is an error: other record layouts keep
-    /// their `f32` planes in the runs.
-    #[arg(long, default_value = "f32", value_parser = ["f32", "compact"])]
-    pub planes: String,
+    /// their `f32` planes in the runs. Default: `compact` with the
+    /// table, else `f32`.
+    #[arg(long, value_parser = ["f32", "compact"])]
+    pub planes: Option<String>,
 }
 
 /// Arguments of `fpt polygons`.
