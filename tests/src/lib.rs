@@ -49,8 +49,14 @@ pub fn order_source(tree: &FpTree) -> Box<dyn OrderSource + '_> {
 /// Stack frames for the no_std walk: deeper trees are refused by it.
 const NOSTD_STACK: usize = 2048;
 
-/// The product path: the tree serialized once (default options), read and
-/// walked by `fpt_nostd`, its file polygon ids mapped back to tree ids.
+/// The product path: the tree serialized once (the default layout, a plane
+/// table, but of exact `f32` entries), read and walked by `fpt_nostd`, its
+/// file polygon ids mapped back to tree ids. Exact entries because these
+/// checks hold the walk to the exact planes in every view, edge-on ones
+/// included: the default compact entries move a plane by about radius /
+/// 20,000, which can flip the facing of a polygon seen within that of
+/// edge-on (shuttle's view 56); their order is checked on every view that
+/// is no such near tie by `format_roundtrip`.
 /// When the tree cannot be serialized or walked, every view gets no classes
 /// and the class checks report each missing polygon.
 pub struct NostdWalk {
@@ -62,7 +68,11 @@ pub struct NostdWalk {
 impl NostdWalk {
     /// Serializes `tree`.
     pub fn new(tree: &FpTree) -> NostdWalk {
-        let bytes = serialize(tree, &SerializeOptions::default()).unwrap_or_default();
+        let opts = SerializeOptions {
+            compact_planes: false,
+            ..SerializeOptions::default()
+        };
+        let bytes = serialize(tree, &opts).unwrap_or_default();
         let tree_id = polygon_order(tree).unwrap_or_default();
         NostdWalk { bytes, tree_id }
     }

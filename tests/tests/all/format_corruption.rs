@@ -265,6 +265,7 @@ fn narrow_records_and_shared_planes_are_validated() {
         let t = random_tree(seed, 8, seed % 2 == 0, true, 1.0, DVec3::ZERO);
         let narrow = SerializeOptions {
             plane_table: false,
+            compact_planes: false,
             ..SerializeOptions::default()
         };
         let bytes = serialize(&t, &narrow).unwrap();
@@ -364,12 +365,18 @@ fn run_offsets_are_validated() {
         (0..16).map(|seed| random_tree(seed, 8, seed % 2 == 0, seed % 3 == 0, 1.0, DVec3::ZERO));
     for (seed, t) in random.chain(std::iter::once(vise)).enumerate() {
         // Without the table, no run offsets, and the flag is refused.
-        let narrow = serialize(&t, &SerializeOptions::default()).unwrap();
+        let narrow = SerializeOptions {
+            plane_table: false,
+            compact_planes: false,
+            ..SerializeOptions::default()
+        };
+        let narrow = serialize(&t, &narrow).unwrap();
         let tree = Tree::from_bytes(&narrow).unwrap();
         assert!(!tree.has_plane_table() && !tree.has_run_offsets());
         assert_eq!(reject(&narrow, &|b| b[13] |= bit), flags);
         let opts = SerializeOptions {
             plane_table: true,
+            compact_planes: false,
             ..SerializeOptions::default()
         };
         let bytes = serialize(&t, &opts).unwrap();
@@ -432,6 +439,7 @@ fn plane_tables_are_validated() {
         let t = random_tree(seed, 8, seed % 2 == 0, true, 1.0, DVec3::ZERO);
         let table = SerializeOptions {
             plane_table: true,
+            compact_planes: false,
             ..SerializeOptions::default()
         };
         let bytes = serialize(&t, &table).unwrap();

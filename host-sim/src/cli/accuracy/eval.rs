@@ -161,6 +161,7 @@ pub fn tree_options(vertex_format: VertexFormat) -> SerializeOptions {
         compact: true,
         narrow: true,
         plane_table: false,
+        compact_planes: false,
         ..SerializeOptions::default()
     }
 }
