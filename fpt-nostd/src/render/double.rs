@@ -301,5 +301,7 @@ impl<P: Precision, const V: usize, E: Compiled> TreeRenderer<P, V, E> {
     }
 }
 
-#[cfg(test)]
+// The tests draw the firmware's vise, a default file: a compact plane
+// table, read with the default feature only.
+#[cfg(all(test, feature = "compact-planes"))]
 mod tests;
