@@ -404,6 +404,7 @@ impl<'a> Tree<'a> {
             let records = counts.runs.saturating_add(extra_planes);
             Runs::new(section(s.runs, records, RUN_LEN)?, &[], table, false)
         };
+        let run_recs = runs.recs;
         let w = WalkData {
             runs,
             bunches: section(
@@ -441,7 +442,7 @@ impl<'a> Tree<'a> {
             indices: s.indices,
             planes: if table { runs.plane_bytes() } else { runs.recs },
             plane_len: if table { plane_len } else { RUN_LEN } as u8,
-            runs: s.runs,
+            runs: run_recs,
             polygon_count: counts.polygons,
             index_count: counts.indices,
             format,

@@ -45,9 +45,9 @@ pub(super) struct Geometry<'a> {
     /// Bytes of one entry of `planes` (the plane at its start), 8 for
     /// compact entries ([`crate::format::FLAG_COMPACT_PLANES`]).
     pub(super) plane_len: u8,
-    /// Start of the run records in `bytes` (read for a polygon's plane
-    /// index with a plane table, see [`Geometry::plane_index`]).
-    pub(super) runs: usize,
+    /// The run records (read for a polygon's plane index with a plane
+    /// table, see [`Geometry::plane_index`]).
+    pub(super) runs: &'a [u8],
 
     pub(super) polygon_count: u32,
     pub(super) index_count: u32,
@@ -292,8 +292,12 @@ impl<'a> Geometry<'a> {
     #[inline(always)]
     pub(super) fn plane_index(&self, id: u32, field: u32) -> u32 {
         let run = id.wrapping_sub(field) as usize;
-        let at = self.runs.wrapping_add(run.wrapping_mul(TABLE_RUN_LEN));
-        u32::from(rd_u16(self.bytes, at.wrapping_add(tr::PLANE)))
+        // The records as such: one comparison for the run (a read at an
+        // offset in the file was two more and an overflow test, for each
+        // drawn polygon).
+        let (recs, _) = self.runs.as_chunks::<TABLE_RUN_LEN>();
+        let r = recs.get(run).unwrap_or(&[0; TABLE_RUN_LEN]);
+        u32::from(u16::from_le_bytes([r[tr::PLANE], r[tr::PLANE + 1]]))
     }
 
     /// The first_index field of polygon `id`.

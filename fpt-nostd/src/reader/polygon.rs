@@ -269,8 +269,13 @@ impl<'t, 'a> PolygonAt<'t, 'a> {
     pub(crate) fn normal(&self) -> Normal {
         #[cfg(feature = "compact-planes")]
         if self.g.plane_len == COMPACT_PLANE_LEN as u8 {
-            let entry = rec::<COMPACT_PLANE_LEN>(self.g.planes, self.plane_index() as usize);
-            return Normal::from_entry_words(le_u32(&entry, 0), le_u32(&entry, 4));
+            // The table as entries: one comparison for the index (`rec`'s
+            // overflow and range tests were more a drawn polygon).
+            let (entries, _) = self.g.planes.as_chunks::<COMPACT_PLANE_LEN>();
+            let entry = entries
+                .get(self.plane_index() as usize)
+                .unwrap_or(&[0; COMPACT_PLANE_LEN]);
+            return Normal::from_entry_words(le_u32(entry, 0), le_u32(entry, 4));
         }
         Normal::from_f32(self.plane().normal)
     }
