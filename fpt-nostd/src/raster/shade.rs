@@ -214,11 +214,11 @@ fn unit_from_f32_slow(v: [f32; 3]) -> Option<[Fx14; 3]> {
 /// intensity memo keys on exactly these words, so a face's shading takes
 /// no branch on the form until a memo miss. An `f32` vector is its three
 /// bit patterns; an integer one is its first two components packed in
-/// one word, the third in the next (low half) and [`COMPACT_MARK`], a NaN
+/// one word, the third in the next (low half) and `0xFFFF_FFFF`, a NaN
 /// pattern, in the last, where a finite `f32` never has it. (A fourth
-/// word for the form, kept and tested by the memo, cost the Cortex-M4F
-/// frame of every tree 1.4 % with the `compact-planes` feature compiled
-/// in; session 27.) So an `f32` vector whose third component has the bits
+/// word for the form, kept and tested by the memo, cost a narrow tree's
+/// Cortex-M4F `bench_city` frame 1.4 % with the `compact-planes` feature
+/// compiled in; session 27.) So an `f32` vector whose third component has the bits
 /// `0xFFFF_FFFF` (a NaN, which no file's plane has: validation refuses
 /// them) is taken for an integer one. Without the `compact-planes` feature
 /// there is no integer form. Equality is of the words.
