@@ -218,10 +218,11 @@ fn unit_from_f32_slow(v: [f32; 3]) -> Option<[Fx14; 3]> {
 /// pattern, in the last, where a finite `f32` never has it. (A fourth
 /// word for the form, kept and tested by the memo, cost a narrow tree's
 /// Cortex-M4F `bench_city` frame 1.4 % with the `compact-planes` feature
-/// compiled in; session 27.) So an `f32` vector whose third component has the bits
-/// `0xFFFF_FFFF` (a NaN, which no file's plane has: validation refuses
-/// them) is taken for an integer one. Without the `compact-planes` feature
-/// there is no integer form. Equality is of the words.
+/// compiled in; session 27.) So an `f32` vector whose third component
+/// has the bits `0xFFFF_FFFF` (a NaN, which no file's plane has:
+/// validation refuses them) is taken for an integer one. Without the
+/// `compact-planes` feature there is no integer form. Equality is of the
+/// words.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Normal {
     /// `f32` patterns, or `m₀ | m₁ << 16`, `m₂` (low half) and
