@@ -14,7 +14,7 @@
 # start-up (tree validation, the checksum): profile an ELF that draws
 # only the frames of interest (the firmware's `main` loop cut to one
 # view, or `fpt mcu-bench`'s ELF with FPT_BENCH_FRAMES=2 under
-# firmware/target/mcu-bench). Needs llvm-addr2line and llvm-nm (apt
+# firmware/target/mcu-bench). Needs llvm-addr2line (apt
 # package llvm) for `top` and `diff`; the firmware's release profile has
 # debug info.
 set -euo pipefail
