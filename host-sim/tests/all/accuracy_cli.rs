@@ -203,13 +203,18 @@ fn a_tree_from_fpt_build_q16_gives_the_vertex_q16_row() {
         s(&tree_file),
         "--vertex-format".into(),
         "q16".into(),
+        // The study pins narrow records (`accuracy::eval::tree_options`),
+        // the default before session 27.
+        "--records".into(),
+        "narrow".into(),
     ]);
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    // The study's q16 tree is the one `fpt build --vertex-format q16` writes.
+    // The study's q16 tree is the one `fpt build --vertex-format q16
+    // --records narrow` writes.
     let built = std::fs::read(&tree_file).expect("tree");
     assert_eq!(
         built.as_slice(),
