@@ -637,18 +637,33 @@ impl Cursor {
         // mostly one bunch of one or two runs), the cursor is marked used
         // up: the walk's next call goes straight on to the next class
         // instead of testing both segments again.
-        let (next, end, cur) = match found {
-            Some((next, end)) if s0.is_empty() && s1.is_empty() => (next, end, 2),
-            Some((next, end)) => (next, end, cur),
-            None => (0, 0, 2),
-        };
-        *self = Cursor {
-            next,
-            end,
-            segs: [s0, s1],
-            cur,
-        };
-        found.is_some()
+        // A used-up cursor's segments are never read again (every read
+        // goes through `segs.get(cur)` or skips `cur` of them), so only
+        // its range and mark are written: a class start in three stores
+        // instead of ten.
+        match found {
+            Some((next, end)) if !(s0.is_empty() && s1.is_empty()) => {
+                *self = Cursor {
+                    next,
+                    end,
+                    segs: [s0, s1],
+                    cur,
+                };
+                true
+            }
+            Some((next, end)) => {
+                self.next = next;
+                self.end = end;
+                self.cur = 2;
+                true
+            }
+            None => {
+                self.next = 0;
+                self.end = 0;
+                self.cur = 2;
+                false
+            }
+        }
     }
 
     /// [`Cursor::settle`] with [`Seg::take_walk`]: `next..end` becomes the
