@@ -109,13 +109,15 @@ macro_rules! by_layout {
 }
 
 mod class;
+mod facing;
 
-pub(crate) use class::MEMO;
+pub(crate) use facing::MEMO;
 
 use crate::format::NO_SWITCH;
 use crate::reader::{Plane, PolygonRef, Tree, WalkData};
 pub use class::Class;
-use class::{Cursor, Facing, Pick, RunRecord, Seg};
+use class::{Cursor, Pick, RunRecord, Seg};
+use facing::Facing;
 
 /// A view, in the model's coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -118,63 +118,15 @@ use core::fmt;
 use crate::raster::proof::VertexBound;
 
 use crate::format::{
-    crc32, header as h, le_f32, rd, rd_f32, rd_f32x3, rd_f64, rd_u16, rd_u32, rd_u8, Counts,
-    FormatError, Sections, UpAxis, VertexFormat, CRC_LEN, FLAG_CLOSED, HEADER_LEN, MAGIC,
-    MAX_SHIFT, NODE_LEN, POLYGON_LEN, Q16_MAX, RUN_LEN, SWITCH_LEN, VERSION,
+    crc32, header as h, rd, rd_f32, rd_f32x3, rd_f64, rd_u16, rd_u32, rd_u8, Counts, FormatError,
+    Sections, UpAxis, VertexFormat, CRC_LEN, FLAG_CLOSED, HEADER_LEN, MAGIC, MAX_SHIFT, NODE_LEN,
+    POLYGON_LEN, Q16_MAX, RUN_LEN, SWITCH_LEN, VERSION,
 };
 use crate::format::{plane_unit, COMPACT_PLANE_LEN, FLAG_COMPACT_PLANES};
 use crate::format::{COMPACT_POLYGON_LEN, FLAG_COMPACT, FLAG_NARROW, SWITCH_REF_LEN};
 use crate::format::{FLAG_EDGES, FLAG_NORMALS, NORMAL_LEN};
 use crate::format::{FLAG_PLANES, FLAG_RUN_OFFSETS, PLANE_LEN, TABLE_RUN_LEN};
 use crate::format::{FLAG_SMALL, SMALL_MAX_RUNS, SMALL_MAX_SWITCHES, SMALL_NODE_LEN};
-
-/// A plane `normal · (x − origin) + d = 0`, relative to the tree's origin.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Plane {
-    /// Unit normal, pointing to the front side.
-    pub normal: [f32; 3],
-    /// Offset relative to the origin.
-    pub d: f32,
-}
-
-impl Plane {
-    /// `normal · p + d` for a point `p` relative to the origin: positive on
-    /// the front side.
-    #[inline]
-    pub fn eval(&self, p: [f32; 3]) -> f32 {
-        self.normal_dot(p) + self.d
-    }
-
-    /// `normal · v`.
-    #[inline]
-    pub fn normal_dot(&self, v: [f32; 3]) -> f32 {
-        self.normal[0] * v[0] + self.normal[1] * v[1] + self.normal[2] * v[2]
-    }
-
-    fn is_finite(&self) -> bool {
-        self.normal.iter().all(|x| x.is_finite()) && self.d.is_finite()
-    }
-
-    /// The plane of a 16-byte record: normal, then offset.
-    #[inline(always)]
-    fn from_record<const L: usize>(r: &[u8; L]) -> Plane {
-        Plane {
-            normal: [le_f32(r, 0), le_f32(r, 4), le_f32(r, 8)],
-            d: le_f32(r, 12),
-        }
-    }
-}
-
-/// A vertex as stored, before decoding (see [`VertexFormat`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum RawVertex {
-    /// `f32` offset from the origin.
-    F32([f32; 3]),
-    /// `q16`: offset `half_extent[axis] · q / 32767`.
-    Q16([i16; 3]),
-    /// `q32`: offset `q · 2^-shift`.
-    Q32([i32; 3]),
-}
 
 /// A validated tree file, read in place.
 #[derive(Clone, Copy, Debug)]
@@ -833,6 +785,8 @@ mod geometry;
 use geometry::{CompactFields, Geometry};
 mod layout;
 mod normals;
+mod plane;
+pub use plane::{Plane, RawVertex};
 mod polygon;
 pub(crate) use polygon::PolygonAt;
 pub use polygon::PolygonRef;

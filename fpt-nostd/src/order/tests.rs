@@ -350,13 +350,13 @@ fn the_walks_facing_test_is_the_local_views() {
         }
         let plane = Plane { normal, d };
         assert_eq!(
-            class::Facing::of(&view, &[], 1.0).backward(&rec),
+            facing::Facing::of(&view, &[], 1.0).backward(&rec),
             view.is_backward(&plane),
             "{view:?} {plane:?}"
         );
         // Through a memo: the same answer the first time and from memory.
         let memo = [core::cell::Cell::new(0u32)];
-        let face = class::Facing::of(&view, &memo, 1.0);
+        let face = facing::Facing::of(&view, &memo, 1.0);
         let k = (i % 16) as u32;
         assert_eq!(face.backward_at(k, &rec), view.is_backward(&plane));
         assert_eq!(memo[0].get() >> (2 * k) & 2, 2, "remembered");
@@ -399,10 +399,10 @@ fn a_memo_changes_no_order() {
 #[cfg(feature = "compact-planes")]
 #[test]
 fn a_compact_entrys_fixed_point_test_is_its_f32_test_but_on_near_ties() {
-    // The walk tests a compact entry in fixed point (class::CompactPlane);
+    // The walk tests a compact entry in fixed point (facing::CompactPlane);
     // the exact sign of `m · a + e · w` (f64) must agree with it whenever
     // the value is farther from 0 than the fixed point's error (below
-    // `M / 512`, `M` the largest of |a| and |w|, class::fixed_view), and an
+    // `M / 512`, `M` the largest of |a| and |w|, facing::fixed_view), and an
     // exact tie (0) must be forward.
     use crate::format::compact_side;
     let mut state = 0x0dd_ba11_cafe_f00du64;
@@ -434,8 +434,8 @@ fn a_compact_entrys_fixed_point_test_is_its_f32_test_but_on_near_ties() {
             LocalView::Eye(v)
         };
         let unit = [0.5f32, 1.0, 173.2][(next() % 3) as usize];
-        let face = class::Facing::of(&view, &[], unit);
-        let got = face.backward(class::CompactPlane::of(&entry));
+        let face = facing::Facing::of(&view, &[], unit);
+        let got = face.backward(facing::CompactPlane::of(&entry));
         let m = compact_side(&entry).map(f64::from);
         let (a, w) = match view {
             LocalView::Parallel(d) => (d.map(|x| -f64::from(x)), 0.0),
