@@ -47,7 +47,7 @@
 use core::fmt;
 use core::marker::PhantomData;
 
-use crate::raster::shade::HAS_FPU;
+use crate::cpu::HAS_FPU;
 
 /// A set of effects (see the module docs). Unknown bits are ignored.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Default)]

@@ -127,6 +127,7 @@
 #![no_std]
 #![deny(unsafe_code, missing_docs)]
 
+mod cpu;
 pub mod effects;
 pub mod fixed;
 pub mod format;

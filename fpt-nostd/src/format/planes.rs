@@ -26,7 +26,7 @@
 //! within 32766 to 32768 (what rounding a unit normal gives; never zero).
 
 use super::le_u32;
-use crate::raster::shade::HAS_FPU;
+use crate::cpu::HAS_FPU;
 
 /// Length of one compact plane table entry.
 pub const COMPACT_PLANE_LEN: usize = 8;

@@ -6,8 +6,8 @@
 use core::cell::Cell;
 
 use super::LocalView;
+use crate::cpu::{HAS_FPU, HAS_LONG_MUL};
 use crate::format::{le_f32, le_u32, COMPACT_PLANE_LEN};
-use crate::raster::shade::HAS_FPU;
 
 /// Whether facing memos are used: on cores without an FPU, where a facing
 /// test is four software-float products and three sums; with one, a test
@@ -169,11 +169,58 @@ impl FacingPlane for CompactPlane {
         // exact term, so a sum of exact value 0 or less stays 0 or less
         // (forward, as a tie must be); an error under 4 · 2^16 of terms up
         // to 2^44 decides the sign otherwise.
-        let p = |f: i32, m: u32| ((i64::from(f) * i64::from(m as i16)) >> 16) as i32;
+        let p = |f: i32, m: u32| {
+            if HAS_LONG_MUL {
+                ((i64::from(f) * i64::from(m as i16)) >> 16) as i32
+            } else {
+                mul_hi16(f, m as i16)
+            }
+        };
         p(f[0], w0)
             .wrapping_add(p(f[1], w0 >> 16))
             .wrapping_add(p(f[2], w1))
             .wrapping_add(p(f[3], w1 >> 16))
             > 0
+    }
+}
+
+/// `⌊f · m / 2^16⌋` in 32-bit products, for `|f| < 2^29` (what
+/// [`fixed_view`] makes): with `f = h · 2^16 + l` (`0 ≤ l < 2^16`) the
+/// product is `h · m · 2^16 + l · m`, whose floor by `2^16` is
+/// `h · m + ⌊l · m / 2^16⌋` exactly, and `|l · m| < 2^31`. The `i64`
+/// form's value, for cores without a 64-bit multiply ([`HAS_LONG_MUL`]).
+#[inline(always)]
+pub(super) fn mul_hi16(f: i32, m: i16) -> i32 {
+    let m = i32::from(m);
+    (f >> 16)
+        .wrapping_mul(m)
+        .wrapping_add(((f & 0xFFFF) * m) >> 16)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mul_hi16;
+
+    /// The 32-bit form gives the `i64` form's value over the whole range
+    /// the facing test feeds it (|f| < 2^29, every `i16`), ends included.
+    #[test]
+    fn mul_hi16_equals_the_i64_product() {
+        let mut rng = crate::raster::tests::Rng(1616);
+        let lim = (1 << 29) - 1;
+        let ends = [0, 1, -1, 0xFFFF, -0x10000, 0x10000, lim, -lim];
+        for k in 0..200_000 {
+            let f = if k < 64 {
+                ends[k % ends.len()]
+            } else {
+                rng.range(-lim, lim)
+            };
+            let m = match k % 4 {
+                0 => i16::MIN,
+                1 => i16::MAX,
+                _ => rng.range(-32768, 32767) as i16,
+            };
+            let want = ((i64::from(f) * i64::from(m)) >> 16) as i32;
+            assert_eq!(mul_hi16(f, m), want, "{f} {m}");
+        }
     }
 }

@@ -34,8 +34,8 @@
 use super::chain::{sort_by_y, TriangleBand};
 use super::edge::{all_small, Dda32, Packed};
 use super::scan::{pair_rows, Pair, SpanSink};
-use super::shade::HAS_FPU;
 use super::transform::ScreenPt;
+use crate::cpu::HAS_FPU;
 
 mod poly;
 mod quad;

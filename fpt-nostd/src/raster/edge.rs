@@ -46,6 +46,7 @@
 //! [`SCREEN_LIMIT`]: super::transform::SCREEN_LIMIT
 
 use super::transform::{ScreenPt, SCREEN_LIMIT};
+use crate::cpu::HAS_DIV;
 
 /// One polygon edge prepared for scan conversion (opaque state).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -103,17 +104,6 @@ pub(crate) const SMALL: i32 = 1 << 13;
 pub(crate) fn all_small(pts: &[ScreenPt]) -> bool {
     pts.iter().all(|p| p.x.abs() < SMALL && p.y.abs() < SMALL)
 }
-
-/// Whether the target divides integers in hardware: hosted targets, ARM
-/// cores with 32-bit compare-and-swap atomics (ARMv7-M and ARMv8-M: those
-/// with a divider; ARMv6-M has neither) and RISC-V with M. Stable Rust
-/// names no ARM feature for the divider, hence the atomics; a core this
-/// misjudges takes the other, equally exact, set-up.
-pub(crate) const HAS_DIV: bool = cfg!(any(
-    not(target_os = "none"),
-    all(target_arch = "arm", target_has_atomic = "32"),
-    target_feature = "m"
-));
 
 /// [`div_floor`] for 32-bit values (`d > 0`): one hardware division.
 #[inline]

@@ -70,7 +70,7 @@ pub mod transform;
 pub mod vcache;
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 #[cfg(test)]
 mod tests_render;
 

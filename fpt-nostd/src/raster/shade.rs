@@ -18,6 +18,7 @@
 //! (face colour × intensity: the paper's Figure 16), [`ShadeMode::Grey`]
 //! (a grey level × intensity, face colours ignored: Figure 15).
 
+use crate::cpu::HAS_FPU;
 use core::cell::Cell;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
@@ -97,14 +98,6 @@ fn round_scaled(c: f32, frac: u32) -> i32 {
         round_scaled_bits(c, frac)
     }
 }
-
-/// Whether the target has hardware floating point: hosted targets, ARM
-/// hard-float ABIs, RISC-V with F.
-pub(crate) const HAS_FPU: bool = cfg!(any(
-    not(target_os = "none"),
-    target_abi = "eabihf",
-    target_feature = "f"
-));
 
 /// [`round_scaled`] in integers, from the bits of `c`.
 #[inline]
