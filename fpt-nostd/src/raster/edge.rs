@@ -384,8 +384,8 @@ impl Dda32 {
         // centre, in sub-pixel units: below 2^(sub+1) on the edge's first
         // active row.
         let down = (2 * y + 1) * half - 2 * t.y;
-        if !HAS_DIV && (down as u32) < 1 << (sub + 1) {
-            return Dda32::start_first_row(t, dx, dy, sub, down);
+        if !HAS_DIV && down >= 0 {
+            return Dda32::start_one_division(t, dx, dy, sub, down);
         }
         let n = (2 * t.x - half) * dy + down * dx;
         // ceil(n / d) = −floor(−n / d), with excess (−n) mod d; |n| < 2^31
@@ -403,9 +403,9 @@ impl Dda32 {
         }
     }
 
-    /// [`Dda32::start_inline`] on a row whose centre lies `down / 2`
-    /// sub-pixel units below `t` with `0 ≤ down < 2^(sub+1)` (the edge's
-    /// first active row), in one division instead of two: for cores
+    /// [`Dda32::start_inline`] on the row whose centre lies `down / 2`
+    /// sub-pixel units below `t` (`down ≥ 0`: an active row), in one
+    /// division instead of two on the edge's first eight rows: for cores
     /// without a hardware divider ([`HAS_DIV`]), where each division is a
     /// call of about 85 instructions (a Cortex-M0's triangle set-up made
     /// six of them).
@@ -415,19 +415,32 @@ impl Dda32 {
     /// division), the start divides `−n = −A·dy − down·dx
     /// = M·dy − down·r` with `M = −(A + down·qs)`. Splitting
     /// `M = P·m1 + m0` (`0 ≤ m0 < P`, a shift and a mask) gives
-    /// `−n = m1·d + X` with `X = m0·dy − down·r`, and `−d < X < d`
-    /// (`m0, down < P`, `r < dy`): `floor(−n / d)` is `m1` or `m1 − 1`
-    /// by the sign of `X`, the excess `X` or `X + d`. Every product is
-    /// below 2^24 in magnitude for endpoints within ±[`SMALL`] and
-    /// `sub ≤ 8`.
+    /// `−n = m1·d + X` with `X = m0·dy − down·r`, and
+    /// `−down·dy < X < d` (`m0 < P`, `r < dy`): `floor(−n / d)` is `m1`
+    /// less the number of `d` that bring `X` to `[0, d)`, at most
+    /// `down / P + 1`. On the first row (`down < P`) that is one test; up
+    /// to eight rows down, a short loop; farther, one more division. Every
+    /// value is below 2^30 in magnitude for endpoints within ±[`SMALL`]
+    /// and `sub ≤ 8` (`n`'s own bound, `Edge::new_small`).
     #[inline(always)]
-    pub(crate) fn start_first_row(t: ScreenPt, dx: i32, dy: i32, sub: u32, down: i32) -> Dda32 {
+    pub(crate) fn start_one_division(t: ScreenPt, dx: i32, dy: i32, sub: u32, down: i32) -> Dda32 {
         let d = dy << (sub + 1);
         let (qs, r) = div_floor32(dx, dy);
         let m = -((2 * t.x - (1 << sub)) + down * qs);
-        let (m1, m0) = (m >> (sub + 1), m & ((1 << (sub + 1)) - 1));
-        let x = m0 * dy - down * r;
-        let (q, g) = if x < 0 { (m1 - 1, x + d) } else { (m1, x) };
+        let (mut q, m0) = (m >> (sub + 1), m & ((1 << (sub + 1)) - 1));
+        let mut g = m0 * dy - down * r;
+        if g < 0 {
+            if down >> (sub + 1) < 8 {
+                while g < 0 {
+                    g += d;
+                    q -= 1;
+                }
+            } else {
+                let (k, rest) = div_floor32(g, d);
+                q += k;
+                g = rest;
+            }
+        }
         Dda32 {
             c: -q,
             g,
@@ -722,7 +735,8 @@ mod tests {
     }
 
     /// The one-division start of cores without a divider gives the
-    /// two-division start's state on every edge's first active row: random
+    /// two-division start's state on an edge's first active row, the next
+    /// few and any other: random
     /// edges within ±SMALL (extreme corners, vertical and one-row ones
     /// among them) at every sub-pixel precision the set-up takes.
     #[test]
@@ -748,10 +762,19 @@ mod tests {
             }
             let sub = sub as u32;
             let half = 1 << sub;
-            let down = (2 * first + 1) * half - 2 * t.y;
-            assert!((0..1 << (sub + 1)).contains(&down), "{t:?} {sub}");
-            let one = Dda32::start_first_row(t, b.x - t.x, b.y - t.y, sub, down);
-            assert_eq!(one, Dda32::start(t, b, sub, first), "{t:?} {b:?} {sub}");
+            // The first row, one of the next few, or any active row.
+            let y = match k % 3 {
+                0 => first,
+                1 => (first + rng.range(0, 9)).min(end - 1),
+                _ => rng.range(first, end - 1),
+            };
+            let down = (2 * y + 1) * half - 2 * t.y;
+            assert!(down >= 0, "{t:?} {sub}");
+            if y == first {
+                assert!(down < 1 << (sub + 1), "{t:?} {sub}");
+            }
+            let one = Dda32::start_one_division(t, b.x - t.x, b.y - t.y, sub, down);
+            assert_eq!(one, Dda32::start(t, b, sub, y), "{t:?} {b:?} {sub} {y}");
             checked += 1;
         }
         assert!(checked > 40_000, "{checked}");
