@@ -117,16 +117,22 @@ fn div_floor32(n: i32, d: i32) -> (i32, i32) {
     }
 }
 
-/// [`div_floor32`] without the division when `−d ≤ n < d` (an edge
-/// whose slope `dx / dy` is within ±1: a steep edge), for cores without a
-/// divider, where the division is a call of about 50 instructions.
-/// `d > 0`, `|n| < 2^30`.
+/// [`div_floor32`] without the division when `−2·d ≤ n < 2·d` (an edge
+/// whose slope `dx / dy` is within ±2), for cores without a divider, where
+/// the division is a call of about 50 instructions. Measured on the
+/// Cortex-M0's socket orbit: the window ±1 took 0.6 % off a frame, ±2
+/// 0.7 % more; four compare-and-subtract steps for ±8 took only 0.2 %
+/// (each edge paid for all four). `d > 0`, `|n| < 2^29`.
 #[inline(always)]
 fn div_floor_near(n: i32, d: i32) -> (i32, i32) {
     if n >= 0 && n < d {
         (0, n)
     } else if n < 0 && n >= -d {
         (-1, n + d)
+    } else if n >= d && n < 2 * d {
+        (1, n - d)
+    } else if n < -d && n >= -2 * d {
+        (-2, n + 2 * d)
     } else {
         div_floor32(n, d)
     }
@@ -795,7 +801,7 @@ mod tests {
         assert!(checked > 40_000, "{checked}");
     }
 
-    /// The short division is `div_floor32`'s, inside its ±d window, at
+    /// The short division is `div_floor32`'s, inside its ±2·d window, at
     /// its ends and outside it.
     #[test]
     fn div_floor_near_equals_div_floor32() {
@@ -807,8 +813,19 @@ mod tests {
                 rng.range(1, (1 << 14) - 1)
             };
             let n = match k % 4 {
-                0 => rng.range(-2 * d - 2, 2 * d + 1),
-                1 => [-d - 1, -d, d - 1, d, 0, -1, d + 1, 1][k / 4 % 8],
+                0 => rng.range(-3 * d - 2, 3 * d + 1),
+                1 => [
+                    -2 * d - 1,
+                    -2 * d,
+                    2 * d - 1,
+                    2 * d,
+                    -d - 1,
+                    -d,
+                    d - 1,
+                    d,
+                    0,
+                    -1,
+                ][k / 4 % 10],
                 _ => rng.range(-(1 << 14), 1 << 14),
             };
             assert_eq!(div_floor_near(n, d), div_floor32(n, d), "{n} {d}");
