@@ -134,8 +134,17 @@ fn div_floor_near(n: i32, d: i32) -> (i32, i32) {
     } else if n < -d && n >= -2 * d {
         (-2, n + 2 * d)
     } else {
-        div_floor32(n, d)
+        div_floor32_out(n, d)
     }
+}
+
+/// [`div_floor32`] out of line: the rare divisions of the division-free
+/// edge start, one copy instead of one at every inlined start (on the
+/// Cortex-M0 the inlined copies made its accuracy firmware too large
+/// for the micro:bit's 256 KiB of flash).
+#[inline(never)]
+fn div_floor32_out(n: i32, d: i32) -> (i32, i32) {
+    div_floor32(n, d)
 }
 
 /// `(floor(n / d), n mod d)` with `0 ≤ n mod d < d`, for `d > 0`.
@@ -405,7 +414,7 @@ impl Dda32 {
         // centre, in sub-pixel units: below 2^(sub+1) on the edge's first
         // active row.
         let down = (2 * y + 1) * half - 2 * t.y;
-        if !HAS_DIV && down >= 0 {
+        if !HAS_DIV {
             return Dda32::start_one_division(t, dx, dy, sub, down);
         }
         let n = (2 * t.x - half) * dy + down * dx;
@@ -425,7 +434,8 @@ impl Dda32 {
     }
 
     /// [`Dda32::start_inline`] on the row whose centre lies `down / 2`
-    /// sub-pixel units below `t` (`down ≥ 0`: an active row), in one
+    /// sub-pixel units below `t` (`down ≥ 0`: an active row, as
+    /// [`Dda32::start`] requires), in one
     /// division instead of two on the edge's first eight rows: for cores
     /// without a hardware divider ([`HAS_DIV`]), where each division is a
     /// call of about 85 instructions (a Cortex-M0's triangle set-up made
@@ -457,7 +467,7 @@ impl Dda32 {
                     q -= 1;
                 }
             } else {
-                let (k, rest) = div_floor32(g, d);
+                let (k, rest) = div_floor32_out(g, d);
                 q += k;
                 g = rest;
             }
