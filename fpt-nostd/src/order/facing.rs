@@ -190,7 +190,7 @@ impl FacingPlane for CompactPlane {
 /// `h · m + ⌊l · m / 2^16⌋` exactly, and `|l · m| < 2^31`. The `i64`
 /// form's value, for cores without a 64-bit multiply ([`HAS_LONG_MUL`]).
 #[inline(always)]
-pub(super) fn mul_hi16(f: i32, m: i16) -> i32 {
+fn mul_hi16(f: i32, m: i16) -> i32 {
     let m = i32::from(m);
     (f >> 16)
         .wrapping_mul(m)

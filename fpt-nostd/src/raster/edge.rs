@@ -454,7 +454,7 @@ impl Dda32 {
     /// value is below 2^30 in magnitude for endpoints within ±[`SMALL`]
     /// and `sub ≤ 8` (`n`'s own bound, `Edge::new_small`).
     #[inline(always)]
-    pub(crate) fn start_one_division(t: ScreenPt, dx: i32, dy: i32, sub: u32, down: i32) -> Dda32 {
+    fn start_one_division(t: ScreenPt, dx: i32, dy: i32, sub: u32, down: i32) -> Dda32 {
         let d = dy << (sub + 1);
         let (qs, r) = div_floor_near(dx, dy);
         let m = -((2 * t.x - (1 << sub)) + down * qs);
